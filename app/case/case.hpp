@@ -1,0 +1,71 @@
+#pragma once
+// One case file describes a whole paired case. This folder is the one place that maps it to
+// the plain parameter structs of each stage.
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "app/case/registry.hpp"
+#include "continuum/parameters.hpp"
+#include "particle/parameters.hpp"
+
+namespace twinflow::app {
+
+// Boundaries of one box direction, shared by both twins.
+struct DirectionBoundary {
+  bool periodic = true;
+  std::array<bool, 2> thermal{{true, true}}; // lower, upper: thermal (true) or adiabatic
+  std::array<double, 2> temperature{{1.0, 1.0}};
+  bool no_slip = false;
+};
+
+struct SceneParameters {
+  int dim = 3;
+  std::array<double, 3> box{{20, 10, 10}};
+  double density = 3.0;
+  double temperature = 1.0;
+  std::array<double, 3> gravity{{0, 0, 0}};
+  std::array<DirectionBoundary, 3> boundary;
+  bool has_walls() const;
+};
+
+struct TransportParameters {
+  std::string source = "estimated"; // estimated | measured
+};
+
+struct CompareParameters {
+  double wall_layer = 1.0; // thickness excluded from field errors
+};
+
+struct CaseParameters {
+  std::string name;
+  SceneParameters scene;
+  particle::ParticleParameters particle;
+  TransportParameters transport;
+  continuum::ContinuumParameters continuum;
+  CompareParameters compare;
+};
+
+// Declares every parameter of every section (so print-parameters documents them all).
+class Case {
+public:
+  Case();
+  // Reads the file, applies --set overrides, checks every value: throws io::InputError.
+  CaseParameters load(const std::string& filename, const std::vector<std::string>& overrides);
+  const Registry& registry() const { return registry_; }
+
+private:
+  Registry registry_;
+};
+
+// Per-section declaration and mapping (app/case/*_section.cpp).
+void declare_scene(Registry&);
+SceneParameters resolve_scene(const Registry&);
+void declare_particle(Registry&);
+particle::ParticleParameters resolve_particle(const Registry&, const SceneParameters&);
+void declare_continuum(Registry&);
+continuum::ContinuumParameters resolve_continuum(const Registry&, const SceneParameters&);
+void declare_transport_and_compare(Registry&);
+
+} // namespace twinflow::app

@@ -1,0 +1,159 @@
+#include "app/case/case.hpp"
+
+#include <cmath>
+
+namespace twinflow::app {
+
+namespace {
+const char* const kPositive = "a number > 0";
+}
+
+using namespace twinflow::particle;
+
+void declare_particle(Registry& r) {
+  using namespace dealii::Patterns;
+  const std::string p = "Particle/";
+  r.declare(p + "Integrator", "ec-verlet", Selection("euler|ec-verlet|shardlow"),
+            "euler: explicit first-order update (001 eqs. 1-2; 000:(2.23)-(2.25)). ec-verlet: "
+            "velocity-Verlet with each particle's kinetic and potential changes offset against its "
+            "internal energy (002 Appendix A). shardlow: pairwise splitting of the stochastic "
+            "terms around velocity-Verlet (Lisal et al. 2011).");
+  r.declare(
+      p + "Energy offset", "false", Bool(),
+      "euler/shardlow: take each particle's own kinetic and potential change from its internal "
+      "energy (002 Appendix A), which makes them conserve energy exactly with conservative "
+      "forces too. ec-verlet always does this.");
+  r.declare(p + "Time step", "0.005", Double(), "Time step dt (units of tau), > 0.", kPositive);
+  r.declare(p + "Equilibration steps", "0", Integer(0),
+            "Steps run before averages start (not sampled).");
+  r.declare(p + "Steps", "1000", Integer(0), "Sampled steps after equilibration.");
+  r.declare(p + "Seed", "1", Integer(0), "Seed of the counter-based random numbers.");
+  r.declare(p + "Mass", "1", Double(), "Particle mass m, > 0.", kPositive);
+  r.declare(p + "Initial velocities", "maxwell", Selection("maxwell|rest"),
+            "maxwell: Gaussian velocities at the scene temperature (zero total momentum); rest: "
+            "all particles at rest (seed 000's closed-system start).");
+
+  r.declare(p + "Internal energy/Model", "dpde", Selection("dpde|isothermal"),
+            "dpde: every particle carries an internal energy u = c_v theta. isothermal: classical "
+            "DPD with the fixed scene temperature in the fluctuation-dissipation relation.");
+  r.declare(p + "Internal energy/Heat capacity", "200", Double(),
+            "Particle heat capacity c_v in units of k; seed 000 needs c_v > k.",
+            "a number > 1 (c_v > k, 000 footnote 23)");
+
+  r.declare(p + "Conservative force/Type", "none", Selection("none|constant|temperature-dependent"),
+            "none: ideal gas; constant: a_ij = a0; temperature-dependent: a_ij = a0 (theta_i + "
+            "theta_j)/(2 T_ref) (002 section II.C).");
+  r.declare(p + "Conservative force/a0", "15", Double(), "Repulsion amplitude a0 (k T0 / rc).");
+  r.declare(p + "Conservative force/Cutoff", "1", Double(), "Cutoff rc_C, > 0.", kPositive);
+  r.declare(p + "Conservative force/Reference temperature", "1", Double(),
+            "T_ref of the temperature-dependent a_ij, > 0.", kPositive);
+
+  r.declare(p + "Dissipation/Parametrisation", "constant-sigma",
+            Selection("constant-sigma|constant-gamma"),
+            "constant-sigma: gamma_ij = sigma^2/(2 k Theta_ij) (002, LAMMPS); constant-gamma: "
+            "sigma_ij = sqrt(2 k Theta_ij gamma) with 003:(18)'s drift correction.");
+  r.declare(p + "Dissipation/sigma", "3", Double(0), "Noise amplitude sigma (constant-sigma).");
+  r.declare(p + "Dissipation/gamma", "4.5", Double(0),
+            "Friction gamma (constant-gamma and isothermal).");
+  r.declare(p + "Dissipation/Cutoff", "1", Double(), "Cutoff rc_D of w_D, > 0.", kPositive);
+  r.declare(p + "Dissipation/Exponent", "0.5", Double(0),
+            "w_D = (1 - r/rc_D)^n_D; w_R = sqrt(w_D). 002: 0.5; LAMMPS: 2.");
+
+  r.declare(p + "Heat conduction/Law", "inverse", Selection("none|inverse|linear"),
+            "none; inverse: q = kappa_ij w_H (1/theta_i - 1/theta_j) (000, 003, LAMMPS); "
+            "linear: q = kappa_ij w_H (theta_j - theta_i) (002 eq. 8).");
+  r.declare(p + "Heat conduction/Coefficient", "seed-002", Selection("constant|seed-002"),
+            "inverse law only. constant: kappa_ij = kappa0; seed-002: kappa_ij = kappa0 c_v^2 "
+            "(theta_i + theta_j)^2/(4k). The linear law always uses kappa_ij = c_v kappa0.");
+  r.declare(p + "Heat conduction/kappa0", "0.001", Double(0), "Heat-conduction strength kappa0.");
+  r.declare(p + "Heat conduction/Cutoff", "1", Double(), "Cutoff rc_H of w_H, > 0.", kPositive);
+  r.declare(p + "Heat conduction/Exponent", "0.5", Double(0), "w_H = (1 - r/rc_H)^n_H.");
+
+  r.declare(p + "Diagnostics/Sample interval", "10", Integer(1), "Steps between samples.");
+  r.declare(p + "Diagnostics/Blocks", "20", Integer(2, 10000),
+            "Number of blocks for block-averaged standard errors.");
+  r.declare(p + "Diagnostics/Histogram bins", "60", Integer(4, 100000),
+            "Bins of the velocity and internal-energy histograms.");
+  r.declare(p + "Diagnostics/RDF bins", "100", Integer(4, 100000),
+            "Bins of g(r) up to the largest cutoff x 2.5.");
+  r.declare(p + "Diagnostics/Correlation samples", "100", Integer(2, 100000),
+            "Length of the VACF / MSD window, in samples.");
+}
+
+namespace {
+WeightParameters weight(const Registry& r, const std::string& s) {
+  WeightParameters w{r.get_double(s + "/Cutoff"), r.get_double(s + "/Exponent")};
+  r.require(w.cutoff > 0, s + "/Cutoff", kPositive);
+  return w;
+}
+} // namespace
+
+ParticleParameters resolve_particle(const Registry& r, const SceneParameters& scene) {
+  ParticleParameters p;
+  p.dim = scene.dim;
+  p.box = scene.box;
+  p.density = scene.density;
+  p.temperature = scene.temperature;
+  const std::string s = "Particle/";
+  const std::string integrator = r.get(s + "Integrator");
+  p.integrator = integrator == "euler"      ? Integrator::Euler
+                 : integrator == "shardlow" ? Integrator::Shardlow
+                                            : Integrator::EcVerlet;
+  p.energy_offset = r.get_bool(s + "Energy offset");
+  p.dt = r.get_double(s + "Time step");
+  r.require(p.dt > 0 && std::isfinite(p.dt), s + "Time step", kPositive);
+  p.equilibration_steps = r.get_integer(s + "Equilibration steps");
+  p.steps = r.get_integer(s + "Steps");
+  p.seed = static_cast<std::uint64_t>(r.get_integer(s + "Seed"));
+  p.mass = r.get_double(s + "Mass");
+  r.require(p.mass > 0, s + "Mass", kPositive);
+  p.initial_velocities = r.get(s + "Initial velocities") == "rest" ? InitialVelocities::Rest
+                                                                   : InitialVelocities::Maxwell;
+
+  p.energy = r.get(s + "Internal energy/Model") == "isothermal" ? EnergyModel::Isothermal
+                                                                : EnergyModel::Dpde;
+  p.cv = r.get_double(s + "Internal energy/Heat capacity");
+  r.require(p.cv > 1.0, s + "Internal energy/Heat capacity",
+            "a number > 1 (c_v > k, 000 footnote 23)");
+
+  const std::string c = r.get(s + "Conservative force/Type");
+  p.conservative = c == "none"       ? ConservativeForce::None
+                   : c == "constant" ? ConservativeForce::Constant
+                                     : ConservativeForce::TemperatureDependent;
+  p.a0 = r.get_double(s + "Conservative force/a0");
+  p.conservative_cutoff = r.get_double(s + "Conservative force/Cutoff");
+  r.require(p.conservative_cutoff > 0, s + "Conservative force/Cutoff", kPositive);
+  p.reference_temperature = r.get_double(s + "Conservative force/Reference temperature");
+  r.require(p.reference_temperature > 0, s + "Conservative force/Reference temperature", kPositive);
+
+  p.friction = r.get(s + "Dissipation/Parametrisation") == "constant-gamma"
+                   ? Friction::ConstantGamma
+                   : Friction::ConstantSigma;
+  p.sigma = r.get_double(s + "Dissipation/sigma");
+  p.gamma = r.get_double(s + "Dissipation/gamma");
+  p.dissipation = weight(r, s + "Dissipation");
+
+  const std::string h = r.get(s + "Heat conduction/Law");
+  p.heat = h == "none" ? HeatLaw::None : h == "linear" ? HeatLaw::Linear : HeatLaw::Inverse;
+  p.heat_coefficient = r.get(s + "Heat conduction/Coefficient") == "constant"
+                           ? HeatCoefficient::Constant
+                           : HeatCoefficient::Seed002;
+  p.kappa0 = r.get_double(s + "Heat conduction/kappa0");
+  p.heat_weight = weight(r, s + "Heat conduction");
+  if (p.energy == EnergyModel::Isothermal) p.heat = HeatLaw::None; // no internal energy at all
+
+  p.sample_interval = r.get_integer(s + "Diagnostics/Sample interval");
+  p.blocks = static_cast<int>(r.get_integer(s + "Diagnostics/Blocks"));
+  p.histogram_bins = static_cast<int>(r.get_integer(s + "Diagnostics/Histogram bins"));
+  p.rdf_bins = static_cast<int>(r.get_integer(s + "Diagnostics/RDF bins"));
+  p.correlation_samples = static_cast<int>(r.get_integer(s + "Diagnostics/Correlation samples"));
+
+  // Minimum image needs every periodic edge >= 2 cutoffs.
+  const double rc = p.largest_cutoff();
+  for (int d = 0; d < p.dim; ++d)
+    r.require(p.box[d] >= 2 * rc, "Scene/Box size",
+              "every edge >= 2 x the largest cutoff (" + std::to_string(2 * rc) + ")");
+  return p;
+}
+
+} // namespace twinflow::app

@@ -1,0 +1,74 @@
+#include "app/case/case.hpp"
+
+namespace twinflow::app {
+
+namespace {
+const char* const kPositive = "a number > 0";
+}
+
+namespace {
+const char* kAxes[3] = {"x", "y", "z"};
+}
+
+void declare_scene(Registry& r) {
+  using namespace dealii::Patterns;
+  r.declare("Scene/Dimension", "3", Integer(2, 3), "Space dimension of both twins.");
+  r.declare("Scene/Box size", "20, 10, 10", List(Double(), 2, 3),
+            "Box edge lengths Lx, Ly[, Lz] in units of rc; Lz is ignored in 2D.");
+  r.declare("Scene/Density", "3", Double(), "Number density rho (particles per volume), > 0.",
+            kPositive);
+  r.declare("Scene/Temperature", "1", Double(),
+            "Initial temperature T (units of T0), > 0; the fixed temperature of isothermal DPD.",
+            kPositive);
+  r.declare("Scene/Gravity", "0, 0, 0", List(Double(), 2, 3),
+            "Gravitational acceleration vector g (force m g on every particle).");
+  for (const char* axis : kAxes) {
+    const std::string s = std::string("Scene/") + axis + " boundaries/";
+    r.declare(s + "Type", "periodic", Selection("periodic|walls"),
+              std::string("Periodic in ") + axis + ", or a wall at each end.");
+    r.declare(s + "Lower wall", "thermal", Selection("thermal|adiabatic"),
+              "Lower wall: thermal (fixed temperature, exchanges heat) or adiabatic.");
+    r.declare(s + "Upper wall", "thermal", Selection("thermal|adiabatic"),
+              "Upper wall: thermal or adiabatic.");
+    r.declare(s + "Lower wall temperature", "1", Double(),
+              "Temperature of a thermal lower wall, > 0.", kPositive);
+    r.declare(s + "Upper wall temperature", "1", Double(),
+              "Temperature of a thermal upper wall, > 0.", kPositive);
+    r.declare(s + "Slip", "free-slip", Selection("free-slip|no-slip"),
+              "Tangential condition at both walls of this direction.");
+  }
+}
+
+SceneParameters resolve_scene(const Registry& r) {
+  SceneParameters s;
+  s.dim = static_cast<int>(r.get_integer("Scene/Dimension"));
+  const auto box = r.get_doubles("Scene/Box size");
+  r.require(static_cast<int>(box.size()) >= s.dim, "Scene/Box size",
+            "one length per dimension (" + std::to_string(s.dim) + ")");
+  for (int d = 0; d < 3; ++d) s.box[d] = d < static_cast<int>(box.size()) ? box[d] : 1.0;
+  for (int d = 0; d < s.dim; ++d) r.require(s.box[d] > 0, "Scene/Box size", "lengths > 0");
+  s.density = r.get_double("Scene/Density");
+  r.require(s.density > 0, "Scene/Density", kPositive);
+  s.temperature = r.get_double("Scene/Temperature");
+  r.require(s.temperature > 0, "Scene/Temperature", kPositive);
+  const auto g = r.get_doubles("Scene/Gravity");
+  for (std::size_t d = 0; d < g.size(); ++d) s.gravity[d] = g[d];
+  for (int d = 0; d < 3; ++d) {
+    const std::string p = std::string("Scene/") + kAxes[d] + " boundaries/";
+    auto& b = s.boundary[d];
+    b.periodic = r.get(p + "Type") == "periodic" || d >= s.dim;
+    b.thermal = {{r.get(p + "Lower wall") == "thermal", r.get(p + "Upper wall") == "thermal"}};
+    b.temperature = {
+        {r.get_double(p + "Lower wall temperature"), r.get_double(p + "Upper wall temperature")}};
+    b.no_slip = r.get(p + "Slip") == "no-slip";
+    if (!b.periodic) {
+      for (int side = 0; side < 2; ++side) {
+        const std::string key = p + (side ? "Upper" : "Lower") + " wall temperature";
+        r.require(!b.thermal[side] || b.temperature[side] > 0, key, kPositive);
+      }
+    }
+  }
+  return s;
+}
+
+} // namespace twinflow::app

@@ -1,0 +1,30 @@
+#pragma once
+// The twinflow subcommands. Each takes the parsed command line; bad input throws io::InputError.
+
+#include <string>
+#include <vector>
+
+namespace twinflow::app {
+
+struct CommandLine {
+  std::string command;
+  std::string target; // CASE file or RUNDIR
+  std::string out;    // run directory ("" = twinflow-runs/<case name>)
+  std::vector<std::string> overrides;
+  int threads = 0; // 0: OpenMP's default
+  bool force = false;
+  bool restart = false;
+};
+
+// Thrown by stages that a later issue fills in; exit code 3.
+struct NotImplemented : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+int check_case(const CommandLine&);
+int print_parameters(const CommandLine&);
+int particle_stage(const CommandLine&);
+int bench(const CommandLine&);
+int run_all(const CommandLine&);
+
+} // namespace twinflow::app

@@ -1,0 +1,120 @@
+// twinflow: run a thermal flow as DPDE particles and as a continuum, and compare the twins.
+
+#include <boost/program_options.hpp>
+
+#include <deal.II/base/mpi.h>
+
+#include <iostream>
+#include <map>
+
+#include <omp.h>
+
+#include "app/commands.hpp"
+#include "io/files.hpp"
+
+namespace po = boost::program_options;
+using namespace twinflow;
+
+namespace {
+
+struct Command {
+  const char* help;
+  int (*run)(const app::CommandLine&);
+  bool needs_target;
+};
+
+int not_yet(const app::CommandLine& cl) {
+  throw app::NotImplemented("'" + cl.command + "' is not implemented yet");
+}
+
+const std::map<std::string, Command>& commands() {
+  static const std::map<std::string, Command> table = {
+      {"particle", {"CASE      run the DPDE particle scene", app::particle_stage, true}},
+      {"transport", {"CASE      estimate and measure kappa, eta, alpha, c_p", not_yet, true}},
+      {"continuum", {"CASE      run the deal.II continuum twin", not_yet, true}},
+      {"compare", {"RUNDIR    compare the twins of a finished run", not_yet, true}},
+      {"run",
+       {"CASE      all stages: particle, transport, continuum, compare", app::run_all, true}},
+      {"sweep", {"CASE      a grid of paired runs (--vary, --rayleigh)", not_yet, true}},
+      {"stability", {"CASE      classify stability over a parameter grid", not_yet, true}},
+      {"bench", {"          particle-steps/s of the particle core", app::bench, false}},
+      {"check-case",
+       {"CASE      validate a case file and print its resolved parameters", app::check_case, true}},
+      {"print-parameters",
+       {"          every parameter with its default, range and documentation",
+        app::print_parameters, false}},
+  };
+  return table;
+}
+
+void usage(std::ostream& out, const po::options_description& opts) {
+  out << "usage: twinflow COMMAND [CASE|RUNDIR] [options]\n\ncommands:\n";
+  for (const auto& [name, c] : commands()) out << "  " << name << " " << c.help << "\n";
+  out << "\n" << opts;
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+  // One process; deal.II's solvers and HDF5 expect MPI initialised.
+  dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+
+  po::options_description opts("options");
+  opts.add_options()("help,h", "this help")("out,o", po::value<std::string>(),
+                                            "run directory (default: twinflow-runs/<case name>)")(
+      "set,s", po::value<std::vector<std::string>>()->composing(),
+      "override a case parameter: --set 'Particle/Time step=0.01' (repeatable)")(
+      "threads,t", po::value<int>(), "OpenMP threads")("seed", po::value<long>(),
+                                                       "random seed (Particle/Seed)")(
+      "force", "overwrite an earlier run's results")(
+      "restart", "continue an interrupted run from its checkpoint");
+  po::options_description hidden;
+  hidden.add_options()("command", po::value<std::string>())("target", po::value<std::string>());
+  po::positional_options_description positional;
+  positional.add("command", 1).add("target", 1);
+  po::options_description all;
+  all.add(opts).add(hidden);
+
+  app::CommandLine cl;
+  try {
+    po::variables_map vm;
+    po::store(po::command_line_parser(argc, argv).options(all).positional(positional).run(), vm);
+    po::notify(vm);
+    if (vm.count("help") || !vm.count("command")) {
+      usage(vm.count("help") ? std::cout : std::cerr, opts);
+      return vm.count("help") ? 0 : 2;
+    }
+    cl.command = vm["command"].as<std::string>();
+    const auto it = commands().find(cl.command);
+    if (it == commands().end())
+      throw io::InputError("unknown command '" + cl.command + "' (twinflow --help lists them)");
+    if (vm.count("target")) cl.target = vm["target"].as<std::string>();
+    if (it->second.needs_target && cl.target.empty())
+      throw io::InputError("'" + cl.command + "' needs a CASE file (or RUNDIR)");
+    if (vm.count("out")) cl.out = vm["out"].as<std::string>();
+    if (vm.count("set")) cl.overrides = vm["set"].as<std::vector<std::string>>();
+    if (vm.count("seed"))
+      cl.overrides.push_back("Particle/Seed=" + std::to_string(vm["seed"].as<long>()));
+    if (vm.count("threads")) {
+      cl.threads = vm["threads"].as<int>();
+      if (cl.threads < 1)
+        throw io::InputError("--threads " + std::to_string(cl.threads) + ": allowed: >= 1");
+      omp_set_num_threads(cl.threads);
+    }
+    cl.force = vm.count("force") > 0;
+    cl.restart = vm.count("restart") > 0;
+    return it->second.run(cl);
+  } catch (const po::error& e) {
+    std::cerr << "twinflow: error: " << e.what() << " (twinflow --help)\n";
+    return 2;
+  } catch (const io::InputError& e) {
+    std::cerr << "twinflow: error: " << e.what() << "\n";
+    return 2;
+  } catch (const app::NotImplemented& e) {
+    std::cerr << "twinflow: " << e.what() << "\n";
+    return 3;
+  } catch (const std::exception& e) {
+    std::cerr << "twinflow: failed: " << e.what() << "\n";
+    return 1;
+  }
+}

@@ -1,0 +1,1 @@
+#include "continuum/parameters.hpp"

@@ -1,0 +1,54 @@
+#include "io/files.hpp"
+
+#include <fstream>
+#include <sstream>
+
+#include "io/version.hpp"
+
+namespace twinflow::io {
+
+namespace fs = std::filesystem;
+
+void write_file_atomically(const fs::path& path, const std::string& content) {
+  fs::path tmp = path;
+  tmp += ".tmp";
+  {
+    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    if (!out) throw std::runtime_error("cannot write " + tmp.string());
+    out << content;
+    out.flush();
+    if (!out) throw std::runtime_error("error writing " + tmp.string());
+  }
+  fs::rename(tmp, path);
+}
+
+std::string read_file(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path.string() + ": cannot open file for reading");
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+StageDirectory::StageDirectory(const fs::path& run_dir, const std::string& stage, bool force)
+    : path_(run_dir / stage) {
+  if (fs::exists(path_ / "summary.json") && !force)
+    throw InputError(path_.string() +
+                     ": holds an earlier run's results; use --force to overwrite or another --out");
+  if (fs::exists(run_dir) && !fs::is_directory(run_dir))
+    throw InputError(run_dir.string() + ": exists and is not a directory");
+}
+
+void StageDirectory::create() const {
+  fs::create_directories(path_);
+}
+
+Json provenance() {
+  Json j = Json::object();
+  j["twinflow_git_revision"] = kGitRevision;
+  j["compiler"] = kCompiler;
+  j["build_type"] = kBuildType;
+  return j;
+}
+
+} // namespace twinflow::io

@@ -1,0 +1,33 @@
+#include "particle/parameters.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace twinflow::particle {
+
+double ParticleParameters::largest_cutoff() const {
+  double rc = dissipation.cutoff;
+  if (conservative != ConservativeForce::None) rc = std::max(rc, conservative_cutoff);
+  if (heat != HeatLaw::None && energy == EnergyModel::Dpde) rc = std::max(rc, heat_weight.cutoff);
+  return rc;
+}
+
+long ParticleParameters::particle_count() const {
+  double volume = box[0] * box[1];
+  if (dim == 3) volume *= box[2];
+  return std::lround(density * volume);
+}
+
+const char* to_string(Integrator i) {
+  switch (i) {
+  case Integrator::Euler:
+    return "euler";
+  case Integrator::EcVerlet:
+    return "ec-verlet";
+  case Integrator::Shardlow:
+    return "shardlow";
+  }
+  return "?";
+}
+
+} // namespace twinflow::particle

@@ -1,0 +1,72 @@
+#pragma once
+// Plain parameters of a particle run: filled once from the case file (app/case), read everywhere.
+// Units: m, k (Boltzmann), rc and T0 are the DPD units; k = 1 throughout.
+
+#include <array>
+#include <cstdint>
+#include <string>
+
+namespace twinflow::particle {
+
+enum class Integrator { Euler, EcVerlet, Shardlow };
+enum class EnergyModel { Dpde, Isothermal };
+enum class ConservativeForce { None, Constant, TemperatureDependent };
+enum class Friction { ConstantSigma, ConstantGamma };
+enum class HeatLaw { None, Inverse, Linear };
+enum class HeatCoefficient { Constant, Seed002 };
+enum class InitialVelocities { Maxwell, Rest };
+
+// w(r) = (1 - r/cutoff)^exponent for r < cutoff.
+struct WeightParameters {
+  double cutoff = 1.0;
+  double exponent = 1.0;
+};
+
+struct ParticleParameters {
+  int dim = 3;
+  std::array<double, 3> box{{20.0, 10.0, 10.0}}; // box[2] unused in 2D
+  double density = 3.0;
+  double mass = 1.0;
+  std::uint64_t seed = 1;
+
+  Integrator integrator = Integrator::EcVerlet;
+  bool energy_offset = false; // seed 002's per-particle K+P offset, for euler and shardlow
+  double dt = 0.005;
+  long equilibration_steps = 0;
+  long steps = 1000;
+
+  double temperature = 1.0; // initial temperature; the fixed T of isothermal DPD
+  InitialVelocities initial_velocities = InitialVelocities::Maxwell;
+
+  EnergyModel energy = EnergyModel::Dpde;
+  double cv = 200.0; // particle heat capacity, in units of k
+
+  ConservativeForce conservative = ConservativeForce::None;
+  double a0 = 15.0;
+  double conservative_cutoff = 1.0;
+  double reference_temperature = 1.0; // T-bar of 002's a_T
+
+  Friction friction = Friction::ConstantSigma;
+  double sigma = 3.0;
+  double gamma = 4.5;
+  WeightParameters dissipation{1.0, 0.5};
+
+  HeatLaw heat = HeatLaw::Inverse;
+  HeatCoefficient heat_coefficient = HeatCoefficient::Seed002;
+  double kappa0 = 0.001;
+  WeightParameters heat_weight{1.0, 0.5};
+
+  // Diagnostics
+  long sample_interval = 10;
+  int blocks = 20; // block averages for standard errors
+  int histogram_bins = 60;
+  int rdf_bins = 100;
+  int correlation_samples = 100; // VACF / MSD window, in sample intervals
+
+  double largest_cutoff() const;
+  long particle_count() const;
+};
+
+const char* to_string(Integrator);
+
+} // namespace twinflow::particle

@@ -24,6 +24,7 @@ struct NotImplemented : std::runtime_error {
 int check_case(const CommandLine&);
 int print_parameters(const CommandLine&);
 int particle_stage(const CommandLine&);
+int continuum_stage(const CommandLine&);
 int bench(const CommandLine&);
 int run_all(const CommandLine&);
 

@@ -55,6 +55,8 @@ struct ParticleParameters {
   HeatCoefficient heat_coefficient = HeatCoefficient::Seed002;
   double kappa0 = 0.001;
   WeightParameters heat_weight{1.0, 0.5};
+  double linear_noise_factor =
+      2.0; // linear law: Lambda^2 = factor k kappa theta_i theta_j (2: FDT)
 
   // Diagnostics
   long sample_interval = 10;

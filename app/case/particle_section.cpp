@@ -66,6 +66,9 @@ void declare_particle(Registry& r) {
             "inverse law only. constant: kappa_ij = kappa0; seed-002: kappa_ij = kappa0 c_v^2 "
             "(theta_i + theta_j)^2/(4k). The linear law always uses kappa_ij = c_v kappa0.");
   r.declare(p + "Heat conduction/kappa0", "0.001", Double(0), "Heat-conduction strength kappa0.");
+  r.declare(p + "Heat conduction/Linear noise", "fdt", Selection("fdt|seed-002-printed"),
+            "linear law only: fdt: Lambda^2 = 2 k kappa_ij w_H theta_i theta_j (000:(2.38)); "
+            "seed-002-printed: (alpha^B)^2 = kappa_ij theta_i theta_j as printed in 002 (no 2k).");
   r.declare(p + "Heat conduction/Cutoff", "1", Double(), "Cutoff rc_H of w_H, > 0.", kPositive);
   r.declare(p + "Heat conduction/Exponent", "0.5", Double(0), "w_H = (1 - r/rc_H)^n_H.");
 
@@ -140,6 +143,7 @@ ParticleParameters resolve_particle(const Registry& r, const SceneParameters& sc
                            : HeatCoefficient::Seed002;
   p.kappa0 = r.get_double(s + "Heat conduction/kappa0");
   p.heat_weight = weight(r, s + "Heat conduction");
+  p.linear_noise_factor = r.get(s + "Heat conduction/Linear noise") == "fdt" ? 2.0 : 1.0;
   if (p.energy == EnergyModel::Isothermal) p.heat = HeatLaw::None; // no internal energy at all
 
   p.sample_interval = r.get_integer(s + "Diagnostics/Sample interval");

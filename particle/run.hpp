@@ -1,0 +1,34 @@
+#pragma once
+// A whole particle run: equilibration, sampling, diagnostics. The case's physics choices are
+// resolved here, once, into one of the compiled model combinations.
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "io/json.hpp"
+#include "particle/parameters.hpp"
+
+namespace twinflow::particle {
+
+// Mean and block-averaged standard error of a time series (B equal blocks).
+struct Estimate {
+  double mean = 0, stderr_ = 0;
+};
+Estimate block_average(const std::vector<double>& series, int blocks);
+
+struct RunOutput {
+  io::Json summary;             // the particle stage's results
+  std::string thermo_csv;       // time series, one row per sample
+  std::string histograms_csv;   // velocity components and internal energies
+  std::string rdf_csv;          // g(r)
+  std::string correlations_csv; // VACF and MSD
+};
+
+struct RunControl {
+  bool progress = false; // a progress line on stderr (terminal only)
+};
+
+RunOutput run_particles(const ParticleParameters& p, const RunControl& control = {});
+
+} // namespace twinflow::particle

@@ -1,0 +1,93 @@
+#pragma once
+// One DPDE (or isothermal DPD) particle system and its three integrators. The model is a
+// compile-time combination of pair terms (pair_terms.hpp); the integrator is chosen per run.
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "particle/pair_terms.hpp"
+#include "particle/parameters.hpp"
+#include "particle/system.hpp"
+
+namespace twinflow::particle {
+
+template <int D_, class Conservative_, class Friction_, class Heat_>
+struct Model {
+  static constexpr int D = D_;
+  using Conservative = Conservative_;
+  using Friction = Friction_;
+  using Heat = Heat_;
+  static constexpr bool has_energy = !Friction::isothermal;
+  Conservative conservative;
+  Friction friction;
+  Heat heat;
+  double mass = 1, cv = 1, rc = 1; // rc: the largest active cutoff
+};
+
+// A non-positive or non-finite internal energy, or a NaN: the run stops with this message.
+struct InstabilityError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+template <class M>
+class Simulation {
+public:
+  static constexpr int D = M::D;
+
+  Simulation(const M& model, const ParticleParameters& p);
+
+  void step();
+  long steps_done() const { return step_; }
+
+  double kinetic_energy() const;
+  double internal_energy() const;
+  double potential_energy() const;
+  double total_energy() const { return kinetic_energy() + internal_energy() + potential_energy(); }
+
+  const State<D>& state() const { return state_; }
+  State<D>& state() { return state_; }
+  const CellGrid<D>& grid() const { return grid_; }
+  const M& model() const { return model_; }
+  // Re-sorts after the state was changed from outside (tests permute it; restart loads it).
+  void resort() { grid_.sort(state_, carried_); }
+  void prepare(); // forces at the current state (call after changing the state)
+
+private:
+  struct PairForce {
+    double conservative = 0, dissipative_random = 0, phi = 0, heat = 0;
+  };
+  // Everything one pair contributes at the current state (v: velocities to use).
+  template <bool Euler>
+  PairForce pair_force(const PairNoise& noise, std::size_t i, std::size_t j, const double* dx,
+                       double r2, const std::array<std::vector<double>, D>& v) const;
+
+  void step_ec_verlet();
+  void step_euler();
+  void step_shardlow();
+  void conservative_pass(bool with_velocity_terms); // ec-verlet / VV force evaluation
+  void potential_pass();
+  void shardlow_pair(const PairNoise& noise, std::size_t i, std::size_t j, const double* dx,
+                     double r2);
+  double theta(std::size_t i) const { return state_.u[i] / model_.cv; }
+  void check_energies(const char* where) const;
+  [[noreturn]] void fail(std::size_t i, const char* where) const;
+
+  M model_;
+  ParticleParameters p_;
+  State<D> state_;
+  Carried<D> carried_;
+  CellGrid<D> grid_;
+  long step_ = 0;
+  double dt_, sqrt_dt_, inv_sqrt_dt_;
+  std::array<std::vector<double>, D> v_old_;
+  std::vector<double> k_old_, p_old_;
+};
+
+std::string stability_hint(const ParticleParameters& p);
+
+} // namespace twinflow::particle
+
+#include "particle/simulation.tpp"

@@ -1,0 +1,412 @@
+// Implementation of Simulation<M> (included from simulation.hpp).
+
+namespace twinflow::particle {
+
+template <class M>
+Simulation<M>::Simulation(const M& model, const ParticleParameters& p)
+    : model_(model), p_(p), grid_([&] {
+        std::array<double, D> box;
+        for (int d = 0; d < D; ++d) box[d] = p.box[d];
+        return box;
+      }(), model.rc) {
+  dt_ = p.dt;
+  sqrt_dt_ = std::sqrt(dt_);
+  inv_sqrt_dt_ = 1 / sqrt_dt_;
+  const std::size_t n = static_cast<std::size_t>(p.particle_count());
+  for (int d = 0; d < D; ++d) {
+    state_.box[d] = p.box[d];
+    state_.x[d].resize(n);
+    state_.v[d].resize(n);
+    carried_.f[d].assign(n, 0.0);
+  }
+  state_.id.resize(n);
+  // Positions uniform, velocities Maxwell at T: counter-based, so independent of threads.
+  const PairNoise initial(p.seed, 0, PairNoise::Initial);
+  const double vscale = std::sqrt(p.temperature / p.mass);
+  std::array<double, D> mean{};
+  for (std::size_t i = 0; i < n; ++i) {
+    state_.id[i] = static_cast<std::uint32_t>(i);
+    for (int d = 0; d < D; ++d) {
+      double g1, g2;
+      initial.particle_gaussians(static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(d), g1, g2);
+      // Gaussian -> uniform through the normal CDF of g1: exact and cheap enough at start-up.
+      state_.x[d][i] = p.box[d] * 0.5 * std::erfc(-g1 / std::sqrt(2.0));
+      state_.v[d][i] = p.initial_velocities == InitialVelocities::Maxwell ? vscale * g2 : 0.0;
+      mean[d] += state_.v[d][i] / n;
+    }
+  }
+  for (int d = 0; d < D; ++d)
+    for (auto& v : state_.v[d]) v -= mean[d];
+  if constexpr (M::has_energy) state_.u.assign(n, model_.cv * p.temperature); // theta_i = T
+  carried_.q.assign(n, 0.0);
+  carried_.potential.assign(n, 0.0);
+  grid_.sort(state_, carried_);
+  prepare();
+}
+
+template <class M>
+void Simulation<M>::prepare() {
+  if (p_.integrator == Integrator::EcVerlet) conservative_pass(true);
+  else if (p_.integrator == Integrator::Shardlow) conservative_pass(false);
+  else potential_pass();
+}
+
+template <class M>
+template <bool Euler>
+typename Simulation<M>::PairForce
+Simulation<M>::pair_force(const PairNoise& noise, std::size_t i, std::size_t j, const double* dx,
+                          double r2, const std::array<std::vector<double>, D>& v) const {
+  PairForce pf;
+  const double r = std::sqrt(r2), inv_r = 1 / r;
+  double th_i = 1, th_j = 1;
+  if constexpr (M::has_energy) th_i = theta(i), th_j = theta(j);
+  if constexpr (M::Conservative::active)
+    if (r < model_.conservative.rc) model_.conservative.eval(r, th_i, th_j, pf.conservative, pf.phi);
+  double xi, zeta;
+  noise.gaussians(state_.id[i], state_.id[j], xi, zeta);
+  const auto& fr = model_.friction;
+  if (r < fr.w.rc) {
+    double wd, wr, ev = 0;
+    fr.w.eval(r, wd, wr);
+    for (int d = 0; d < D; ++d) ev += dx[d] * (v[d][i] - v[d][j]);
+    ev *= inv_r;
+    const double big_theta = fr.harmonic(th_i, th_j);
+    const double gamma = Euler ? fr.euler_gamma(th_i, th_j) : fr.gamma(big_theta);
+    // F^D + F^R along e_ij (physics.md; 002:(3))
+    pf.dissipative_random = -gamma * wd * ev + fr.sigma_of(big_theta) * wr * xi * inv_sqrt_dt_;
+  }
+  if constexpr (M::Heat::active) {
+    if (r < model_.heat.w.rc) {
+      double rate, amplitude;
+      model_.heat.eval(r, th_i, th_j, rate, amplitude);
+      pf.heat = rate + amplitude * zeta * inv_sqrt_dt_; // q_ij, physics.md
+    }
+  }
+  return pf;
+}
+
+template <class M>
+void Simulation<M>::conservative_pass(bool with_velocity_terms) {
+  const std::size_t n = state_.size();
+  for (int d = 0; d < D; ++d) std::fill(carried_.f[d].begin(), carried_.f[d].end(), 0.0);
+  std::fill(carried_.q.begin(), carried_.q.end(), 0.0);
+  std::fill(carried_.potential.begin(), carried_.potential.end(), 0.0);
+  (void)n;
+  const PairNoise noise(p_.seed, static_cast<std::uint64_t>(step_), PairNoise::Pair);
+  auto& f = carried_.f;
+  auto& q = carried_.q;
+  auto& pot = carried_.potential;
+  if (with_velocity_terms) {
+    grid_.for_each_pair(state_, model_.rc, [&](std::size_t i, std::size_t j, const double* dx, double r2) {
+      const PairForce pf = pair_force<false>(noise, i, j, dx, r2, state_.v);
+      const double scale = (pf.conservative + pf.dissipative_random) / std::sqrt(r2);
+      for (int d = 0; d < D; ++d) {
+        f[d][i] += scale * dx[d];
+        f[d][j] -= scale * dx[d];
+      }
+      pot[i] += 0.5 * pf.phi;
+      pot[j] += 0.5 * pf.phi;
+      q[i] += pf.heat;
+      q[j] -= pf.heat;
+    });
+  } else if constexpr (M::Conservative::active) {
+    const auto& c = model_.conservative;
+    grid_.for_each_pair(state_, c.rc, [&](std::size_t i, std::size_t j, const double* dx, double r2) {
+      const double r = std::sqrt(r2);
+      double th_i = 1, th_j = 1, fc, phi;
+      if constexpr (M::has_energy) th_i = theta(i), th_j = theta(j);
+      c.eval(r, th_i, th_j, fc, phi);
+      const double scale = fc / r;
+      for (int d = 0; d < D; ++d) {
+        f[d][i] += scale * dx[d];
+        f[d][j] -= scale * dx[d];
+      }
+      pot[i] += 0.5 * phi;
+      pot[j] += 0.5 * phi;
+    });
+  }
+}
+
+template <class M>
+void Simulation<M>::potential_pass() {
+  std::fill(carried_.potential.begin(), carried_.potential.end(), 0.0);
+  if constexpr (M::Conservative::active) {
+    const auto& c = model_.conservative;
+    auto& pot = carried_.potential;
+    grid_.for_each_pair(state_, c.rc, [&](std::size_t i, std::size_t j, const double*, double r2) {
+      double th_i = 1, th_j = 1, fc, phi;
+      if constexpr (M::has_energy) th_i = theta(i), th_j = theta(j);
+      c.eval(std::sqrt(r2), th_i, th_j, fc, phi);
+      pot[i] += 0.5 * phi;
+      pot[j] += 0.5 * phi;
+    });
+  }
+}
+
+template <class M>
+void Simulation<M>::step() {
+  switch (p_.integrator) {
+  case Integrator::EcVerlet: step_ec_verlet(); break;
+  case Integrator::Euler: step_euler(); break;
+  case Integrator::Shardlow: step_shardlow(); break;
+  }
+}
+
+// 002 Appendix A: velocity-Verlet; each particle's kinetic and potential changes are taken from
+// its own internal energy, so the total energy is conserved to round-off for every force.
+template <class M>
+void Simulation<M>::step_ec_verlet() {
+  ++step_;
+  const std::size_t n = state_.size();
+  const double half = 0.5 * dt_ / model_.mass, m2 = 0.5 * model_.mass;
+  auto& v = state_.v;
+  for (std::size_t i = 0; i < n; ++i) {
+    double k_old = 0, k_half = 0;
+    for (int d = 0; d < D; ++d) {
+      k_old += v[d][i] * v[d][i];
+      v[d][i] += half * carried_.f[d][i];                        // 002:(A1)
+      k_half += v[d][i] * v[d][i];
+      state_.x[d][i] += v[d][i] * dt_;                           // 002:(A3)
+    }
+    if constexpr (M::has_energy) // 002:(A2); + P_i(t) is the first half of (A5)'s -[P(t+dt) - P(t)]
+      state_.u[i] += 0.5 * dt_ * carried_.q[i] - m2 * (k_half - k_old) + carried_.potential[i];
+  }
+  grid_.sort(state_, carried_);
+  conservative_pass(true); // F, q, P at t + dt from r(t+dt), v(t+dt/2), u(t+dt/2)
+  for (std::size_t i = 0; i < n; ++i) {
+    double k_half = 0, k_new = 0;
+    for (int d = 0; d < D; ++d) {
+      k_half += v[d][i] * v[d][i];
+      v[d][i] += half * carried_.f[d][i];                        // 002:(A4)
+      k_new += v[d][i] * v[d][i];
+    }
+    if constexpr (M::has_energy) // 002:(A5)
+      state_.u[i] += 0.5 * dt_ * carried_.q[i] - m2 * (k_new - k_half) - carried_.potential[i];
+  }
+  check_energies("ec-verlet step");
+}
+
+// Explicit first-order update: 001 eqs. (1)-(2) (isothermal); 000:(2.23)-(2.25) / 003:(15)-(17)
+// for DPDE, with the dissipative+random work split equally and exactly: du_i += -1/2 dp_ij.(vbar_i - vbar_j).
+template <class M>
+void Simulation<M>::step_euler() {
+  ++step_;
+  const std::size_t n = state_.size();
+  const PairNoise noise(p_.seed, static_cast<std::uint64_t>(step_), PairNoise::Pair);
+  auto& v = state_.v;
+  auto& dp = carried_.f;
+  auto& q = carried_.q;
+  for (int d = 0; d < D; ++d) std::fill(dp[d].begin(), dp[d].end(), 0.0);
+  std::fill(q.begin(), q.end(), 0.0);
+  grid_.for_each_pair(state_, model_.rc, [&](std::size_t i, std::size_t j, const double* dx, double r2) {
+    const PairForce pf = pair_force<true>(noise, i, j, dx, r2, v);
+    const double scale = (pf.conservative + pf.dissipative_random) * dt_ / std::sqrt(r2);
+    for (int d = 0; d < D; ++d) {
+      dp[d][i] += scale * dx[d];
+      dp[d][j] -= scale * dx[d];
+    }
+    q[i] += pf.heat;
+    q[j] -= pf.heat;
+  });
+  for (int d = 0; d < D; ++d) v_old_[d] = v[d];
+  for (std::size_t i = 0; i < n; ++i)
+    for (int d = 0; d < D; ++d) v[d][i] += dp[d][i] / model_.mass; // 001:(2)
+  if constexpr (M::has_energy) {
+    std::vector<double>& du = q; // heat rates become the energy increments
+    for (std::size_t i = 0; i < n; ++i) du[i] *= dt_;
+    if (!p_.energy_offset) {
+      // Second pass over the same pairs and noise (counter-based: recomputed, not stored).
+      grid_.for_each_pair(state_, model_.rc, [&](std::size_t i, std::size_t j, const double* dx, double r2) {
+        const PairForce pf = pair_force<true>(noise, i, j, dx, r2, v_old_);
+        const double inv_r = 1 / std::sqrt(r2);
+        double rel = 0; // e_ij . (vbar_i - vbar_j)
+        for (int d = 0; d < D; ++d)
+          rel += dx[d] * inv_r * 0.5 * (v_old_[d][i] + v[d][i] - v_old_[d][j] - v[d][j]);
+        const double work = pf.dissipative_random * dt_ * rel; // dK of the pair, physics.md
+        du[i] -= 0.5 * work;
+        du[j] -= 0.5 * work;
+      });
+    } else {
+      for (std::size_t i = 0; i < n; ++i) { // 002 Appendix A offset: -dK_i
+        double k_old = 0, k_new = 0;
+        for (int d = 0; d < D; ++d) k_old += v_old_[d][i] * v_old_[d][i], k_new += v[d][i] * v[d][i];
+        du[i] -= 0.5 * model_.mass * (k_new - k_old);
+      }
+    }
+    for (std::size_t i = 0; i < n; ++i) state_.u[i] += du[i];
+  }
+  for (std::size_t i = 0; i < n; ++i)
+    for (int d = 0; d < D; ++d) state_.x[d][i] += v_old_[d][i] * dt_; // 001:(1)
+  if constexpr (M::has_energy)
+    if (p_.energy_offset)
+      for (std::size_t i = 0; i < n; ++i) state_.u[i] += carried_.potential[i];
+  grid_.sort(state_, carried_);
+  potential_pass();
+  if constexpr (M::has_energy)
+    if (p_.energy_offset)
+      for (std::size_t i = 0; i < n; ++i) state_.u[i] -= carried_.potential[i];
+  check_energies("euler step");
+}
+
+// One pair of the Shardlow sweep: heat exchange, then Shardlow's S1 splitting of the pair's
+// dissipative+random update (explicit half, implicit half, same xi), energy conserved per half.
+template <class M>
+void Simulation<M>::shardlow_pair(const PairNoise& noise, std::size_t i, std::size_t j,
+                                  const double* dx, double r2) {
+  const double r = std::sqrt(r2);
+  double xi, zeta;
+  noise.gaussians(state_.id[i], state_.id[j], xi, zeta);
+  auto& u = state_.u;
+  if constexpr (M::Heat::active) {
+    if (r < model_.heat.w.rc) {
+      double rate, amplitude;
+      model_.heat.eval(r, theta(i), theta(j), rate, amplitude);
+      const double dq = rate * dt_ + amplitude * zeta * sqrt_dt_; // q_ij dt
+      u[i] += dq;
+      u[j] -= dq;
+    }
+  }
+  const auto& fr = model_.friction;
+  if (r >= fr.w.rc) return;
+  double wd, wr;
+  fr.w.eval(r, wd, wr);
+  auto& v = state_.v;
+  double e[D], vr = 0;
+  for (int d = 0; d < D; ++d) {
+    e[d] = dx[d] / r;
+    vr += e[d] * (v[d][i] - v[d][j]);
+  }
+  const double m = model_.mass, inv_m = 1 / m;
+  double big_theta = 1;
+  if constexpr (M::has_energy) big_theta = fr.harmonic(theta(i), theta(j));
+  // Half 1, explicit: dp = 1/2 (-gamma w_D v_r dt + sigma w_R xi sqrt(dt))
+  const double dp1 = 0.5 * (-fr.gamma(big_theta) * wd * vr * dt_ + fr.sigma_of(big_theta) * wr * xi * sqrt_dt_);
+  const double vr1 = vr + 2 * dp1 * inv_m;
+  if constexpr (M::has_energy) {
+    const double dk = dp1 * 0.5 * (vr + vr1); // exact kinetic change of the pair
+    u[i] -= 0.5 * dk;
+    u[j] -= 0.5 * dk;
+    big_theta = fr.harmonic(theta(i), theta(j));
+  }
+  // Half 2, implicit in v_r: v_r2 (1 + gamma' w_D dt/m) = v_r1 + sigma' w_R xi sqrt(dt)/m
+  const double vr2 = (vr1 + fr.sigma_of(big_theta) * wr * xi * sqrt_dt_ * inv_m) /
+                     (1 + fr.gamma(big_theta) * wd * dt_ * inv_m);
+  const double dp2 = 0.5 * m * (vr2 - vr1);
+  if constexpr (M::has_energy) {
+    const double dk = dp2 * 0.5 * (vr1 + vr2);
+    u[i] -= 0.5 * dk;
+    u[j] -= 0.5 * dk;
+  }
+  const double dv = (dp1 + dp2) * inv_m;
+  for (int d = 0; d < D; ++d) {
+    v[d][i] += dv * e[d];
+    v[d][j] -= dv * e[d];
+  }
+}
+
+// Shardlow sweep over all pairs at r(t), then velocity-Verlet for the conservative force
+// (Lisal et al. 2011; LAMMPS fix shardlow + fix nve).
+template <class M>
+void Simulation<M>::step_shardlow() {
+  ++step_;
+  const std::size_t n = state_.size();
+  const PairNoise noise(p_.seed, static_cast<std::uint64_t>(step_), PairNoise::Pair);
+  grid_.for_each_pair(state_, model_.rc, [&](std::size_t i, std::size_t j, const double* dx, double r2) {
+    shardlow_pair(noise, i, j, dx, r2);
+  });
+  auto& v = state_.v;
+  const bool offset = M::has_energy && p_.energy_offset && M::Conservative::active;
+  const double half = 0.5 * dt_ / model_.mass, m2 = 0.5 * model_.mass;
+  for (std::size_t i = 0; i < n; ++i) {
+    double k_old = 0, k_half = 0;
+    for (int d = 0; d < D; ++d) {
+      k_old += v[d][i] * v[d][i];
+      if constexpr (M::Conservative::active) v[d][i] += half * carried_.f[d][i];
+      k_half += v[d][i] * v[d][i];
+      state_.x[d][i] += v[d][i] * dt_;
+    }
+    if constexpr (M::has_energy)
+      if (offset) state_.u[i] += carried_.potential[i] - m2 * (k_half - k_old);
+  }
+  grid_.sort(state_, carried_);
+  if constexpr (M::Conservative::active) {
+    conservative_pass(false);
+    for (std::size_t i = 0; i < n; ++i) {
+      double k_half = 0, k_new = 0;
+      for (int d = 0; d < D; ++d) {
+        k_half += v[d][i] * v[d][i];
+        v[d][i] += half * carried_.f[d][i];
+        k_new += v[d][i] * v[d][i];
+      }
+      if constexpr (M::has_energy)
+        if (offset) state_.u[i] -= carried_.potential[i] + m2 * (k_new - k_half);
+    }
+  }
+  check_energies("shardlow step");
+}
+
+template <class M>
+double Simulation<M>::kinetic_energy() const {
+  double k = 0;
+  for (int d = 0; d < D; ++d)
+    for (const double v : state_.v[d]) k += v * v;
+  return 0.5 * model_.mass * k;
+}
+
+template <class M>
+double Simulation<M>::internal_energy() const {
+  double s = 0;
+  for (const double u : state_.u) s += u;
+  return s;
+}
+
+template <class M>
+double Simulation<M>::potential_energy() const {
+  double s = 0;
+  for (const double p : carried_.potential) s += p;
+  return s;
+}
+
+template <class M>
+void Simulation<M>::check_energies(const char* where) const {
+  const std::size_t n = state_.size();
+  bool bad = false;
+  for (std::size_t i = 0; i < n; ++i) {
+    double s = 0;
+    for (int d = 0; d < D; ++d) s += state_.v[d][i];
+    if constexpr (M::has_energy) bad |= !(state_.u[i] > 0) || !std::isfinite(state_.u[i]);
+    bad |= !std::isfinite(s);
+  }
+  if (!bad) return;
+  for (std::size_t i = 0; i < n; ++i) {
+    double s = 0;
+    for (int d = 0; d < D; ++d) s += state_.v[d][i];
+    bool bad_i = !std::isfinite(s);
+    if constexpr (M::has_energy) bad_i |= !(state_.u[i] > 0) || !std::isfinite(state_.u[i]);
+    if (bad_i) fail(i, where);
+  }
+}
+
+template <class M>
+void Simulation<M>::fail(std::size_t i, const char* where) const {
+  std::ostringstream s;
+  s << "unstable at step " << step_ << " (" << where << "): particle " << state_.id[i] << " x = (";
+  for (int d = 0; d < D; ++d) s << (d ? ", " : "") << state_.x[d][i];
+  s << ") v = (";
+  for (int d = 0; d < D; ++d) s << (d ? ", " : "") << state_.v[d][i];
+  s << ")";
+  if constexpr (M::has_energy) {
+    s << " u = " << state_.u[i] << " theta = " << theta(i) << "; neighbours' theta:";
+    for (std::size_t j = 0; j < state_.size(); ++j) { // brute force: only on failure
+      if (j == i) continue;
+      double dx[D], r2 = 0;
+      grid_.separation(state_, i, j, dx);
+      for (int d = 0; d < D; ++d) r2 += dx[d] * dx[d];
+      if (r2 < model_.rc * model_.rc) s << " " << theta(j);
+    }
+  }
+  s << ". " << stability_hint(p_);
+  throw InstabilityError(s.str());
+}
+
+} // namespace twinflow::particle

@@ -22,10 +22,17 @@ struct Weight {
   void eval(double r, double& w, double& sqrt_w) const {
     const double x = 1 - r * inv_rc;
     switch (kind) { // one kind per run: a perfectly predicted branch
-    case 1: sqrt_w = std::sqrt(std::sqrt(x)), w = sqrt_w * sqrt_w; break;
-    case 2: sqrt_w = std::sqrt(x), w = x; break;
-    case 3: sqrt_w = x, w = x * x; break;
-    default: w = std::pow(x, n), sqrt_w = std::pow(x, 0.5 * n);
+    case 1:
+      sqrt_w = std::sqrt(std::sqrt(x)), w = sqrt_w * sqrt_w;
+      break;
+    case 2:
+      sqrt_w = std::sqrt(x), w = x;
+      break;
+    case 3:
+      sqrt_w = x, w = x * x;
+      break;
+    default:
+      w = std::pow(x, n), sqrt_w = std::pow(x, 0.5 * n);
     }
   }
 };
@@ -60,7 +67,7 @@ public:
 private:
   static void box_muller(std::uint32_t a, std::uint32_t b, double& g1, double& g2) {
     constexpr double two_m32 = 2.3283064365386963e-10; // 2^-32
-    const double u1 = (a + 0.5) * two_m32;              // in (0, 1)
+    const double u1 = (a + 0.5) * two_m32;             // in (0, 1)
     const double u2 = b * two_m32;
     const double radius = std::sqrt(-2 * std::log(u1));
     const double angle = 6.283185307179586 * u2;
@@ -81,7 +88,7 @@ struct ConstantRepulsion {
   // Force along e_ij and pair potential at distance r < rc.
   void eval(double r, double, double, double& f, double& phi) const {
     const double x = 1 - r * inv_rc;
-    f = a0 * x;               // 002:(3)
+    f = a0 * x; // 002:(3)
     phi = 0.5 * a0 * rc * x * x;
   }
 };
@@ -114,7 +121,8 @@ struct ConstantGamma {
   Weight w;
   double gamma(double) const { return gamma_; }
   double sigma_of(double theta) const { return std::sqrt(2 * theta * gamma_); } // 000:(2.37)
-  // 003:(18): xi = gamma [1 + k/2 (d/du_i + d/du_j) Theta_ij], dTheta/du_i = 2 th_j^2/(c_v (th_i+th_j)^2)
+  // 003:(18): xi = gamma [1 + k/2 (d/du_i + d/du_j) Theta_ij], dTheta/du_i = 2 th_j^2/(c_v
+  // (th_i+th_j)^2)
   double euler_gamma(double th_i, double th_j) const {
     const double s = th_i + th_j;
     return gamma_ * (1 + (th_i * th_i + th_j * th_j) / (cv * s * s));
@@ -155,14 +163,16 @@ struct InverseSeed002Heat {
     double wh, sqrt_wh;
     w.eval(r, wh, sqrt_wh);
     const double s = th_i + th_j;
-    const double kappa = kappa0 * cv * cv * s * s * 0.25; // kappa^A_ij = kappa0 c_v^2 (T_i+T_j)^2/4k, 002 II.B
-    rate = kappa * wh * (1 / th_i - 1 / th_j);           // 002:(7); drift (d_i - d_j) Lambda^2 = 0
-    amplitude = std::sqrt(2 * kappa) * sqrt_wh;           // (alpha^A)^2 = 2 k kappa^A, 002 II.B
+    const double kappa =
+        kappa0 * cv * cv * s * s * 0.25;       // kappa^A_ij = kappa0 c_v^2 (T_i+T_j)^2/4k, 002 II.B
+    rate = kappa * wh * (1 / th_i - 1 / th_j); // 002:(7); drift (d_i - d_j) Lambda^2 = 0
+    amplitude = std::sqrt(2 * kappa) * sqrt_wh; // (alpha^A)^2 = 2 k kappa^A, 002 II.B
   }
 };
 struct LinearHeat {
   static constexpr bool active = true;
-  double kappa, cv, noise_factor; // kappa_ij = c_v kappa0; noise_factor 2 (FDT) or 1 (002 as printed)
+  double kappa, cv,
+      noise_factor; // kappa_ij = c_v kappa0; noise_factor 2 (FDT) or 1 (002 as printed)
   Weight w;
   void eval(double r, double th_i, double th_j, double& rate, double& amplitude) const {
     double wh, sqrt_wh;

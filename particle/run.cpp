@@ -98,27 +98,30 @@ RunOutput drive(const M& model, const ParticleParameters& p, const RunControl& c
     // Virial pressure from the conservative force; g(r) from the same pass.
     double virial = 0;
     const bool sampled = step > p.equilibration_steps;
-    sim.grid().for_each_pair_serial(s, model.rc, [&](std::size_t i, std::size_t j, const double*, double r2) {
-      const double r = std::sqrt(r2);
-      if constexpr (M::Conservative::active) {
-        if (r < model.conservative.rc) {
-          double th_i = 1, th_j = 1, fc, phi;
-          if constexpr (M::has_energy) th_i = s.u[i] / model.cv, th_j = s.u[j] / model.cv;
-          model.conservative.eval(r, th_i, th_j, fc, phi);
-          virial += r * fc; // r_ij . F^C_ij
-        }
-      }
-      if (sampled) {
-        const int b = static_cast<int>(r / r_max * rdf.size());
-        if (b < static_cast<int>(rdf.size())) rdf[b] += 1;
-      }
-    });
+    sim.grid().for_each_pair_serial(s, model.rc,
+                                    [&](std::size_t i, std::size_t j, const double*, double r2) {
+                                      const double r = std::sqrt(r2);
+                                      if constexpr (M::Conservative::active) {
+                                        if (r < model.conservative.rc) {
+                                          double th_i = 1, th_j = 1, fc, phi;
+                                          if constexpr (M::has_energy)
+                                            th_i = s.u[i] / model.cv, th_j = s.u[j] / model.cv;
+                                          model.conservative.eval(r, th_i, th_j, fc, phi);
+                                          virial += r * fc; // r_ij . F^C_ij
+                                        }
+                                      }
+                                      if (sampled) {
+                                        const int b = static_cast<int>(r / r_max * rdf.size());
+                                        if (b < static_cast<int>(rdf.size())) rdf[b] += 1;
+                                      }
+                                    });
     const double pressure = (2 * k + virial) / (D * volume); // virial theorem, 000:(3.9)
     std::array<double, 3> mom{0, 0, 0};
     for (int d = 0; d < D; ++d)
       for (const double v : s.v[d]) mom[d] += model.mass * v;
     char row[512];
-    std::snprintf(row, sizeof row, "%ld,%.6f,%d,%.17g,%.17g,%.17g,%.17g,%.10g,%.10g,%.10g,%.10g,%.3e,%.3e,%.3e\n",
+    std::snprintf(row, sizeof row,
+                  "%ld,%.6f,%d,%.17g,%.17g,%.17g,%.17g,%.10g,%.10g,%.10g,%.10g,%.3e,%.3e,%.3e\n",
                   step, step * p.dt, sampled ? 1 : 0, e, k, u, pot, t_kin, t_int, mean_theta,
                   pressure, mom[0], mom[1], mom[2]);
     thermo << row;
@@ -137,18 +140,22 @@ RunOutput drive(const M& model, const ParticleParameters& p, const RunControl& c
         for (int d = 0; d < D; ++d) {
           vs[t * D + d] = s.v[d][i];
           double dx = s.x[d][i] - last_wrapped[t * D + d];
-          if (sample_count > 0) dx -= p.box[d] * std::nearbyint(dx / p.box[d]);
-          else dx = 0, unwrapped[t * D + d] = s.x[d][i];
+          if (sample_count > 0)
+            dx -= p.box[d] * std::nearbyint(dx / p.box[d]);
+          else
+            dx = 0, unwrapped[t * D + d] = s.x[d][i];
           unwrapped[t * D + d] += dx;
           last_wrapped[t * D + d] = s.x[d][i];
           xs[t * D + d] = unwrapped[t * D + d];
         }
       }
       vbuf.push_back(std::move(vs)), xbuf.push_back(std::move(xs));
-      if (static_cast<int>(vbuf.size()) > window) vbuf.erase(vbuf.begin()), xbuf.erase(xbuf.begin());
+      if (static_cast<int>(vbuf.size()) > window)
+        vbuf.erase(vbuf.begin()), xbuf.erase(xbuf.begin());
       const std::size_t last = vbuf.size() - 1;
       for (std::size_t lag = 0; lag <= last; ++lag) {
-        const auto &v0 = vbuf[last - lag], &v1 = vbuf[last], &x0 = xbuf[last - lag], &x1 = xbuf[last];
+        const auto &v0 = vbuf[last - lag], &v1 = vbuf[last], &x0 = xbuf[last - lag],
+                   &x1 = xbuf[last];
         double cv = 0, dr = 0;
         for (std::size_t k2 = 0; k2 < tracked * D; ++k2) {
           cv += v0[k2] * v1[k2];
@@ -162,9 +169,9 @@ RunOutput drive(const M& model, const ParticleParameters& p, const RunControl& c
       last_progress = clock::now();
       const double secs = std::chrono::duration<double>(clock::now() - t0).count();
       const double rate = step / secs;
-      std::fprintf(stderr, "\rstep %ld/%ld  t = %.2f  %.0f steps/s  ETA %.0f s  T = %.4f  dE/E = %.1e   ",
-                   step, total_steps, step * p.dt, rate, (total_steps - step) / rate, t_kin,
-                   drift_max);
+      std::fprintf(
+          stderr, "\rstep %ld/%ld  t = %.2f  %.0f steps/s  ETA %.0f s  T = %.4f  dE/E = %.1e   ",
+          step, total_steps, step * p.dt, rate, (total_steps - step) / rate, t_kin, drift_max);
     }
   }
   if (control.progress) std::fprintf(stderr, "\n");
@@ -213,7 +220,8 @@ RunOutput drive(const M& model, const ParticleParameters& p, const RunControl& c
   const double dr = r_max / rdf.size();
   for (std::size_t b = 0; b < rdf.size(); ++b) {
     const double r0 = b * dr, r1 = r0 + dr;
-    const double shell = D == 3 ? 4.0 / 3.0 * M_PI * (r1 * r1 * r1 - r0 * r0 * r0) : M_PI * (r1 * r1 - r0 * r0);
+    const double shell =
+        D == 3 ? 4.0 / 3.0 * M_PI * (r1 * r1 * r1 - r0 * r0 * r0) : M_PI * (r1 * r1 - r0 * r0);
     const double ideal = 0.5 * n * (n / volume) * shell * std::max<long>(rdf_samples, 1);
     g << r0 + 0.5 * dr << "," << rdf[b] / ideal << "\n";
   }
@@ -242,7 +250,8 @@ RunOutput with_model(const ParticleParameters& p, const C& c, const F& f, const 
 }
 
 template <int D, class C, class F>
-RunOutput with_heat(const ParticleParameters& p, const C& c, const F& f, const RunControl& control) {
+RunOutput with_heat(const ParticleParameters& p, const C& c, const F& f,
+                    const RunControl& control) {
   const Weight w(p.heat_weight.cutoff, p.heat_weight.exponent);
   if constexpr (!F::isothermal) {
     if (p.heat == HeatLaw::Inverse && p.heat_coefficient == HeatCoefficient::Constant)
@@ -250,7 +259,8 @@ RunOutput with_heat(const ParticleParameters& p, const C& c, const F& f, const R
     if (p.heat == HeatLaw::Inverse)
       return with_model<D>(p, c, f, InverseSeed002Heat{p.kappa0, p.cv, w}, control);
     if (p.heat == HeatLaw::Linear)
-      return with_model<D>(p, c, f, LinearHeat{p.cv * p.kappa0, p.cv, p.linear_noise_factor, w}, control);
+      return with_model<D>(p, c, f, LinearHeat{p.cv * p.kappa0, p.cv, p.linear_noise_factor, w},
+                           control);
   }
   return with_model<D>(p, c, f, NoHeat{}, control);
 }
@@ -259,7 +269,8 @@ template <int D, class C>
 RunOutput with_friction(const ParticleParameters& p, const C& c, const RunControl& control) {
   const Weight w(p.dissipation.cutoff, p.dissipation.exponent);
   if (p.energy == EnergyModel::Isothermal)
-    return with_heat<D>(p, c, IsothermalFriction{p.gamma, std::sqrt(2 * p.temperature * p.gamma), w}, control);
+    return with_heat<D>(
+        p, c, IsothermalFriction{p.gamma, std::sqrt(2 * p.temperature * p.gamma), w}, control);
   if (p.friction == Friction::ConstantGamma)
     return with_heat<D>(p, c, ConstantGamma{p.gamma, p.cv, w}, control);
   return with_heat<D>(p, c, ConstantSigma{p.sigma, w}, control);
@@ -272,8 +283,10 @@ RunOutput with_conservative(const ParticleParameters& p, const RunControl& contr
   case ConservativeForce::Constant:
     return with_friction<D>(p, ConstantRepulsion{p.a0, rc, 1 / rc}, control);
   case ConservativeForce::TemperatureDependent:
-    return with_friction<D>(p, TemperatureRepulsion{p.a0, rc, 1 / rc, 0.5 / p.reference_temperature}, control);
-  default: return with_friction<D>(p, NoConservative{}, control);
+    return with_friction<D>(
+        p, TemperatureRepulsion{p.a0, rc, 1 / rc, 0.5 / p.reference_temperature}, control);
+  default:
+    return with_friction<D>(p, NoConservative{}, control);
   }
 }
 

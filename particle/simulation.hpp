@@ -14,8 +14,7 @@
 
 namespace twinflow::particle {
 
-template <int D_, class Conservative_, class Friction_, class Heat_>
-struct Model {
+template <int D_, class Conservative_, class Friction_, class Heat_> struct Model {
   static constexpr int D = D_;
   using Conservative = Conservative_;
   using Friction = Friction_;
@@ -32,8 +31,7 @@ struct InstabilityError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-template <class M>
-class Simulation {
+template <class M> class Simulation {
 public:
   static constexpr int D = M::D;
 

@@ -4,11 +4,13 @@ namespace twinflow::particle {
 
 template <class M>
 Simulation<M>::Simulation(const M& model, const ParticleParameters& p)
-    : model_(model), p_(p), grid_([&] {
-        std::array<double, D> box;
-        for (int d = 0; d < D; ++d) box[d] = p.box[d];
-        return box;
-      }(), model.rc) {
+    : model_(model), p_(p), grid_(
+                                [&] {
+                                  std::array<double, D> box;
+                                  for (int d = 0; d < D; ++d) box[d] = p.box[d];
+                                  return box;
+                                }(),
+                                model.rc) {
   dt_ = p.dt;
   sqrt_dt_ = std::sqrt(dt_);
   inv_sqrt_dt_ = 1 / sqrt_dt_;
@@ -28,7 +30,8 @@ Simulation<M>::Simulation(const M& model, const ParticleParameters& p)
     state_.id[i] = static_cast<std::uint32_t>(i);
     for (int d = 0; d < D; ++d) {
       double g1, g2;
-      initial.particle_gaussians(static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(d), g1, g2);
+      initial.particle_gaussians(static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(d), g1,
+                                 g2);
       // Gaussian -> uniform through the normal CDF of g1: exact and cheap enough at start-up.
       state_.x[d][i] = p.box[d] * 0.5 * std::erfc(-g1 / std::sqrt(2.0));
       state_.v[d][i] = p.initial_velocities == InitialVelocities::Maxwell ? vscale * g2 : 0.0;
@@ -44,11 +47,13 @@ Simulation<M>::Simulation(const M& model, const ParticleParameters& p)
   prepare();
 }
 
-template <class M>
-void Simulation<M>::prepare() {
-  if (p_.integrator == Integrator::EcVerlet) conservative_pass(true);
-  else if (p_.integrator == Integrator::Shardlow) conservative_pass(false);
-  else potential_pass();
+template <class M> void Simulation<M>::prepare() {
+  if (p_.integrator == Integrator::EcVerlet)
+    conservative_pass(true);
+  else if (p_.integrator == Integrator::Shardlow)
+    conservative_pass(false);
+  else
+    potential_pass();
 }
 
 template <class M>
@@ -61,7 +66,8 @@ Simulation<M>::pair_force(const PairNoise& noise, std::size_t i, std::size_t j, 
   double th_i = 1, th_j = 1;
   if constexpr (M::has_energy) th_i = theta(i), th_j = theta(j);
   if constexpr (M::Conservative::active)
-    if (r < model_.conservative.rc) model_.conservative.eval(r, th_i, th_j, pf.conservative, pf.phi);
+    if (r < model_.conservative.rc)
+      model_.conservative.eval(r, th_i, th_j, pf.conservative, pf.phi);
   double xi, zeta;
   noise.gaussians(state_.id[i], state_.id[j], xi, zeta);
   const auto& fr = model_.friction;
@@ -85,8 +91,7 @@ Simulation<M>::pair_force(const PairNoise& noise, std::size_t i, std::size_t j, 
   return pf;
 }
 
-template <class M>
-void Simulation<M>::conservative_pass(bool with_velocity_terms) {
+template <class M> void Simulation<M>::conservative_pass(bool with_velocity_terms) {
   const std::size_t n = state_.size();
   for (int d = 0; d < D; ++d) std::fill(carried_.f[d].begin(), carried_.f[d].end(), 0.0);
   std::fill(carried_.q.begin(), carried_.q.end(), 0.0);
@@ -97,38 +102,39 @@ void Simulation<M>::conservative_pass(bool with_velocity_terms) {
   auto& q = carried_.q;
   auto& pot = carried_.potential;
   if (with_velocity_terms) {
-    grid_.for_each_pair(state_, model_.rc, [&](std::size_t i, std::size_t j, const double* dx, double r2) {
-      const PairForce pf = pair_force<false>(noise, i, j, dx, r2, state_.v);
-      const double scale = (pf.conservative + pf.dissipative_random) / std::sqrt(r2);
-      for (int d = 0; d < D; ++d) {
-        f[d][i] += scale * dx[d];
-        f[d][j] -= scale * dx[d];
-      }
-      pot[i] += 0.5 * pf.phi;
-      pot[j] += 0.5 * pf.phi;
-      q[i] += pf.heat;
-      q[j] -= pf.heat;
-    });
+    grid_.for_each_pair(
+        state_, model_.rc, [&](std::size_t i, std::size_t j, const double* dx, double r2) {
+          const PairForce pf = pair_force<false>(noise, i, j, dx, r2, state_.v);
+          const double scale = (pf.conservative + pf.dissipative_random) / std::sqrt(r2);
+          for (int d = 0; d < D; ++d) {
+            f[d][i] += scale * dx[d];
+            f[d][j] -= scale * dx[d];
+          }
+          pot[i] += 0.5 * pf.phi;
+          pot[j] += 0.5 * pf.phi;
+          q[i] += pf.heat;
+          q[j] -= pf.heat;
+        });
   } else if constexpr (M::Conservative::active) {
     const auto& c = model_.conservative;
-    grid_.for_each_pair(state_, c.rc, [&](std::size_t i, std::size_t j, const double* dx, double r2) {
-      const double r = std::sqrt(r2);
-      double th_i = 1, th_j = 1, fc, phi;
-      if constexpr (M::has_energy) th_i = theta(i), th_j = theta(j);
-      c.eval(r, th_i, th_j, fc, phi);
-      const double scale = fc / r;
-      for (int d = 0; d < D; ++d) {
-        f[d][i] += scale * dx[d];
-        f[d][j] -= scale * dx[d];
-      }
-      pot[i] += 0.5 * phi;
-      pot[j] += 0.5 * phi;
-    });
+    grid_.for_each_pair(state_, c.rc,
+                        [&](std::size_t i, std::size_t j, const double* dx, double r2) {
+                          const double r = std::sqrt(r2);
+                          double th_i = 1, th_j = 1, fc, phi;
+                          if constexpr (M::has_energy) th_i = theta(i), th_j = theta(j);
+                          c.eval(r, th_i, th_j, fc, phi);
+                          const double scale = fc / r;
+                          for (int d = 0; d < D; ++d) {
+                            f[d][i] += scale * dx[d];
+                            f[d][j] -= scale * dx[d];
+                          }
+                          pot[i] += 0.5 * phi;
+                          pot[j] += 0.5 * phi;
+                        });
   }
 }
 
-template <class M>
-void Simulation<M>::potential_pass() {
+template <class M> void Simulation<M>::potential_pass() {
   std::fill(carried_.potential.begin(), carried_.potential.end(), 0.0);
   if constexpr (M::Conservative::active) {
     const auto& c = model_.conservative;
@@ -143,19 +149,23 @@ void Simulation<M>::potential_pass() {
   }
 }
 
-template <class M>
-void Simulation<M>::step() {
+template <class M> void Simulation<M>::step() {
   switch (p_.integrator) {
-  case Integrator::EcVerlet: step_ec_verlet(); break;
-  case Integrator::Euler: step_euler(); break;
-  case Integrator::Shardlow: step_shardlow(); break;
+  case Integrator::EcVerlet:
+    step_ec_verlet();
+    break;
+  case Integrator::Euler:
+    step_euler();
+    break;
+  case Integrator::Shardlow:
+    step_shardlow();
+    break;
   }
 }
 
 // 002 Appendix A: velocity-Verlet; each particle's kinetic and potential changes are taken from
 // its own internal energy, so the total energy is conserved to round-off for every force.
-template <class M>
-void Simulation<M>::step_ec_verlet() {
+template <class M> void Simulation<M>::step_ec_verlet() {
   ++step_;
   const std::size_t n = state_.size();
   const double half = 0.5 * dt_ / model_.mass, m2 = 0.5 * model_.mass;
@@ -164,9 +174,9 @@ void Simulation<M>::step_ec_verlet() {
     double k_old = 0, k_half = 0;
     for (int d = 0; d < D; ++d) {
       k_old += v[d][i] * v[d][i];
-      v[d][i] += half * carried_.f[d][i];                        // 002:(A1)
+      v[d][i] += half * carried_.f[d][i]; // 002:(A1)
       k_half += v[d][i] * v[d][i];
-      state_.x[d][i] += v[d][i] * dt_;                           // 002:(A3)
+      state_.x[d][i] += v[d][i] * dt_; // 002:(A3)
     }
     if constexpr (M::has_energy) // 002:(A2); + P_i(t) is the first half of (A5)'s -[P(t+dt) - P(t)]
       state_.u[i] += 0.5 * dt_ * carried_.q[i] - m2 * (k_half - k_old) + carried_.potential[i];
@@ -177,7 +187,7 @@ void Simulation<M>::step_ec_verlet() {
     double k_half = 0, k_new = 0;
     for (int d = 0; d < D; ++d) {
       k_half += v[d][i] * v[d][i];
-      v[d][i] += half * carried_.f[d][i];                        // 002:(A4)
+      v[d][i] += half * carried_.f[d][i]; // 002:(A4)
       k_new += v[d][i] * v[d][i];
     }
     if constexpr (M::has_energy) // 002:(A5)
@@ -187,9 +197,9 @@ void Simulation<M>::step_ec_verlet() {
 }
 
 // Explicit first-order update: 001 eqs. (1)-(2) (isothermal); 000:(2.23)-(2.25) / 003:(15)-(17)
-// for DPDE, with the dissipative+random work split equally and exactly: du_i += -1/2 dp_ij.(vbar_i - vbar_j).
-template <class M>
-void Simulation<M>::step_euler() {
+// for DPDE, with the dissipative+random work split equally and exactly: du_i += -1/2 dp_ij.(vbar_i
+// - vbar_j).
+template <class M> void Simulation<M>::step_euler() {
   ++step_;
   const std::size_t n = state_.size();
   const PairNoise noise(p_.seed, static_cast<std::uint64_t>(step_), PairNoise::Pair);
@@ -198,16 +208,17 @@ void Simulation<M>::step_euler() {
   auto& q = carried_.q;
   for (int d = 0; d < D; ++d) std::fill(dp[d].begin(), dp[d].end(), 0.0);
   std::fill(q.begin(), q.end(), 0.0);
-  grid_.for_each_pair(state_, model_.rc, [&](std::size_t i, std::size_t j, const double* dx, double r2) {
-    const PairForce pf = pair_force<true>(noise, i, j, dx, r2, v);
-    const double scale = (pf.conservative + pf.dissipative_random) * dt_ / std::sqrt(r2);
-    for (int d = 0; d < D; ++d) {
-      dp[d][i] += scale * dx[d];
-      dp[d][j] -= scale * dx[d];
-    }
-    q[i] += pf.heat;
-    q[j] -= pf.heat;
-  });
+  grid_.for_each_pair(
+      state_, model_.rc, [&](std::size_t i, std::size_t j, const double* dx, double r2) {
+        const PairForce pf = pair_force<true>(noise, i, j, dx, r2, v);
+        const double scale = (pf.conservative + pf.dissipative_random) * dt_ / std::sqrt(r2);
+        for (int d = 0; d < D; ++d) {
+          dp[d][i] += scale * dx[d];
+          dp[d][j] -= scale * dx[d];
+        }
+        q[i] += pf.heat;
+        q[j] -= pf.heat;
+      });
   for (int d = 0; d < D; ++d) v_old_[d] = v[d];
   for (std::size_t i = 0; i < n; ++i)
     for (int d = 0; d < D; ++d) v[d][i] += dp[d][i] / model_.mass; // 001:(2)
@@ -216,20 +227,22 @@ void Simulation<M>::step_euler() {
     for (std::size_t i = 0; i < n; ++i) du[i] *= dt_;
     if (!p_.energy_offset) {
       // Second pass over the same pairs and noise (counter-based: recomputed, not stored).
-      grid_.for_each_pair(state_, model_.rc, [&](std::size_t i, std::size_t j, const double* dx, double r2) {
-        const PairForce pf = pair_force<true>(noise, i, j, dx, r2, v_old_);
-        const double inv_r = 1 / std::sqrt(r2);
-        double rel = 0; // e_ij . (vbar_i - vbar_j)
-        for (int d = 0; d < D; ++d)
-          rel += dx[d] * inv_r * 0.5 * (v_old_[d][i] + v[d][i] - v_old_[d][j] - v[d][j]);
-        const double work = pf.dissipative_random * dt_ * rel; // dK of the pair, physics.md
-        du[i] -= 0.5 * work;
-        du[j] -= 0.5 * work;
-      });
+      grid_.for_each_pair(
+          state_, model_.rc, [&](std::size_t i, std::size_t j, const double* dx, double r2) {
+            const PairForce pf = pair_force<true>(noise, i, j, dx, r2, v_old_);
+            const double inv_r = 1 / std::sqrt(r2);
+            double rel = 0; // e_ij . (vbar_i - vbar_j)
+            for (int d = 0; d < D; ++d)
+              rel += dx[d] * inv_r * 0.5 * (v_old_[d][i] + v[d][i] - v_old_[d][j] - v[d][j]);
+            const double work = pf.dissipative_random * dt_ * rel; // dK of the pair, physics.md
+            du[i] -= 0.5 * work;
+            du[j] -= 0.5 * work;
+          });
     } else {
       for (std::size_t i = 0; i < n; ++i) { // 002 Appendix A offset: -dK_i
         double k_old = 0, k_new = 0;
-        for (int d = 0; d < D; ++d) k_old += v_old_[d][i] * v_old_[d][i], k_new += v[d][i] * v[d][i];
+        for (int d = 0; d < D; ++d)
+          k_old += v_old_[d][i] * v_old_[d][i], k_new += v[d][i] * v[d][i];
         du[i] -= 0.5 * model_.mass * (k_new - k_old);
       }
     }
@@ -280,7 +293,8 @@ void Simulation<M>::shardlow_pair(const PairNoise& noise, std::size_t i, std::si
   double big_theta = 1;
   if constexpr (M::has_energy) big_theta = fr.harmonic(theta(i), theta(j));
   // Half 1, explicit: dp = 1/2 (-gamma w_D v_r dt + sigma w_R xi sqrt(dt))
-  const double dp1 = 0.5 * (-fr.gamma(big_theta) * wd * vr * dt_ + fr.sigma_of(big_theta) * wr * xi * sqrt_dt_);
+  const double dp1 =
+      0.5 * (-fr.gamma(big_theta) * wd * vr * dt_ + fr.sigma_of(big_theta) * wr * xi * sqrt_dt_);
   const double vr1 = vr + 2 * dp1 * inv_m;
   if constexpr (M::has_energy) {
     const double dk = dp1 * 0.5 * (vr + vr1); // exact kinetic change of the pair
@@ -306,14 +320,14 @@ void Simulation<M>::shardlow_pair(const PairNoise& noise, std::size_t i, std::si
 
 // Shardlow sweep over all pairs at r(t), then velocity-Verlet for the conservative force
 // (Lisal et al. 2011; LAMMPS fix shardlow + fix nve).
-template <class M>
-void Simulation<M>::step_shardlow() {
+template <class M> void Simulation<M>::step_shardlow() {
   ++step_;
   const std::size_t n = state_.size();
   const PairNoise noise(p_.seed, static_cast<std::uint64_t>(step_), PairNoise::Pair);
-  grid_.for_each_pair(state_, model_.rc, [&](std::size_t i, std::size_t j, const double* dx, double r2) {
-    shardlow_pair(noise, i, j, dx, r2);
-  });
+  grid_.for_each_pair(state_, model_.rc,
+                      [&](std::size_t i, std::size_t j, const double* dx, double r2) {
+                        shardlow_pair(noise, i, j, dx, r2);
+                      });
   auto& v = state_.v;
   const bool offset = M::has_energy && p_.energy_offset && M::Conservative::active;
   const double half = 0.5 * dt_ / model_.mass, m2 = 0.5 * model_.mass;
@@ -345,30 +359,26 @@ void Simulation<M>::step_shardlow() {
   check_energies("shardlow step");
 }
 
-template <class M>
-double Simulation<M>::kinetic_energy() const {
+template <class M> double Simulation<M>::kinetic_energy() const {
   double k = 0;
   for (int d = 0; d < D; ++d)
     for (const double v : state_.v[d]) k += v * v;
   return 0.5 * model_.mass * k;
 }
 
-template <class M>
-double Simulation<M>::internal_energy() const {
+template <class M> double Simulation<M>::internal_energy() const {
   double s = 0;
   for (const double u : state_.u) s += u;
   return s;
 }
 
-template <class M>
-double Simulation<M>::potential_energy() const {
+template <class M> double Simulation<M>::potential_energy() const {
   double s = 0;
   for (const double p : carried_.potential) s += p;
   return s;
 }
 
-template <class M>
-void Simulation<M>::check_energies(const char* where) const {
+template <class M> void Simulation<M>::check_energies(const char* where) const {
   const std::size_t n = state_.size();
   bool bad = false;
   for (std::size_t i = 0; i < n; ++i) {
@@ -387,8 +397,7 @@ void Simulation<M>::check_energies(const char* where) const {
   }
 }
 
-template <class M>
-void Simulation<M>::fail(std::size_t i, const char* where) const {
+template <class M> void Simulation<M>::fail(std::size_t i, const char* where) const {
   std::ostringstream s;
   s << "unstable at step " << step_ << " (" << where << "): particle " << state_.id[i] << " x = (";
   for (int d = 0; d < D; ++d) s << (d ? ", " : "") << state_.x[d][i];

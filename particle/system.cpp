@@ -2,8 +2,7 @@
 
 namespace twinflow::particle {
 
-template <int D>
-void CellGrid<D>::build_stencil() {
+template <int D> void CellGrid<D>::build_stencil() {
   // Half shell: offsets in {-1,0,1}^D that are lexicographically >= 0, with directions of a
   // single cell collapsed to offset 0 (the neighbour is the cell itself; minimum image decides).
   std::array<int, D> o;
@@ -42,8 +41,7 @@ void CellGrid<D>::build_stencil() {
                       colour_cells_.end());
 }
 
-template <int D>
-void CellGrid<D>::sort(State<D>& s, Carried<D>& carried) {
+template <int D> void CellGrid<D>::sort(State<D>& s, Carried<D>& carried) {
   const std::size_t n = s.size();
   cell_.resize(n);
   std::fill(start_.begin(), start_.end(), 0);

@@ -12,26 +12,23 @@
 
 namespace twinflow::particle {
 
-template <int D>
-struct State {
+template <int D> struct State {
   std::array<std::vector<double>, D> x, v;
-  std::vector<double> u;              // internal energies; empty for isothermal DPD
-  std::vector<std::uint32_t> id;      // survives sorting
+  std::vector<double> u;         // internal energies; empty for isothermal DPD
+  std::vector<std::uint32_t> id; // survives sorting
   std::array<double, D> box{};
   std::size_t size() const { return id.size(); }
 };
 
 // Extra per-particle arrays an integrator keeps across steps (forces, potentials); they are
 // permuted together with the state.
-template <int D>
-struct Carried {
+template <int D> struct Carried {
   std::array<std::vector<double>, D> f; // force on each particle
   std::vector<double> q;                // heat rate (ec-verlet)
   std::vector<double> potential;        // per-particle share of pair potentials
 };
 
-template <int D>
-class CellGrid {
+template <int D> class CellGrid {
 public:
   // Cell side >= rc; cells per direction a multiple of 3 (27 / 9 colours keep a half-shell
   // update free of races), or 1 when the box holds fewer than 3 cutoffs.
@@ -81,8 +78,7 @@ public:
   // turn, the cells of one colour in parallel: the pairs a cell visits touch only its 3^D block,
   // so no two threads write the same particle and each particle sees its pairs in one fixed
   // order, whatever the thread count.
-  template <class PairFn>
-  void for_each_pair(const State<D>& s, double rc, PairFn&& fn) const {
+  template <class PairFn> void for_each_pair(const State<D>& s, double rc, PairFn&& fn) const {
     const double rc2 = rc * rc;
     const int colours = static_cast<int>(colour_cells_.size());
     for (int colour = 0; colour < colours; ++colour) {
@@ -102,8 +98,7 @@ public:
   }
 
 private:
-  template <class PairFn>
-  void visit_cell(const State<D>& s, int c, double rc2, PairFn& fn) const {
+  template <class PairFn> void visit_cell(const State<D>& s, int c, double rc2, PairFn& fn) const {
     std::array<int, D> idx;
     int rem = c;
     for (int d = 0; d < D; ++d) {
@@ -136,7 +131,7 @@ private:
   std::array<int, D> n_;
   int total_ = 1;
   std::vector<std::size_t> start_;
-  std::vector<std::array<int, D>> stencil_;  // half shell: each neighbour pair of cells once
+  std::vector<std::array<int, D>> stencil_; // half shell: each neighbour pair of cells once
   std::vector<std::vector<int>> colour_cells_;
   std::vector<int> cell_, order_;
   std::vector<double> scratch_;

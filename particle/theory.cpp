@@ -19,8 +19,8 @@ struct MarshYeomans {
 };
 MarshYeomans coefficients(const ParticleParameters& p) {
   const double rc = p.dissipation.cutoff, n = p.dissipation.exponent, d = p.dim, m = p.mass;
-  const double sigma2 = 2 * p.temperature * p.gamma;            // sigma^2 = 2 k T gamma
-  const double a1 = p.gamma * weight_integral(p.dim, rc, n) / (m * d);           // 001:(22)
+  const double sigma2 = 2 * p.temperature * p.gamma;                   // sigma^2 = 2 k T gamma
+  const double a1 = p.gamma * weight_integral(p.dim, rc, n) / (m * d); // 001:(22)
   const double a2 = 2 * p.gamma * p.gamma * weight_integral(p.dim, rc, 2 * n) / (m * m * d);
   const double a3 = sigma2 * weight_integral(p.dim, rc, n) / d; // [w_R^2] = [w_D]
   return {a1, a2, a3};
@@ -40,18 +40,19 @@ double marsh_yeomans_critical_dt(const ParticleParameters& p) {
 
 double fluctuation_stability_number(const ParticleParameters& p) {
   const double T = p.temperature;
-  const double zeta0 = p.friction == Friction::ConstantGamma ? p.gamma : p.sigma * p.sigma / (2 * T);
+  const double zeta0 =
+      p.friction == Friction::ConstantGamma ? p.gamma : p.sigma * p.sigma / (2 * T);
   double l0 = p.kappa0; // 000's L_0^(q): lambda_ij = L0 / (theta_i theta_j)
   if (p.heat == HeatLaw::Inverse && p.heat_coefficient == HeatCoefficient::Seed002)
     l0 = p.kappa0 * p.cv * p.cv * T * T;
   if (p.heat == HeatLaw::Linear) l0 = p.cv * p.kappa0 * T * T;
-  const double b = 1 / p.cv;                                   // 000:(3.31)
-  const double c = p.mass * l0 / (zeta0 * p.cv * T * T);      // 000:(3.32)
-  const double l = std::sqrt(2 * p.mass * T) / zeta0;         // 000 section 3.1 length unit
+  const double b = 1 / p.cv;                             // 000:(3.31)
+  const double c = p.mass * l0 / (zeta0 * p.cv * T * T); // 000:(3.32)
+  const double l = std::sqrt(2 * p.mass * T) / zeta0;    // 000 section 3.1 length unit
   const double r = p.heat_weight.cutoff / l, dt = p.dt * zeta0 / p.mass;
   const double rho = p.density * std::pow(l, p.dim);
   const double volume = p.dim == 3 ? 4 * M_PI / 3 * r * r * r : M_PI * r * r;
-  return std::sqrt(b * c * dt) * volume * rho;                 // 000:(3.34)
+  return std::sqrt(b * c * dt) * volume * rho; // 000:(3.34)
 }
 
 double ideal_dpde_temperature(const ParticleParameters& p, double e) {

@@ -17,8 +17,12 @@ namespace {
 using M = Model<3, TemperatureRepulsion, ConstantSigma, InverseSeed002Heat>;
 
 M model(const ParticleParameters& p) {
-  return {TemperatureRepulsion{p.a0, 1, 1, 0.5}, ConstantSigma{p.sigma, Weight(1, 0.5)},
-          InverseSeed002Heat{p.kappa0, p.cv, Weight(1, 0.5)}, 1, p.cv, 1};
+  return {TemperatureRepulsion{p.a0, 1, 1, 0.5},
+          ConstantSigma{p.sigma, Weight(1, 0.5)},
+          InverseSeed002Heat{p.kappa0, p.cv, Weight(1, 0.5)},
+          1,
+          p.cv,
+          1};
 }
 
 // Positions, velocities and energies indexed by particle id.

@@ -12,19 +12,23 @@ using namespace twinflow::particle::testing;
 namespace {
 using Seed002Model = Model<3, TemperatureRepulsion, ConstantSigma, InverseSeed002Heat>;
 Seed002Model seed002_model(const ParticleParameters& p) {
-  return {TemperatureRepulsion{p.a0, 1, 1, 0.5}, ConstantSigma{p.sigma, Weight(1, 0.5)},
-          InverseSeed002Heat{p.kappa0, p.cv, Weight(1, 0.5)}, 1, p.cv, 1};
+  return {TemperatureRepulsion{p.a0, 1, 1, 0.5},
+          ConstantSigma{p.sigma, Weight(1, 0.5)},
+          InverseSeed002Heat{p.kappa0, p.cv, Weight(1, 0.5)},
+          1,
+          p.cv,
+          1};
 }
 
 // Largest |E(t) - E(0)| / |E(0)| over `steps`.
-template <class M>
-double drift(const M& model, const ParticleParameters& p, long steps) {
+template <class M> double drift(const M& model, const ParticleParameters& p, long steps) {
   Simulation<M> sim(model, p);
   const double e0 = sim.total_energy();
   double worst = 0;
   for (long s = 0; s < steps; ++s) {
     sim.step();
-    if (s % 50 == 0 || s == steps - 1) worst = std::max(worst, std::fabs(sim.total_energy() - e0) / e0);
+    if (s % 50 == 0 || s == steps - 1)
+      worst = std::max(worst, std::fabs(sim.total_energy() - e0) / e0);
   }
   return worst;
 }
@@ -46,7 +50,12 @@ TEST(Energy, ShardlowAndEulerExactWithoutConservativeForces) {
     auto p = seed002(integrator, integrator == Integrator::Euler ? 0.005 : 0.05);
     p.box = {{10, 10, 10}};
     using M = Model<3, NoConservative, ConstantSigma, InverseSeed002Heat>;
-    const M m{{}, ConstantSigma{p.sigma, Weight(1, 0.5)}, InverseSeed002Heat{p.kappa0, p.cv, Weight(1, 0.5)}, 1, p.cv, 1};
+    const M m{{},
+              ConstantSigma{p.sigma, Weight(1, 0.5)},
+              InverseSeed002Heat{p.kappa0, p.cv, Weight(1, 0.5)},
+              1,
+              p.cv,
+              1};
     EXPECT_LE(drift(m, p, 1000), 1e-12) << to_string(integrator);
   }
 }

@@ -17,8 +17,8 @@ using namespace twinflow::particle::testing;
 
 namespace {
 
-constexpr double kZ = 4.0;       // two-sided significance ~6e-5 per check
-constexpr double kBias = 0.003;  // stated time-step bias at dt = 0.005 (relative), see README
+constexpr double kZ = 4.0;      // two-sided significance ~6e-5 per check
+constexpr double kBias = 0.003; // stated time-step bias at dt = 0.005 (relative), see README
 
 struct Measured {
   Estimate t_kin, t_int, pressure, u_var, kurtosis, gamma_ratio;
@@ -57,7 +57,8 @@ Measured measure(const ParticleParameters& p, const F& friction, const H& heat) 
   for (int s = 0; s < 2000; ++s) sim.step();                   // equilibrate (10 tau)
   const int blocks = 20, per_block = 40, every = 10;
   const int vbins = 24, ubins = 24;
-  const double T = m.t_eos, vmax = 4 * std::sqrt(T), umax = p.cv * T * (1 + 6 / std::sqrt(p.cv + 1));
+  const double T = m.t_eos, vmax = 4 * std::sqrt(T),
+               umax = p.cv * T * (1 + 6 / std::sqrt(p.cv + 1));
   const double umin = std::max(0.0, p.cv * T * (1 - 6 / std::sqrt(p.cv + 1)));
   std::vector<std::vector<double>> vfrac(blocks, std::vector<double>(vbins)), ufrac = vfrac;
   std::vector<double> tk, ti, pr, uv, ku, gr;
@@ -140,23 +141,32 @@ void expect_equilibrium(const Measured& m, const std::string& label, bool shapes
   const double dtki = std::hypot(m.t_kin.stderr_, m.t_int.stderr_);
   EXPECT_NEAR(m.t_kin.mean, m.t_int.mean, kZ * dtki + kBias * T) << label << ": T_K = T_I";
   if (!shapes) return;
-  EXPECT_NEAR(m.kurtosis.mean, 3.0, kZ * m.kurtosis.stderr_ + 3 * kBias) << label << ": Gaussian velocities";
-  EXPECT_NEAR(m.gamma_ratio.mean, 1.0, kZ * m.gamma_ratio.stderr_ + kBias) << label << ": Gamma law";
+  EXPECT_NEAR(m.kurtosis.mean, 3.0, kZ * m.kurtosis.stderr_ + 3 * kBias)
+      << label << ": Gaussian velocities";
+  EXPECT_NEAR(m.gamma_ratio.mean, 1.0, kZ * m.gamma_ratio.stderr_ + kBias)
+      << label << ": Gamma law";
 }
 
 template <int D>
-void run_case(Integrator integrator, double cv, bool constant_gamma, bool linear, bool shapes = true) {
+void run_case(Integrator integrator, double cv, bool constant_gamma, bool linear,
+              bool shapes = true) {
   auto p = ideal(D, integrator, cv);
   const Weight wd(1, 2), wh(1, 2);
-  const std::string label = std::to_string(D) + "D " + to_string(integrator) + " c_v=" +
-                            std::to_string(static_cast<int>(cv)) +
-                            (constant_gamma ? " gamma" : " sigma") + (linear ? " linear" : " inverse");
+  const std::string label = std::to_string(D) + "D " + to_string(integrator) +
+                            " c_v=" + std::to_string(static_cast<int>(cv)) +
+                            (constant_gamma ? " gamma" : " sigma") +
+                            (linear ? " linear" : " inverse");
   auto go = [&](const auto& friction) {
-    if (linear) expect_equilibrium(measure<D>(p, friction, LinearHeat{cv * 0.05, cv, 2.0, wh}), label, shapes);
-    else expect_equilibrium(measure<D>(p, friction, InverseConstantHeat{5.0, wh}), label, shapes);
+    if (linear)
+      expect_equilibrium(measure<D>(p, friction, LinearHeat{cv * 0.05, cv, 2.0, wh}), label,
+                         shapes);
+    else
+      expect_equilibrium(measure<D>(p, friction, InverseConstantHeat{5.0, wh}), label, shapes);
   };
-  if (constant_gamma) go(ConstantGamma{p.gamma, cv, wd});
-  else go(ConstantSigma{p.sigma, wd});
+  if (constant_gamma)
+    go(ConstantGamma{p.gamma, cv, wd});
+  else
+    go(ConstantSigma{p.sigma, wd});
 }
 
 } // namespace
@@ -174,7 +184,8 @@ TEST(Equilibrium, IdealDpdeEcVerletTemperatures) {
   run_case<3>(Integrator::EcVerlet, 100, true, false, false);
   run_case<2>(Integrator::EcVerlet, 10, false, true, false);
 }
-TEST(Equilibrium, DISABLED_EcVerletShapes) { // run by the validation target with --gtest_also_run_disabled_tests
+TEST(Equilibrium,
+     DISABLED_EcVerletShapes) { // run by the validation target with --gtest_also_run_disabled_tests
   run_case<3>(Integrator::EcVerlet, 100, true, false);
   run_case<2>(Integrator::EcVerlet, 10, false, true);
 }

@@ -52,8 +52,8 @@ void check(const std::array<double, D>& box, double rc, std::size_t n, unsigned 
 
 TEST(Neighbours, CellSearchMatchesBruteForce3D) {
   check<3>({{10, 7, 6.5}}, 1.0, 1200, 1);
-  check<3>({{2.5, 3.2, 9.1}}, 1.0, 300, 2);  // fewer than 3 cells in x: minimum image
-  check<3>({{6, 6, 6}}, 1.3, 800, 3);         // cutoff not dividing the box
+  check<3>({{2.5, 3.2, 9.1}}, 1.0, 300, 2); // fewer than 3 cells in x: minimum image
+  check<3>({{6, 6, 6}}, 1.3, 800, 3);       // cutoff not dividing the box
 }
 
 TEST(Neighbours, CellSearchMatchesBruteForce2D) {

@@ -51,7 +51,8 @@ TEST(Seed001, IsothermalEulerTemperatureAgainstEq25) {
       const Estimate e = block_average(t, 20);
       std::printf("%4.1f %7.4f %9.5f %8.5f %9.5f %+8.4f %8.4f\n", rho, dt, e.mean, e.stderr_,
                   predicted, e.mean / predicted - 1, dtc);
-      if (dt <= 0.01) EXPECT_NEAR(e.mean, predicted, 0.01 * predicted + 4 * e.stderr_) << rho << " " << dt;
+      if (dt <= 0.01)
+        EXPECT_NEAR(e.mean, predicted, 0.01 * predicted + 4 * e.stderr_) << rho << " " << dt;
     }
   }
 }
@@ -60,14 +61,20 @@ TEST(Seed001, IsothermalEulerTemperatureAgainstEq25) {
 // at 0.01, ~50% apart at 0.05). Reported as a table; asserts agreement within 4 stderr + 0.5% at
 // dt <= 0.01 only.
 TEST(Seed002, InternalAgainstKineticTemperature) {
-  std::printf("# seed 002 III.A (ec-verlet, N = 6000): dt, T_K, stderr, T_I, stderr, T_K/T_I - 1\n");
+  std::printf(
+      "# seed 002 III.A (ec-verlet, N = 6000): dt, T_K, stderr, T_I, stderr, T_K/T_I - 1\n");
   for (const double dt : {0.005, 0.01, 0.02, 0.05}) {
     auto p = seed002(Integrator::EcVerlet, dt);
     using Mt = Model<3, TemperatureRepulsion, ConstantSigma, InverseSeed002Heat>;
-    const Mt m{TemperatureRepulsion{15, 1, 1, 0.5}, ConstantSigma{3, Weight(1, 0.5)},
-               InverseSeed002Heat{0.001, 200, Weight(1, 0.5)}, 1, 200, 1};
+    const Mt m{TemperatureRepulsion{15, 1, 1, 0.5},
+               ConstantSigma{3, Weight(1, 0.5)},
+               InverseSeed002Heat{0.001, 200, Weight(1, 0.5)},
+               1,
+               200,
+               1};
     Simulation<Mt> sim(m, p);
-    const long relax = static_cast<long>(10 / dt), samples = 200, every = std::max(1L, static_cast<long>(0.05 / dt));
+    const long relax = static_cast<long>(10 / dt), samples = 200,
+               every = std::max(1L, static_cast<long>(0.05 / dt));
     for (long s = 0; s < relax; ++s) sim.step();
     std::vector<double> tk, ti;
     const double n = sim.state().size();
@@ -81,6 +88,7 @@ TEST(Seed002, InternalAgainstKineticTemperature) {
     const Estimate a = block_average(tk, 20), b = block_average(ti, 20);
     std::printf("%6.3f %8.5f %8.5f %8.5f %8.5f %+8.4f\n", dt, a.mean, a.stderr_, b.mean, b.stderr_,
                 a.mean / b.mean - 1);
-    if (dt <= 0.01) EXPECT_NEAR(a.mean, b.mean, 4 * std::hypot(a.stderr_, b.stderr_) + 0.005 * b.mean);
+    if (dt <= 0.01)
+      EXPECT_NEAR(a.mean, b.mean, 4 * std::hypot(a.stderr_, b.stderr_) + 0.005 * b.mean);
   }
 }

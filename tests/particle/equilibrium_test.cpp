@@ -123,12 +123,6 @@ Measured measure(const ParticleParameters& p, const F& friction, const H& heat) 
   return m;
 }
 
-// chi^2 quantile at significance 1e-3 (Wilson-Hilferty).
-double chi2_limit(int dof) {
-  const double z = 3.09, k = dof;
-  return k * std::pow(1 - 2 / (9 * k) + z * std::sqrt(2 / (9 * k)), 3);
-}
-
 void expect_equilibrium(const Measured& m, const std::string& label, bool shapes = true) {
   const double T = m.t_eos;
   std::printf("%-38s T_eos %.5f T_K %.5f+-%.5f T_I %.5f+-%.5f kurt %.4f+-%.4f "
@@ -149,8 +143,9 @@ void expect_equilibrium(const Measured& m, const std::string& label, bool shapes
 
 template <int D>
 void run_case(Integrator integrator, double cv, bool constant_gamma, bool linear,
-              bool shapes = true) {
+              bool shapes = true, bool from_rest = false) {
   auto p = ideal(D, integrator, cv);
+  if (from_rest) p.initial_velocities = InitialVelocities::Rest;
   const Weight wd(1, 2), wh(1, 2);
   const std::string label = std::to_string(D) + "D " + to_string(integrator) +
                             " c_v=" + std::to_string(static_cast<int>(cv)) +
@@ -192,4 +187,12 @@ TEST(Equilibrium,
 TEST(Equilibrium, IdealDpdeEuler) {
   run_case<2>(Integrator::Euler, 10, true, false);
   run_case<3>(Integrator::Euler, 100, false, true);
+}
+
+// Seed 000's closed-system check: particles start at rest with theta_i = 1; the final T is the
+// energy equation of state's E/N / (d/2 + c_v + 1) (000:(3.21)).
+// (Constant sigma: with constant gamma, shardlow at c_v = 10 ends with T_K 3% above the
+// prediction, T_K = 0.826 +- 0.003 vs 0.800 — a missing drift term in the S1 split; reported.)
+TEST(Equilibrium, ClosedSystemFromRest) {
+  run_case<3>(Integrator::Shardlow, 10, false, false, true, true);
 }

@@ -51,8 +51,9 @@ TEST(Seed001, IsothermalEulerTemperatureAgainstEq25) {
       const Estimate e = block_average(t, 20);
       std::printf("%4.1f %7.4f %9.5f %8.5f %9.5f %+8.4f %8.4f\n", rho, dt, e.mean, e.stderr_,
                   predicted, e.mean / predicted - 1, dtc);
-      if (dt <= 0.01)
+      if (dt <= 0.01) {
         EXPECT_NEAR(e.mean, predicted, 0.01 * predicted + 4 * e.stderr_) << rho << " " << dt;
+      }
     }
   }
 }
@@ -88,7 +89,8 @@ TEST(Seed002, InternalAgainstKineticTemperature) {
     const Estimate a = block_average(tk, 20), b = block_average(ti, 20);
     std::printf("%6.3f %8.5f %8.5f %8.5f %8.5f %+8.4f\n", dt, a.mean, a.stderr_, b.mean, b.stderr_,
                 a.mean / b.mean - 1);
-    if (dt <= 0.01)
+    if (dt <= 0.01) {
       EXPECT_NEAR(a.mean, b.mean, 4 * std::hypot(a.stderr_, b.stderr_) + 0.005 * b.mean);
+    }
   }
 }

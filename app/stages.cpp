@@ -67,10 +67,6 @@ int particle_stage(const CommandLine& cl) {
   return 0;
 }
 
-int bench(const CommandLine&) {
-  throw NotImplemented("'bench' is not implemented yet");
-}
-
 int run_all(const CommandLine& cl) {
   Case c;
   const CaseParameters p = c.load(cl.target, cl.overrides);

@@ -111,8 +111,8 @@ struct ConstantSigma {
   Weight w;
   double gamma(double theta) const { return sigma * sigma / (2 * theta); } // 000:(2.37)
   double sigma_of(double) const { return sigma; }
-  // Friction in the explicit Euler step: sigma does not depend on u, no drift correction.
-  double euler_gamma(double th_i, double th_j) const { return gamma(harmonic(th_i, th_j)); }
+  // Friction of the Ito (pre-point) update: sigma does not depend on u, no drift correction.
+  double ito_gamma(double th_i, double th_j) const { return gamma(harmonic(th_i, th_j)); }
   static double harmonic(double a, double b) { return 2 * a * b / (a + b); } // Theta_ij, 003
 };
 struct ConstantGamma {
@@ -123,7 +123,7 @@ struct ConstantGamma {
   double sigma_of(double theta) const { return std::sqrt(2 * theta * gamma_); } // 000:(2.37)
   // 003:(18): xi = gamma [1 + k/2 (d/du_i + d/du_j) Theta_ij], dTheta/du_i = 2 th_j^2/(c_v
   // (th_i+th_j)^2)
-  double euler_gamma(double th_i, double th_j) const {
+  double ito_gamma(double th_i, double th_j) const {
     const double s = th_i + th_j;
     return gamma_ * (1 + (th_i * th_i + th_j * th_j) / (cv * s * s));
   }
@@ -135,7 +135,7 @@ struct IsothermalFriction { // seed 001: fixed T in the FDT, no internal energy
   Weight w;
   double gamma(double) const { return gamma_; }
   double sigma_of(double) const { return sigma; }
-  double euler_gamma(double, double) const { return gamma_; }
+  double ito_gamma(double, double) const { return gamma_; }
   static double harmonic(double, double) { return 1; }
 };
 

@@ -242,58 +242,77 @@ RunOutput drive(const M& model, const ParticleParameters& p, const RunControl& c
 
 // ---- resolving the case into a compiled combination (the only place that branches on physics)
 
-template <int D, class C, class F, class H>
-RunOutput with_model(const ParticleParameters& p, const C& c, const F& f, const H& h,
-                     const RunControl& control) {
-  Model<D, C, F, H> m{c, f, h, p.mass, p.cv, p.largest_cutoff()};
-  return drive(m, p, control);
-}
-
-template <int D, class C, class F>
-RunOutput with_heat(const ParticleParameters& p, const C& c, const F& f,
-                    const RunControl& control) {
+template <int D, class C, class F, class V>
+auto with_heat(const ParticleParameters& p, const C& c, const F& f, V&& visit) {
   const Weight w(p.heat_weight.cutoff, p.heat_weight.exponent);
+  auto model = [&](const auto& h) {
+    return visit(
+        Model<D, C, F, std::decay_t<decltype(h)>>{c, f, h, p.mass, p.cv, p.largest_cutoff()});
+  };
   if constexpr (!F::isothermal) {
     if (p.heat == HeatLaw::Inverse && p.heat_coefficient == HeatCoefficient::Constant)
-      return with_model<D>(p, c, f, InverseConstantHeat{p.kappa0, w}, control);
-    if (p.heat == HeatLaw::Inverse)
-      return with_model<D>(p, c, f, InverseSeed002Heat{p.kappa0, p.cv, w}, control);
+      return model(InverseConstantHeat{p.kappa0, w});
+    if (p.heat == HeatLaw::Inverse) return model(InverseSeed002Heat{p.kappa0, p.cv, w});
     if (p.heat == HeatLaw::Linear)
-      return with_model<D>(p, c, f, LinearHeat{p.cv * p.kappa0, p.cv, p.linear_noise_factor, w},
-                           control);
+      return model(LinearHeat{p.cv * p.kappa0, p.cv, p.linear_noise_factor, w});
   }
-  return with_model<D>(p, c, f, NoHeat{}, control);
+  return model(NoHeat{});
 }
 
-template <int D, class C>
-RunOutput with_friction(const ParticleParameters& p, const C& c, const RunControl& control) {
+template <int D, class C, class V>
+auto with_friction(const ParticleParameters& p, const C& c, V&& visit) {
   const Weight w(p.dissipation.cutoff, p.dissipation.exponent);
   if (p.energy == EnergyModel::Isothermal)
     return with_heat<D>(
-        p, c, IsothermalFriction{p.gamma, std::sqrt(2 * p.temperature * p.gamma), w}, control);
+        p, c, IsothermalFriction{p.gamma, std::sqrt(2 * p.temperature * p.gamma), w}, visit);
   if (p.friction == Friction::ConstantGamma)
-    return with_heat<D>(p, c, ConstantGamma{p.gamma, p.cv, w}, control);
-  return with_heat<D>(p, c, ConstantSigma{p.sigma, w}, control);
+    return with_heat<D>(p, c, ConstantGamma{p.gamma, p.cv, w}, visit);
+  return with_heat<D>(p, c, ConstantSigma{p.sigma, w}, visit);
 }
 
-template <int D>
-RunOutput with_conservative(const ParticleParameters& p, const RunControl& control) {
+template <int D, class V> auto with_conservative(const ParticleParameters& p, V&& visit) {
   const double rc = p.conservative_cutoff;
   switch (p.conservative) {
   case ConservativeForce::Constant:
-    return with_friction<D>(p, ConstantRepulsion{p.a0, rc, 1 / rc}, control);
+    return with_friction<D>(p, ConstantRepulsion{p.a0, rc, 1 / rc}, visit);
   case ConservativeForce::TemperatureDependent:
     return with_friction<D>(
-        p, TemperatureRepulsion{p.a0, rc, 1 / rc, 0.5 / p.reference_temperature}, control);
+        p, TemperatureRepulsion{p.a0, rc, 1 / rc, 0.5 / p.reference_temperature}, visit);
   default:
-    return with_friction<D>(p, NoConservative{}, control);
+    return with_friction<D>(p, NoConservative{}, visit);
   }
+}
+
+// Calls visit(model) with the compiled model the parameters describe.
+template <class V> auto dispatch(const ParticleParameters& p, V&& visit) {
+  return p.dim == 2 ? with_conservative<2>(p, visit) : with_conservative<3>(p, visit);
 }
 
 } // namespace
 
 RunOutput run_particles(const ParticleParameters& p, const RunControl& control) {
-  return p.dim == 2 ? with_conservative<2>(p, control) : with_conservative<3>(p, control);
+  return dispatch(p, [&](const auto& model) { return drive(model, p, control); });
+}
+
+BenchResult bench_particles(const ParticleParameters& p, long steps) {
+  return dispatch(p, [&](const auto& model) {
+    using M = std::decay_t<decltype(model)>;
+    Simulation<M> sim(model, p);
+    sim.step(); // warm caches and thread pool
+    const auto t0 = std::chrono::steady_clock::now();
+    for (long s = 0; s < steps; ++s) sim.step();
+    const double secs =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    BenchResult r;
+    r.particles = static_cast<long>(sim.state().size());
+    r.seconds = secs;
+    r.particle_steps_per_second = r.particles * static_cast<double>(steps) / secs;
+    // Resident per-particle arrays: state (x, v, u, id), carried (f, q, potential), the sort's
+    // cell index and permutation, and the sort's temporary copy of the largest array.
+    r.bytes_per_particle =
+        (2 * M::D + (M::has_energy ? 1 : 0)) * 8 + 4 + (M::D + 2) * 8 + 4 + 4 + 8;
+    return r;
+  });
 }
 
 } // namespace twinflow::particle

@@ -31,4 +31,11 @@ struct RunControl {
 
 RunOutput run_particles(const ParticleParameters& p, const RunControl& control = {});
 
+struct BenchResult {
+  long particles = 0;
+  double seconds = 0, particle_steps_per_second = 0, bytes_per_particle = 0;
+};
+// Times `steps` steps after set-up (set-up excluded).
+BenchResult bench_particles(const ParticleParameters& p, long steps);
+
 } // namespace twinflow::particle

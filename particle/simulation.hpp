@@ -58,7 +58,6 @@ private:
     double conservative = 0, dissipative_random = 0, phi = 0, heat = 0;
   };
   // Everything one pair contributes at the current state (v: velocities to use).
-  template <bool Euler>
   PairForce pair_force(const PairNoise& noise, std::size_t i, std::size_t j, const double* dx,
                        double r2, const std::array<std::vector<double>, D>& v) const;
 

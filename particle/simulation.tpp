@@ -57,7 +57,6 @@ template <class M> void Simulation<M>::prepare() {
 }
 
 template <class M>
-template <bool Euler>
 typename Simulation<M>::PairForce
 Simulation<M>::pair_force(const PairNoise& noise, std::size_t i, std::size_t j, const double* dx,
                           double r2, const std::array<std::vector<double>, D>& v) const {
@@ -77,8 +76,9 @@ Simulation<M>::pair_force(const PairNoise& noise, std::size_t i, std::size_t j, 
     for (int d = 0; d < D; ++d) ev += dx[d] * (v[d][i] - v[d][j]);
     ev *= inv_r;
     const double big_theta = fr.harmonic(th_i, th_j);
-    const double gamma = Euler ? fr.euler_gamma(th_i, th_j) : fr.gamma(big_theta);
-    // F^D + F^R along e_ij (physics.md; 002:(3))
+    // Noise amplitude at the pre-point, so the friction carries 003:(18)'s drift correction
+    // (a no-op for constant sigma). F^D + F^R along e_ij (physics.md; 002:(3)).
+    const double gamma = fr.ito_gamma(th_i, th_j);
     pf.dissipative_random = -gamma * wd * ev + fr.sigma_of(big_theta) * wr * xi * inv_sqrt_dt_;
   }
   if constexpr (M::Heat::active) {
@@ -104,7 +104,7 @@ template <class M> void Simulation<M>::conservative_pass(bool with_velocity_term
   if (with_velocity_terms) {
     grid_.for_each_pair(
         state_, model_.rc, [&](std::size_t i, std::size_t j, const double* dx, double r2) {
-          const PairForce pf = pair_force<false>(noise, i, j, dx, r2, state_.v);
+          const PairForce pf = pair_force(noise, i, j, dx, r2, state_.v);
           const double scale = (pf.conservative + pf.dissipative_random) / std::sqrt(r2);
           for (int d = 0; d < D; ++d) {
             f[d][i] += scale * dx[d];
@@ -210,7 +210,7 @@ template <class M> void Simulation<M>::step_euler() {
   std::fill(q.begin(), q.end(), 0.0);
   grid_.for_each_pair(
       state_, model_.rc, [&](std::size_t i, std::size_t j, const double* dx, double r2) {
-        const PairForce pf = pair_force<true>(noise, i, j, dx, r2, v);
+        const PairForce pf = pair_force(noise, i, j, dx, r2, v);
         const double scale = (pf.conservative + pf.dissipative_random) * dt_ / std::sqrt(r2);
         for (int d = 0; d < D; ++d) {
           dp[d][i] += scale * dx[d];
@@ -229,7 +229,7 @@ template <class M> void Simulation<M>::step_euler() {
       // Second pass over the same pairs and noise (counter-based: recomputed, not stored).
       grid_.for_each_pair(
           state_, model_.rc, [&](std::size_t i, std::size_t j, const double* dx, double r2) {
-            const PairForce pf = pair_force<true>(noise, i, j, dx, r2, v_old_);
+            const PairForce pf = pair_force(noise, i, j, dx, r2, v_old_);
             const double inv_r = 1 / std::sqrt(r2);
             double rel = 0; // e_ij . (vbar_i - vbar_j)
             for (int d = 0; d < D; ++d)
@@ -290,21 +290,22 @@ void Simulation<M>::shardlow_pair(const PairNoise& noise, std::size_t i, std::si
     vr += e[d] * (v[d][i] - v[d][j]);
   }
   const double m = model_.mass, inv_m = 1 / m;
-  double big_theta = 1;
-  if constexpr (M::has_energy) big_theta = fr.harmonic(theta(i), theta(j));
+  double th_i = 1, th_j = 1;
+  if constexpr (M::has_energy) th_i = theta(i), th_j = theta(j);
+  // The noise amplitude is taken at the pre-point for both halves (Ito), so the friction carries
+  // 003:(18)'s drift correction (a no-op for constant sigma).
+  const double kick = fr.sigma_of(fr.harmonic(th_i, th_j)) * wr * xi * sqrt_dt_;
   // Half 1, explicit: dp = 1/2 (-gamma w_D v_r dt + sigma w_R xi sqrt(dt))
-  const double dp1 =
-      0.5 * (-fr.gamma(big_theta) * wd * vr * dt_ + fr.sigma_of(big_theta) * wr * xi * sqrt_dt_);
+  const double dp1 = 0.5 * (-fr.ito_gamma(th_i, th_j) * wd * vr * dt_ + kick);
   const double vr1 = vr + 2 * dp1 * inv_m;
   if constexpr (M::has_energy) {
     const double dk = dp1 * 0.5 * (vr + vr1); // exact kinetic change of the pair
     u[i] -= 0.5 * dk;
     u[j] -= 0.5 * dk;
-    big_theta = fr.harmonic(theta(i), theta(j));
+    th_i = theta(i), th_j = theta(j);
   }
-  // Half 2, implicit in v_r: v_r2 (1 + gamma' w_D dt/m) = v_r1 + sigma' w_R xi sqrt(dt)/m
-  const double vr2 = (vr1 + fr.sigma_of(big_theta) * wr * xi * sqrt_dt_ * inv_m) /
-                     (1 + fr.gamma(big_theta) * wd * dt_ * inv_m);
+  // Half 2, implicit in v_r: v_r2 (1 + gamma' w_D dt/m) = v_r1 + sigma w_R xi sqrt(dt)/m
+  const double vr2 = (vr1 + kick * inv_m) / (1 + fr.ito_gamma(th_i, th_j) * wd * dt_ * inv_m);
   const double dp2 = 0.5 * m * (vr2 - vr1);
   if constexpr (M::has_energy) {
     const double dk = dp2 * 0.5 * (vr1 + vr2);

@@ -25,6 +25,7 @@ int check_case(const CommandLine&);
 int print_parameters(const CommandLine&);
 int particle_stage(const CommandLine&);
 int continuum_stage(const CommandLine&);
+int transport_stage(const CommandLine&);
 int bench(const CommandLine&);
 int run_all(const CommandLine&);
 

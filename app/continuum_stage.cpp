@@ -1,12 +1,83 @@
+// twinflow continuum CASE: the deal.II twin of a case, results in RUNDIR/continuum.
+
+#include <chrono>
+#include <iostream>
+
+#include <deal.II/base/mpi.h>
+
 #include "app/case/case.hpp"
 #include "app/commands.hpp"
+#include "continuum/run.hpp"
+#include "io/files.hpp"
 
 namespace twinflow::app {
 
 int continuum_stage(const CommandLine& cl) {
+  const auto start = std::chrono::steady_clock::now();
+  // Everything is validated (case file, run directory) before anything is written.
   Case c;
-  c.load(cl.target, cl.overrides);
-  throw NotImplemented("'continuum' is not implemented yet");
+  const CaseParameters parameters = c.load(cl.target, cl.overrides);
+  const std::filesystem::path run_dir =
+      cl.out.empty() ? std::filesystem::path("twinflow-runs") / parameters.name
+                     : std::filesystem::path(cl.out);
+  const io::StageDirectory stage(run_dir, "continuum", cl.force);
+  const continuum::ContinuumParameters& p = parameters.continuum;
+  // Under mpirun only the distributed (iterative) path shares the work; rank 0 writes the
+  // summary and tables, the HDF5 fields are written collectively.
+  const unsigned n_processes = dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD);
+  const bool root = dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
+  if (n_processes > 1 && !p.uses_iterative_solver())
+    throw io::InputError("'continuum' with " + std::to_string(n_processes) +
+                         " MPI processes: only the iterative 3D Boussinesq path runs in parallel "
+                         "(Continuum/Solver/Linear solver = iterative); run it on one process");
+  const auto numbers = continuum::dimensionless_numbers(p);
+  if (root)
+    std::cout << "continuum: "
+              << (p.model == continuum::Model::Boussinesq ? "Boussinesq"
+                                                          : "heat "
+                                                            "conduction")
+              << ", " << p.dim << "D, Ra = " << numbers.rayleigh << ", Pr = " << numbers.prandtl
+              << std::endl;
+
+  if (root) stage.create();
+  MPI_Barrier(MPI_COMM_WORLD);
+  const continuum::ContinuumResult result = continuum::run(p, stage.path());
+  if (!root) return 0;
+
+  io::write_file_atomically(stage.file("bins.csv"), continuum::bins_csv(result, p));
+  std::vector<std::string> files = result.files;
+  files.push_back("bins.csv");
+  if (!result.walls.empty() && !result.walls.front().local.empty()) {
+    io::write_file_atomically(stage.file("wall_nusselt.csv"), continuum::wall_nusselt_csv(result));
+    files.push_back("wall_nusselt.csv");
+  }
+
+  io::Json summary = io::Json::object();
+  summary["stage"] = "continuum";
+  summary["case"] = parameters.name;
+  summary["case_file"] = cl.target;
+  summary["provenance"] = io::provenance();
+  summary["case_parameters"] = c.registry().resolved_json();
+  summary["continuum_parameters"] = continuum::to_json(p);
+  io::Json measured = continuum::to_json(result);
+  for (const auto& [key, value] : measured.items()) summary[key] = value;
+  summary["files"] = io::Json::array();
+  for (const auto& f : files) summary["files"].push_back(f);
+  summary["stage_wall_time_s"] =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  io::write_file_atomically(stage.file("summary.json"), summary.dump());
+
+  if (result.model == "boussinesq") {
+    std::cout << "continuum: Nu = " << result.nusselt;
+    if (result.has_midline_maxima)
+      std::cout << ", u_max(x = Lx/2) = " << result.u_max_vertical_midline.value
+                << ", v_max(y = Ly/2) = " << result.v_max_horizontal_midline.value << " (chi/H)";
+    std::cout << "\n";
+  }
+  std::cout << "continuum: results in " << stage.path().string() << " (summary.json";
+  for (const auto& f : files) std::cout << ", " << f;
+  std::cout << ")" << std::endl;
+  return 0;
 }
 
 } // namespace twinflow::app

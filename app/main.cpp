@@ -30,7 +30,8 @@ int not_yet(const app::CommandLine& cl) {
 const std::map<std::string, Command>& commands() {
   static const std::map<std::string, Command> table = {
       {"particle", {"CASE      run the DPDE particle scene", app::particle_stage, true}},
-      {"transport", {"CASE      estimate and measure kappa, eta, alpha, c_p", not_yet, true}},
+      {"transport",
+       {"CASE      estimate and measure kappa, eta, alpha, c_p", app::transport_stage, true}},
       {"continuum", {"CASE      run the deal.II continuum twin", app::continuum_stage, true}},
       {"compare", {"RUNDIR    compare the twins of a finished run", not_yet, true}},
       {"run",

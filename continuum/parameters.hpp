@@ -1,16 +1,126 @@
 #pragma once
-// Plain parameters of the continuum twin, filled from the case file by app/case.
+// Plain parameters of the continuum twin, filled from the case file by app/case (or directly by
+// tests). Units are the particle solver's: lengths in rc, temperature in T0 (k = 1), mass in m,
+// time in tau. Number density n, so mass density n m and heat capacity per volume n c_p.
 
 #include <array>
+#include <cmath>
 #include <string>
+#include <vector>
 
 namespace twinflow::continuum {
 
+enum class Model { Boussinesq, HeatConduction };
+// Boussinesq linear solver: direct (serial UMFPACK) or iterative (p4est + Trilinos FGMRES, 3D);
+// automatic: direct in 2D, iterative in 3D.
+enum class LinearSolver { Automatic, Direct, Iterative };
+
+// coefficient(T) = value_at_reference * (T / reference_temperature)^exponent; exponent 0: constant.
+// (seed 000 uses kappa = kappa_0 (T/T_0)^-2.)
+struct PowerLaw {
+  double value_at_reference = 1.0;
+  double exponent = 0.0;
+
+  double at(double T, double T_ref) const {
+    return exponent == 0.0 ? value_at_reference
+                           : value_at_reference * std::pow(T / T_ref, exponent);
+  }
+  // d coefficient / dT, for the exact Newton Jacobian.
+  double derivative(double T, double T_ref) const {
+    return exponent == 0.0 ? 0.0 : exponent * at(T, T_ref) / T;
+  }
+  bool is_constant() const { return exponent == 0.0; }
+};
+
+// Boundaries of one box direction: walls at x_d = 0 (side 0) and x_d = L_d (side 1), or periodic.
+struct DirectionBoundary {
+  bool periodic = true;
+  std::array<bool, 2> fixed_temperature{{true, true}}; // Dirichlet (thermal wall) or flux wall
+  std::array<double, 2> temperature{{1.0, 1.0}};       // of a fixed-temperature wall
+  std::array<double, 2> heat_flux{{0.0, 0.0}};         // into the domain, of a flux wall
+  bool no_slip = true;                                 // else free slip (no normal flux)
+};
+
+// A slab x_d in [lower, upper] that injects `power` (energy per time; < 0: a sink) uniformly:
+// the particle twin's hot and cold heat-exchange slabs.
+struct HeatSlab {
+  int direction = 0;
+  double lower = 0.0, upper = 0.0;
+  double power = 0.0;
+};
+
 struct ContinuumParameters {
+  // Scene
   int dim = 2;
   std::array<double, 3> box{{1, 1, 1}};
-  std::string model = "boussinesq";
-  int refinement = 4;
+  Model model = Model::Boussinesq;
+  std::array<DirectionBoundary, 3> boundary;
+  std::array<double, 3> gravity{{0, 0, 0}};
+
+  // Material, particle units
+  double number_density = 1.0;        // n
+  double particle_mass = 1.0;         // m
+  double heat_capacity = 1.0;         // c_p per particle (units of k)
+  double thermal_expansion = 0.0;     // alpha (1/T0)
+  double reference_temperature = 1.0; // T_ref of Boussinesq and of the power laws
+  PowerLaw viscosity{1.0, 0.0};       // eta(T)
+  PowerLaw conductivity{1.0, 0.0};    // kappa(T)
+  std::vector<HeatSlab> heat_slabs;
+
+  // Mesh: `cells` coarse cells per direction, then `refinements` global refinements.
+  std::array<unsigned, 3> cells{{8, 8, 8}};
+  int refinements = 2; // the problem is solved on every level (nested iteration: mesh study)
+
+  // Nonlinear solver
+  double newton_tolerance = 1e-9; // on the relative update |dx| / |x|
+  int max_newton_iterations = 25;
+  double continuation_start_rayleigh = 1e4; // larger Ra is reached by steps of 10 from here
+  LinearSolver linear_solver = LinearSolver::Automatic;
+  bool uses_iterative_solver() const {
+    return model == Model::Boussinesq && (linear_solver == LinearSolver::Iterative ||
+                                          (linear_solver == LinearSolver::Automatic && dim == 3));
+  }
+
+  // Heat conduction in time (end_time 0: steady)
+  double end_time = 0.0;
+  double time_step = 0.01;
+  double theta = 0.5;                   // 0.5: Crank-Nicolson, 1: implicit Euler
+  std::string initial_temperature = ""; // muparser expression in x, y, z; "": T_ref
+
+  // Output
+  std::array<unsigned, 3> bins{{10, 10, 10}};
+  std::vector<std::array<double, 3>> probe_points;
+  int profile_samples = 401; // samples per mid-line before the maximum is refined
+  bool write_fields = true;  // HDF5 + XDMF
+
+  // Derived material numbers
+  double mass_density() const { return number_density * particle_mass; }
+  double heat_capacity_per_volume() const { return number_density * heat_capacity; }
 };
+
+// Dimensionless groups of the scene, at the reference temperature.
+struct DimensionlessNumbers {
+  double kinematic_viscosity = 0;    // nu = eta / (n m)
+  double thermal_diffusivity = 0;    // chi = kappa / (n c_p)
+  double rayleigh = 0;               // Ra = g alpha dT H^3 / (nu chi)
+  double prandtl = 0;                // Pr = nu / chi
+  int heated_direction = -1;         // direction whose two walls hold different temperatures
+  double height = 0;                 // H: box length of the heated direction (else box[0])
+  double temperature_difference = 0; // dT = T_lower_wall - T_upper_wall of that direction
+  double velocity_scale = 0;         // chi / H (de Vahl Davis 1983 scaling)
+  double conduction_flux = 0;        // pure-conduction heat flux per area across H
+};
+
+DimensionlessNumbers dimensionless_numbers(const ContinuumParameters&);
+
+// Heat source per volume at x: the sum of the slabs containing x, power / slab volume.
+double heat_source_density(const ContinuumParameters&, const std::array<double, 3>& x);
+
+// Coefficients that give a cavity of height H = box[heated direction] the target Ra and Pr at
+// n = m = c_p = 1 and chi = 1 (for tests): nu = Pr, g alpha dT = Ra Pr chi^2 / H^3.
+void set_rayleigh_prandtl(ContinuumParameters&, double rayleigh, double prandtl);
+
+// Throws std::invalid_argument naming the first inconsistent value.
+void check(const ContinuumParameters&);
 
 } // namespace twinflow::continuum

@@ -1,20 +1,225 @@
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
 #include "app/case/case.hpp"
 
 namespace twinflow::app {
 
+namespace {
+const char* const kPositive = "a number > 0";
+const char* const kAxes = "xyz";
+const std::string s = "Continuum/";
+
+// "8" -> 8 cells along the shortest box edge, the others in proportion; "16, 8" -> per direction.
+std::array<unsigned, 3> cells_per_direction(const Registry& r, const std::string& path,
+                                            const SceneParameters& scene) {
+  const auto values = r.get_doubles(path);
+  std::array<unsigned, 3> cells{{1, 1, 1}};
+  if (values.size() == 1) {
+    double shortest = scene.box[0];
+    for (int d = 1; d < scene.dim; ++d) shortest = std::min(shortest, scene.box[d]);
+    for (int d = 0; d < scene.dim; ++d)
+      cells[d] =
+          std::max(1u, static_cast<unsigned>(std::lround(values[0] * scene.box[d] / shortest)));
+  } else {
+    r.require(static_cast<int>(values.size()) == scene.dim, path,
+              "one value, or one per dimension (" + std::to_string(scene.dim) + ")");
+    for (int d = 0; d < scene.dim; ++d) cells[d] = static_cast<unsigned>(values[d]);
+  }
+  return cells;
+}
+
+std::vector<std::array<double, 3>> points(const Registry& r, const std::string& path, int dim,
+                                          const std::array<double, 3>& box) {
+  std::vector<std::array<double, 3>> out;
+  std::istringstream list(r.get(path));
+  std::string item;
+  while (std::getline(list, item, ';')) {
+    if (dealii::Utilities::trim(item).empty()) continue;
+    std::vector<double> x;
+    try {
+      x = dealii::Utilities::string_to_double(dealii::Utilities::split_string_list(item));
+    } catch (const std::exception&) {
+      r.fail(path, "points 'x, y[, z]' separated by ';'");
+    }
+    r.require(static_cast<int>(x.size()) == dim, path,
+              "points of " + std::to_string(dim) + " coordinates separated by ';'");
+    std::array<double, 3> p{{0, 0, 0}};
+    for (int d = 0; d < dim; ++d) {
+      r.require(x[d] >= 0 && x[d] <= box[d], path, "points inside the box");
+      p[d] = x[d];
+    }
+    out.push_back(p);
+  }
+  return out;
+}
+} // namespace
+
 void declare_continuum(Registry& r) {
   using namespace dealii::Patterns;
-  r.declare("Continuum/Model", "boussinesq", Selection("boussinesq|heat-conduction"),
-            "Equations of the continuum twin.");
-  r.declare("Continuum/Refinement", "4", Integer(0, 12), "Global refinement level of the mesh.");
+  r.declare(s + "Model", "boussinesq", Selection("boussinesq|heat-conduction"),
+            "Equations of the continuum twin: steady Boussinesq natural convection (Taylor-Hood "
+            "Q2/Q1 + Q2 temperature, Newton), or heat conduction without flow.");
+
+  const std::string c = s + "Coefficients/";
+  r.declare(c + "Viscosity", "1", Double(),
+            "Shear viscosity eta at the reference temperature (particle units m/(rc tau)), > 0.",
+            kPositive);
+  r.declare(c + "Viscosity exponent", "0", Double(),
+            "eta = eta_0 (T/T_ref)^exponent; 0: constant.");
+  r.declare(c + "Conductivity", "1", Double(),
+            "Thermal conductivity kappa at the reference temperature (k/(rc tau)), > 0.",
+            kPositive);
+  r.declare(c + "Conductivity exponent", "0", Double(),
+            "kappa = kappa_0 (T/T_ref)^exponent (seed 000: -2); 0: constant.");
+  r.declare(c + "Heat capacity", "1", Double(),
+            "Heat capacity at constant pressure per particle c_p (units of k); n c_p per volume, "
+            "> 0.",
+            kPositive);
+  r.declare(c + "Thermal expansion", "0", Double(0),
+            "Thermal expansion coefficient alpha (1/T0) of the Boussinesq buoyancy.");
+  r.declare(c + "Reference temperature", "1", Double(),
+            "T_ref of the buoyancy and of the power laws (units of T0), > 0.", kPositive);
+
+  const std::string m = s + "Mesh/";
+  r.declare(m + "Cells", "8", List(Integer(1, 4096), 1, 3),
+            "Coarse cells: one value for the shortest box edge (others in proportion), or one per "
+            "direction.");
+  r.declare(m + "Refinements", "2", Integer(0, 10),
+            "Global refinements of the coarse mesh. Boussinesq solves on every level (nested "
+            "iteration) and records the mesh study.");
+
+  const std::string n = s + "Solver/";
+  r.declare(n + "Newton tolerance", "1e-9", Double(0),
+            "Newton stops when the relative update of velocity and temperature is below this.");
+  r.declare(n + "Max Newton iterations", "25", Integer(1, 1000), "Per continuation step.");
+  r.declare(n + "Continuation start Rayleigh", "1e4", Double(),
+            "Larger Ra is reached in factor-10 steps starting here (halved on failure), > 0.",
+            kPositive);
+
+  r.declare(n + "Linear solver", "auto", Selection("auto|direct|iterative"),
+            "Boussinesq: direct (UMFPACK, one process) or iterative (p4est + Trilinos FGMRES with "
+            "a block AMG preconditioner, 3D only, runs under mpirun); auto: direct in 2D, "
+            "iterative in 3D.");
+
+  const std::string t = s + "Time/";
+  r.declare(t + "End time", "0", Double(0),
+            "Heat conduction: simulated time (tau); 0 solves for the steady state.");
+  r.declare(t + "Time step", "0.01", Double(), "Time step (tau), > 0.", kPositive);
+  r.declare(t + "Theta", "0.5", Double(0.5, 1),
+            "Theta scheme: 0.5 Crank-Nicolson, 1 implicit Euler.");
+  r.declare(s + "Initial temperature", "", Anything(),
+            "Heat conduction: initial T as a muparser expression in x, y, z (constants pi, Lx, Ly, "
+            "Lz); empty: the reference temperature.");
+
+  const std::string h = s + "Heat slabs/";
+  r.declare(h + "Direction", "x", Selection("x|y|z"), "Normal direction of the heat slabs.");
+  r.declare(h + "Hot slab", "", List(Double(0), 0, 2),
+            "lower, upper bound of the slab that receives +Power; empty: no slabs.");
+  r.declare(h + "Cold slab", "", List(Double(0), 0, 2),
+            "lower, upper bound of the slab that loses Power.");
+  r.declare(h + "Power", "0", Double(0),
+            "Heat per time put into the hot slab and taken from the "
+            "cold one (k T0 / tau).");
+
+  const std::string o = s + "Output/";
+  r.declare(o + "Bins", "10", List(Integer(1, 100000), 1, 3),
+            "Regular grid of bins for field averages: one value for all directions, or one per "
+            "direction.");
+  r.declare(o + "Probe points", "", Anything(),
+            "Points 'x, y[, z]' separated by ';' where all fields are recorded.");
+  r.declare(o + "Write fields", "true", Bool(), "Write fields.h5 + fields.xdmf (ParaView).");
+  r.declare(o + "Profile samples", "401", Integer(3, 1000000),
+            "Samples per mid-line before the velocity maximum is refined by golden section.");
 }
 
 continuum::ContinuumParameters resolve_continuum(const Registry& r, const SceneParameters& scene) {
   continuum::ContinuumParameters c;
   c.dim = scene.dim;
   c.box = scene.box;
-  c.model = r.get("Continuum/Model");
-  c.refinement = static_cast<int>(r.get_integer("Continuum/Refinement"));
+  c.model = r.get(s + "Model") == "heat-conduction" ? continuum::Model::HeatConduction
+                                                    : continuum::Model::Boussinesq;
+  c.gravity = scene.gravity;
+  for (int d = 0; d < 3; ++d) {
+    const auto& from = scene.boundary[d];
+    auto& to = c.boundary[d];
+    to.periodic = from.periodic || d >= scene.dim;
+    to.fixed_temperature = from.thermal; // adiabatic: zero-flux wall
+    to.temperature = from.temperature;
+    to.heat_flux = {{0.0, 0.0}};
+    to.no_slip = from.no_slip;
+  }
+
+  // Same units as the particle twin: n from the scene, m from the particle section.
+  c.number_density = scene.density;
+  c.particle_mass = r.get_double("Particle/Mass");
+  const std::string k = s + "Coefficients/";
+  c.viscosity = {r.get_double(k + "Viscosity"), r.get_double(k + "Viscosity exponent")};
+  r.require(c.viscosity.value_at_reference > 0, k + "Viscosity", kPositive);
+  c.conductivity = {r.get_double(k + "Conductivity"), r.get_double(k + "Conductivity exponent")};
+  r.require(c.conductivity.value_at_reference > 0, k + "Conductivity", kPositive);
+  c.heat_capacity = r.get_double(k + "Heat capacity");
+  r.require(c.heat_capacity > 0, k + "Heat capacity", kPositive);
+  c.thermal_expansion = r.get_double(k + "Thermal expansion");
+  c.reference_temperature = r.get_double(k + "Reference temperature");
+  r.require(c.reference_temperature > 0, k + "Reference temperature", kPositive);
+
+  c.cells = cells_per_direction(r, s + "Mesh/Cells", scene);
+  c.refinements = static_cast<int>(r.get_integer(s + "Mesh/Refinements"));
+  c.newton_tolerance = r.get_double(s + "Solver/Newton tolerance");
+  r.require(c.newton_tolerance > 0, s + "Solver/Newton tolerance", kPositive);
+  c.max_newton_iterations = static_cast<int>(r.get_integer(s + "Solver/Max Newton iterations"));
+  c.continuation_start_rayleigh = r.get_double(s + "Solver/Continuation start Rayleigh");
+  r.require(c.continuation_start_rayleigh > 0, s + "Solver/Continuation start Rayleigh", kPositive);
+
+  const std::string solver = r.get(s + "Solver/Linear solver");
+  c.linear_solver = solver == "direct"      ? continuum::LinearSolver::Direct
+                    : solver == "iterative" ? continuum::LinearSolver::Iterative
+                                            : continuum::LinearSolver::Automatic;
+  r.require(!c.uses_iterative_solver() || scene.dim == 3, s + "Solver/Linear solver",
+            "auto or direct in 2D (the iterative path is 3D only)");
+
+  c.end_time = r.get_double(s + "Time/End time");
+  c.time_step = r.get_double(s + "Time/Time step");
+  r.require(c.time_step > 0, s + "Time/Time step", kPositive);
+  c.theta = r.get_double(s + "Time/Theta");
+  c.initial_temperature = r.get(s + "Initial temperature");
+  r.require(c.model == continuum::Model::HeatConduction || c.initial_temperature.empty(),
+            s + "Initial temperature", "empty for the steady Boussinesq model");
+
+  const std::string h = s + "Heat slabs/";
+  const auto hot = r.get_doubles(h + "Hot slab"), cold = r.get_doubles(h + "Cold slab");
+  const double power = r.get_double(h + "Power");
+  const int direction = static_cast<int>(std::string(kAxes).find(r.get(h + "Direction")));
+  if (power > 0 || !hot.empty() || !cold.empty()) {
+    r.require(direction < scene.dim, h + "Direction", "a direction of the scene's dimension");
+    for (const bool is_hot : {true, false}) {
+      const auto& slab = is_hot ? hot : cold;
+      r.require(slab.size() == 2 && slab[0] < slab[1] && slab[1] <= scene.box[direction],
+                h + (is_hot ? "Hot slab" : "Cold slab"),
+                "lower, upper with 0 <= lower < upper <= box length");
+      c.heat_slabs.push_back({direction, slab[0], slab[1], is_hot ? power : -power});
+    }
+  }
+
+  const auto bins = r.get_doubles(s + "Output/Bins");
+  r.require(bins.size() == 1 || static_cast<int>(bins.size()) == scene.dim, s + "Output/Bins",
+            "one value, or one per dimension");
+  for (int d = 0; d < scene.dim; ++d)
+    c.bins[d] = static_cast<unsigned>(bins.size() == 1 ? bins[0] : bins[d]);
+  c.probe_points = points(r, s + "Output/Probe points", scene.dim, scene.box);
+  c.write_fields = r.get_bool(s + "Output/Write fields");
+  c.profile_samples = static_cast<int>(r.get_integer(s + "Output/Profile samples"));
+
+  // Whatever the per-key checks above did not catch (e.g. a power law with a zero wall
+  // temperature) is reported against the section.
+  try {
+    continuum::check(c);
+  } catch (const std::invalid_argument& e) {
+    throw io::InputError(std::string("section Continuum: ") + e.what());
+  }
   return c;
 }
 

@@ -1,0 +1,69 @@
+#pragma once
+// The distributed, iterative path of the steady Boussinesq solver (step-32/55/57 style), for 3D
+// boxes that a direct solver cannot factorise: p4est parallel::distributed::Triangulation,
+// Trilinos block matrices, Newton with the exact Jacobian (boussinesq_kernel.hpp), each Newton
+// system solved by FGMRES with a block-triangular preconditioner:
+//   pressure: S ~ -(1/eta) M_p (ILU of the pressure mass matrix),
+//   velocity: AMG of the velocity block, temperature: AMG of the temperature block.
+// Runs on one process or under mpirun. Instantiated for dim = 3 (boussinesq_distributed_3d.cpp).
+
+#include <deal.II/distributed/tria.h>
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/fe/fe_system.h>
+#include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/trilinos_block_sparse_matrix.h>
+#include <deal.II/lac/trilinos_parallel_block_vector.h>
+
+#include <filesystem>
+
+#include "continuum/parameters.hpp"
+#include "continuum/results.hpp"
+
+namespace twinflow::continuum {
+
+template <int dim> class DistributedBoussinesqProblem {
+public:
+  explicit DistributedBoussinesqProblem(const ContinuumParameters& parameters,
+                                        MPI_Comm comm = MPI_COMM_WORLD);
+
+  // Same algorithm as BoussinesqProblem::run: nested iteration over the refinement levels,
+  // continuation in Ra on the first; Nu, wall Nu, bins; fields into `output_dir` if not empty.
+  // Not computed on this path: mid-line maxima, stream function, probes.
+  ContinuumResult run(const std::filesystem::path& output_dir);
+
+private:
+  void setup_dofs();
+  void make_constraints();
+  void assemble_pressure_mass();
+  void initial_guess();
+  double assemble(bool with_jacobian, double gravity_factor);
+  unsigned solve_linear_system(); // returns the FGMRES iterations
+  bool newton(double gravity_factor, int& iterations);
+  void solve_with_continuation();
+  void refine_mesh_and_transfer();
+  double volume_nusselt() const;
+  void postprocess(ContinuumResult& result) const;
+  void output_fields(const std::filesystem::path& dir, ContinuumResult& result) const;
+
+  MPI_Comm comm_;
+  ContinuumParameters prm_;
+  DimensionlessNumbers numbers_;
+  dealii::parallel::distributed::Triangulation<dim> triangulation_;
+  dealii::FESystem<dim> fe_;
+  dealii::DoFHandler<dim> dof_handler_;
+  std::vector<dealii::IndexSet> owned_partitioning_, relevant_partitioning_;
+  dealii::AffineConstraints<double> nonzero_constraints_, zero_constraints_;
+  dealii::TrilinosWrappers::BlockSparseMatrix jacobian_;
+  dealii::TrilinosWrappers::BlockSparseMatrix preconditioner_matrix_;   // (1,1): M_p / eta
+  dealii::TrilinosWrappers::MPI::BlockVector solution_;                 // owned
+  dealii::TrilinosWrappers::MPI::BlockVector evaluation_point_;         // ghosted
+  dealii::TrilinosWrappers::MPI::BlockVector newton_update_, residual_; // owned
+
+  PhaseTimes times_;
+  int newton_iterations_ = 0;
+  unsigned long linear_iterations_ = 0;
+  double first_residual_ = 0; // scale of the absolute floor of the linear solves
+  std::vector<double> continuation_rayleigh_;
+};
+
+} // namespace twinflow::continuum

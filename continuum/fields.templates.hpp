@@ -1,0 +1,166 @@
+#pragma once
+// Pieces both continuum problems share: the box mesh with boundary ids 2d (x_d = 0) and 2d+1
+// (x_d = L_d), periodicity, bin averages, point values, HDF5 + XDMF output. Included only by the
+// continuum's instantiation units.
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/dofs/dof_tools.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/grid/grid_generator.h>
+#include <deal.II/numerics/data_out.h>
+#include <deal.II/numerics/vector_tools.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+
+#include "continuum/parameters.hpp"
+#include "continuum/results.hpp"
+
+namespace twinflow::continuum::detail {
+
+inline double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// Adds the wall time of its scope to `slot`.
+class ScopedTimer {
+public:
+  explicit ScopedTimer(double& slot) : slot_(slot), start_(std::chrono::steady_clock::now()) {}
+  ~ScopedTimer() { slot_ += seconds_since(start_); }
+
+private:
+  double& slot_;
+  std::chrono::steady_clock::time_point start_;
+};
+
+template <int dim> dealii::Point<dim> to_point(const std::array<double, 3>& x) {
+  dealii::Point<dim> p;
+  for (int d = 0; d < dim; ++d) p[d] = x[d];
+  return p;
+}
+
+template <int dim>
+void make_box_mesh(dealii::Triangulation<dim>& tria, const ContinuumParameters& prm) {
+  std::vector<unsigned int> repetitions(dim);
+  dealii::Point<dim> upper;
+  for (int d = 0; d < dim; ++d) {
+    repetitions[d] = prm.cells[d];
+    upper[d] = prm.box[d];
+  }
+  dealii::GridGenerator::subdivided_hyper_rectangle(tria, repetitions, dealii::Point<dim>(), upper,
+                                                    /*colorize=*/true);
+}
+
+// Periodicity constraints first, so that wall values set afterwards stay consistent.
+template <int dim>
+void add_periodicity(const dealii::DoFHandler<dim>& dofs, const ContinuumParameters& prm,
+                     dealii::AffineConstraints<double>& constraints) {
+  for (int d = 0; d < dim; ++d)
+    if (prm.boundary[d].periodic)
+      dealii::DoFTools::make_periodicity_constraints(dofs, 2 * d, 2 * d + 1, d, constraints);
+}
+
+template <int dim>
+std::array<unsigned, 3> current_cells(const dealii::Triangulation<dim>& tria,
+                                      const ContinuumParameters& prm) {
+  std::array<unsigned, 3> cells{{1, 1, 1}};
+  for (int d = 0; d < dim; ++d) cells[d] = prm.cells[d] << (tria.n_levels() - 1);
+  return cells;
+}
+
+// Average of every FE component over a regular grid of bins covering the box: the integral over
+// each bin divided by its volume. Quadrature points are assigned to the bin that contains them;
+// the sub-cell quadrature is iterated so that a cell straddling a bin face is split into pieces
+// no larger than a quarter bin (error of a non-aligned bin face O(h_sub / bin width)).
+// Cells not owned by this process are skipped and the sums added over `comm` (the distributed
+// solver); VectorType: dealii::Vector or a ghosted Trilinos vector.
+template <int dim, class VectorType>
+BinAverages bin_averages(const dealii::DoFHandler<dim>& dofs, const VectorType& solution,
+                         const std::vector<std::string>& names, const ContinuumParameters& prm,
+                         const MPI_Comm comm = MPI_COMM_SELF) {
+  BinAverages out;
+  out.names = names;
+  unsigned n_bins = 1;
+  double finest_bin = 1e300, largest_cell = 0;
+  for (int d = 0; d < dim; ++d) {
+    out.bins[d] = std::max(1u, prm.bins[d]);
+    n_bins *= out.bins[d];
+    finest_bin = std::min(finest_bin, prm.box[d] / out.bins[d]);
+  }
+  for (const auto& cell : dofs.active_cell_iterators())
+    largest_cell = std::max(largest_cell, cell->diameter());
+  largest_cell = dealii::Utilities::MPI::max(largest_cell, comm);
+  const unsigned pieces =
+      std::clamp(static_cast<unsigned>(std::ceil(4 * largest_cell / finest_bin)), 1u, 16u);
+  const dealii::QIterated<dim> quadrature(dealii::QGauss<1>(3), pieces);
+  const auto& fe = dofs.get_fe();
+  dealii::FEValues<dim> fe_values(fe, quadrature,
+                                  dealii::update_values | dealii::update_quadrature_points |
+                                      dealii::update_JxW_values);
+  const unsigned n_components = fe.n_components();
+  std::vector<dealii::Vector<double>> values(quadrature.size(),
+                                             dealii::Vector<double>(n_components));
+  out.values.assign(n_components, std::vector<double>(n_bins, 0.0));
+  std::vector<double> volume(n_bins, 0.0);
+  for (const auto& cell : dofs.active_cell_iterators()) {
+    if (!cell->is_locally_owned()) continue;
+    fe_values.reinit(cell);
+    fe_values.get_function_values(solution, values);
+    for (unsigned q = 0; q < quadrature.size(); ++q) {
+      const auto& x = fe_values.quadrature_point(q);
+      unsigned index = 0, stride = 1;
+      for (int d = 0; d < dim; ++d) {
+        const int i = std::clamp(static_cast<int>(x[d] / prm.box[d] * out.bins[d]), 0,
+                                 static_cast<int>(out.bins[d]) - 1);
+        index += stride * i;
+        stride *= out.bins[d];
+      }
+      volume[index] += fe_values.JxW(q);
+      for (unsigned c = 0; c < n_components; ++c)
+        out.values[c][index] += values[q][c] * fe_values.JxW(q);
+    }
+  }
+  dealii::Utilities::MPI::sum(volume, comm, volume);
+  for (unsigned c = 0; c < n_components; ++c) {
+    dealii::Utilities::MPI::sum(out.values[c], comm, out.values[c]);
+    for (unsigned b = 0; b < n_bins; ++b) out.values[c][b] /= volume[b];
+  }
+  return out;
+}
+
+template <int dim>
+void probe(const dealii::DoFHandler<dim>& dofs, const dealii::Vector<double>& solution,
+           const ContinuumParameters& prm, ContinuumResult& result) {
+  result.probe_points = prm.probe_points;
+  for (const auto& x : prm.probe_points) {
+    dealii::Vector<double> value(dofs.get_fe().n_components());
+    dealii::VectorTools::point_value(dofs, solution, to_point<dim>(x), value);
+    result.probe_values.emplace_back(value.begin(), value.end());
+  }
+}
+
+// HDF5 (parallel flavour, one process) + an XDMF file that ParaView opens; both written to a
+// temporary name and renamed, so an interrupted run leaves no half-written file.
+template <int dim>
+void write_hdf5_xdmf(const dealii::DataOut<dim>& data_out, const std::filesystem::path& dir,
+                     double time, std::vector<std::string>& files,
+                     const MPI_Comm comm = MPI_COMM_SELF) {
+  dealii::DataOutBase::DataOutFilter filter(
+      dealii::DataOutBase::DataOutFilterFlags(/*filter_duplicate_vertices=*/true,
+                                              /*xdmf_hdf5_output=*/true));
+  data_out.write_filtered_data(filter);
+  const std::string h5 = "fields.h5", xdmf = "fields.xdmf";
+  const bool root = dealii::Utilities::MPI::this_mpi_process(comm) == 0;
+  data_out.write_hdf5_parallel(filter, (dir / (h5 + ".tmp")).string(), comm);
+  if (root) std::filesystem::rename(dir / (h5 + ".tmp"), dir / h5);
+  const std::vector<dealii::XDMFEntry> entries{data_out.create_xdmf_entry(filter, h5, time, comm)};
+  data_out.write_xdmf_file(entries, (dir / (xdmf + ".tmp")).string(), comm);
+  if (root) std::filesystem::rename(dir / (xdmf + ".tmp"), dir / xdmf);
+  files.push_back(h5);
+  files.push_back(xdmf);
+}
+
+} // namespace twinflow::continuum::detail

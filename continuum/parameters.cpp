@@ -1,0 +1,116 @@
+#include "continuum/parameters.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace twinflow::continuum {
+
+DimensionlessNumbers dimensionless_numbers(const ContinuumParameters& p) {
+  DimensionlessNumbers n;
+  const double T_ref = p.reference_temperature;
+  n.kinematic_viscosity = p.viscosity.at(T_ref, T_ref) / p.mass_density(); // nu = eta/(n m)
+  n.thermal_diffusivity = p.conductivity.at(T_ref, T_ref) / p.heat_capacity_per_volume(); // chi
+  n.prandtl = n.kinematic_viscosity / n.thermal_diffusivity; // Pr = nu / chi
+  for (int d = 0; d < p.dim; ++d) {
+    const auto& b = p.boundary[d];
+    if (b.periodic || !b.fixed_temperature[0] || !b.fixed_temperature[1]) continue;
+    const double dT = b.temperature[0] - b.temperature[1];
+    if (dT != 0 && (n.heated_direction < 0 || std::abs(dT) > std::abs(n.temperature_difference))) {
+      n.heated_direction = d;
+      n.temperature_difference = dT;
+    }
+  }
+  n.height = p.box[std::max(n.heated_direction, 0)];
+  double g = 0;
+  for (int d = 0; d < p.dim; ++d) g += p.gravity[d] * p.gravity[d];
+  g = std::sqrt(g);
+  const double H = n.height;
+  // Ra = g alpha dT H^3 / (nu chi) (de Vahl Davis 1983, eq. 5)
+  n.rayleigh = g * p.thermal_expansion * std::abs(n.temperature_difference) * H * H * H /
+               (n.kinematic_viscosity * n.thermal_diffusivity);
+  n.velocity_scale = n.thermal_diffusivity / H; // chi / H (de Vahl Davis 1983)
+  if (n.heated_direction >= 0) {
+    // Conduction flux (1/H) int_{T_upper}^{T_lower} kappa(T) dT (Kirchhoff transform, Carslaw &
+    // Jaeger 1959 sec. 1.7), for kappa = kappa_0 (T/T_ref)^e.
+    const auto& b = p.boundary[n.heated_direction];
+    const double k0 = p.conductivity.value_at_reference, e = p.conductivity.exponent;
+    const double tl = b.temperature[0] / T_ref, tu = b.temperature[1] / T_ref;
+    if (e == 0.0)
+      n.conduction_flux = k0 * n.temperature_difference / H;
+    else if (e == -1.0)
+      n.conduction_flux = k0 * T_ref * std::log(tl / tu) / H;
+    else
+      n.conduction_flux = k0 * T_ref * (std::pow(tl, e + 1) - std::pow(tu, e + 1)) / ((e + 1) * H);
+  }
+  return n;
+}
+
+void set_rayleigh_prandtl(ContinuumParameters& p, double rayleigh, double prandtl) {
+  p.number_density = p.particle_mass = p.heat_capacity = 1.0;
+  p.conductivity = PowerLaw{1.0, 0.0};  // chi = 1
+  p.viscosity = PowerLaw{prandtl, 0.0}; // nu = Pr chi
+  double g = 0;
+  for (int d = 0; d < p.dim; ++d) g += p.gravity[d] * p.gravity[d];
+  if (g == 0) {
+    p.gravity = {{0, 0, 0}};
+    p.gravity[1] = -1.0;
+    g = 1.0;
+  }
+  const DimensionlessNumbers n = dimensionless_numbers(p);
+  if (n.heated_direction < 0)
+    throw std::invalid_argument("set_rayleigh_prandtl: no two walls at different temperatures");
+  const double H = n.height;
+  // g alpha dT H^3 / (nu chi) = Ra with nu = Pr, chi = 1
+  p.thermal_expansion =
+      rayleigh * prandtl / (std::sqrt(g) * std::abs(n.temperature_difference) * H * H * H);
+}
+
+double heat_source_density(const ContinuumParameters& p, const std::array<double, 3>& x) {
+  double q = 0;
+  for (const auto& s : p.heat_slabs) {
+    if (x[s.direction] < s.lower || x[s.direction] > s.upper) continue;
+    double volume = s.upper - s.lower; // times the cross-section of the box
+    for (int d = 0; d < p.dim; ++d)
+      if (d != s.direction) volume *= p.box[d];
+    q += s.power / volume;
+  }
+  return q;
+}
+
+void check(const ContinuumParameters& p) {
+  auto require = [](bool ok, const std::string& what) {
+    if (!ok) throw std::invalid_argument("continuum parameters: " + what);
+  };
+  require(p.dim >= 1 && p.dim <= 3, "dim must be 1, 2 or 3");
+  require(p.model == Model::HeatConduction || p.dim >= 2, "Boussinesq needs dim 2 or 3");
+  for (int d = 0; d < p.dim; ++d) {
+    require(p.box[d] > 0, "box lengths must be > 0");
+    require(p.cells[d] >= 1, "cells per direction must be >= 1");
+    require(p.bins[d] >= 1, "bins per direction must be >= 1");
+    for (int side = 0; side < 2; ++side)
+      require(p.boundary[d].periodic || !p.boundary[d].fixed_temperature[side] ||
+                  p.boundary[d].temperature[side] > 0,
+              "wall temperatures must be > 0");
+  }
+  require(p.number_density > 0 && p.particle_mass > 0 && p.heat_capacity > 0,
+          "n, m and c_p must be > 0");
+  require(p.viscosity.value_at_reference > 0 && p.conductivity.value_at_reference > 0,
+          "eta and kappa must be > 0");
+  require(p.reference_temperature > 0, "reference temperature must be > 0");
+  require(p.refinements >= 0 && p.refinements <= 12, "refinements in [0, 12]");
+  require(p.newton_tolerance > 0 && p.max_newton_iterations >= 1, "Newton tolerance > 0");
+  require(p.continuation_start_rayleigh > 0, "continuation start Ra > 0");
+  require(p.end_time >= 0, "end time >= 0");
+  require(p.end_time == 0 || p.time_step > 0, "time step > 0");
+  require(p.theta >= 0.5 && p.theta <= 1.0, "theta in [0.5, 1]");
+  require(p.profile_samples >= 3, "profile samples >= 3");
+  require(!p.uses_iterative_solver() || p.dim == 3, "the iterative Boussinesq solver is 3D only");
+  for (const auto& s : p.heat_slabs) {
+    require(s.direction >= 0 && s.direction < p.dim, "heat slab direction within dim");
+    require(s.lower >= 0 && s.lower < s.upper && s.upper <= p.box[s.direction],
+            "heat slab 0 <= lower < upper <= box length");
+  }
+}
+
+} // namespace twinflow::continuum

@@ -1,1 +1,0 @@
-#include "continuum/parameters.hpp"

@@ -1,0 +1,213 @@
+#include "continuum/results.hpp"
+
+#include <iomanip>
+#include <sstream>
+
+namespace twinflow::continuum {
+
+namespace {
+io::Json triple(const std::array<double, 3>& a, int dim) {
+  return io::Json(std::vector<double>(a.begin(), a.begin() + dim));
+}
+io::Json cells_json(const std::array<unsigned, 3>& a, int dim) {
+  io::Json j = io::Json::array();
+  for (int d = 0; d < dim; ++d) j.push_back(a[d]);
+  return j;
+}
+io::Json power_law(const PowerLaw& law) {
+  io::Json j = io::Json::object();
+  j["value_at_reference"] = law.value_at_reference;
+  j["exponent"] = law.exponent;
+  return j;
+}
+} // namespace
+
+io::Json to_json(const ContinuumParameters& p) {
+  io::Json j = io::Json::object();
+  j["model"] = p.model == Model::Boussinesq ? "boussinesq" : "heat-conduction";
+  j["dim"] = p.dim;
+  j["box"] = triple(p.box, p.dim);
+  io::Json walls = io::Json::array();
+  for (int d = 0; d < p.dim; ++d) {
+    const auto& b = p.boundary[d];
+    io::Json w = io::Json::object();
+    w["direction"] = std::string(1, "xyz"[d]);
+    w["periodic"] = b.periodic;
+    if (!b.periodic) {
+      for (int side = 0; side < 2; ++side) {
+        io::Json s = io::Json::object();
+        s["fixed_temperature"] = b.fixed_temperature[side];
+        if (b.fixed_temperature[side])
+          s["temperature"] = b.temperature[side];
+        else
+          s["heat_flux_in"] = b.heat_flux[side];
+        w[side ? "upper" : "lower"] = s;
+      }
+      w["velocity"] = b.no_slip ? "no-slip" : "free-slip";
+    }
+    walls.push_back(w);
+  }
+  j["boundaries"] = walls;
+  j["gravity"] = triple(p.gravity, p.dim);
+  j["number_density"] = p.number_density;
+  j["particle_mass"] = p.particle_mass;
+  j["heat_capacity_per_particle"] = p.heat_capacity;
+  j["thermal_expansion"] = p.thermal_expansion;
+  j["reference_temperature"] = p.reference_temperature;
+  j["viscosity"] = power_law(p.viscosity);
+  j["conductivity"] = power_law(p.conductivity);
+  io::Json slabs = io::Json::array();
+  for (const auto& s : p.heat_slabs) {
+    io::Json o = io::Json::object();
+    o["direction"] = s.direction;
+    o["lower"] = s.lower;
+    o["upper"] = s.upper;
+    o["power"] = s.power;
+    slabs.push_back(o);
+  }
+  j["heat_slabs"] = slabs;
+  j["coarse_cells"] = cells_json(p.cells, p.dim);
+  j["refinements"] = p.refinements;
+  j["newton_tolerance"] = p.newton_tolerance;
+  j["continuation_start_rayleigh"] = p.continuation_start_rayleigh;
+  if (p.model == Model::HeatConduction) {
+    j["end_time"] = p.end_time;
+    j["time_step"] = p.time_step;
+    j["theta"] = p.theta;
+    j["initial_temperature"] = p.initial_temperature;
+  }
+  j["bins"] = cells_json(p.bins, p.dim);
+  return j;
+}
+
+io::Json to_json(const ContinuumResult& r) {
+  io::Json j = io::Json::object();
+  const auto& n = r.numbers;
+  io::Json numbers = io::Json::object();
+  numbers["kinematic_viscosity_nu"] = n.kinematic_viscosity;
+  numbers["thermal_diffusivity_chi"] = n.thermal_diffusivity;
+  numbers["rayleigh"] = n.rayleigh;
+  numbers["prandtl"] = n.prandtl;
+  numbers["heated_direction"] = n.heated_direction;
+  numbers["height_H"] = n.height;
+  numbers["temperature_difference"] = n.temperature_difference;
+  numbers["velocity_scale_chi_over_H"] = n.velocity_scale;
+  numbers["conduction_flux"] = n.conduction_flux;
+  j["dimensionless"] = numbers;
+
+  io::Json mesh = io::Json::object();
+  mesh["cells"] = cells_json(r.cells, r.dim);
+  mesh["dofs"] = r.dofs;
+  j["mesh"] = mesh;
+
+  io::Json results = io::Json::object();
+  if (r.model == "boussinesq") {
+    results["nusselt_volume_average"] = r.nusselt;
+    io::Json walls = io::Json::array();
+    for (const auto& w : r.walls) {
+      io::Json o = io::Json::object();
+      o["wall"] = std::string(1, "xyz"[w.direction]) + (w.side ? " upper" : " lower");
+      o["nusselt_average"] = w.average;
+      walls.push_back(o);
+    }
+    results["wall_nusselt"] = walls;
+    if (r.has_midline_maxima) {
+      io::Json u = io::Json::object();
+      u["value_chi_over_H"] = r.u_max_vertical_midline.value;
+      u["y_over_Ly"] = r.u_max_vertical_midline.position;
+      results["u_max_on_x_mid"] = u;
+      io::Json v = io::Json::object();
+      v["value_chi_over_H"] = r.v_max_horizontal_midline.value;
+      v["x_over_Lx"] = r.v_max_horizontal_midline.position;
+      results["v_max_on_y_mid"] = v;
+    }
+    if (r.stream_function_max > 0) {
+      results["stream_function_max_over_chi"] = r.stream_function_max;
+      results["vortex_centre_fraction_of_box"] =
+          std::vector<double>{r.vortex_centre[0], r.vortex_centre[1]};
+    }
+    results["max_speed_chi_over_H"] = r.max_speed;
+    results["newton_iterations"] = r.newton_iterations;
+    results["continuation_rayleigh"] = r.continuation_rayleigh;
+    io::Json study = io::Json::array();
+    for (const auto& m : r.mesh_study) {
+      io::Json o = io::Json::object();
+      o["level"] = m.level;
+      o["cells"] = cells_json(m.cells, r.dim);
+      o["dofs"] = m.dofs;
+      o["nusselt"] = m.nusselt;
+      o["change_in_nusselt"] = m.change_in_nusselt;
+      o["newton_iterations"] = m.newton_iterations;
+      o["wall_time_s"] = m.wall_time;
+      study.push_back(o);
+    }
+    results["mesh_study"] = study;
+  } else {
+    results["time"] = r.time;
+    results["time_steps"] = r.time_steps;
+    results["newton_iterations"] = r.newton_iterations;
+    results["heat_into_lower_wall_face"] = r.heat_flux_lower;
+    results["heat_into_upper_wall_face"] = r.heat_flux_upper;
+  }
+  results["temperature_min"] = r.temperature_min;
+  results["temperature_max"] = r.temperature_max;
+  results["temperature_mean"] = r.temperature_mean;
+  io::Json probes = io::Json::array();
+  for (std::size_t i = 0; i < r.probe_points.size(); ++i) {
+    io::Json o = io::Json::object();
+    o["point"] = triple(r.probe_points[i], r.dim);
+    io::Json values = io::Json::object();
+    for (std::size_t c = 0; c < r.bins.names.size(); ++c)
+      values[r.bins.names[c]] = r.probe_values[i][c];
+    o["values"] = values;
+    probes.push_back(o);
+  }
+  results["probes"] = probes;
+  j["results"] = results;
+
+  io::Json times = io::Json::object();
+  times["setup"] = r.times.setup;
+  times["assembly"] = r.times.assembly;
+  times["solve"] = r.times.solve;
+  times["postprocess"] = r.times.postprocess;
+  times["output"] = r.times.output;
+  times["total"] = r.times.total();
+  j["wall_time_s"] = times;
+  j["files"] = io::Json::array();
+  for (const auto& f : r.files) j["files"].push_back(f);
+  return j;
+}
+
+std::string bins_csv(const ContinuumResult& r, const ContinuumParameters& p) {
+  std::ostringstream out;
+  out << std::setprecision(12);
+  const char* axes = "xyz";
+  for (int d = 0; d < r.dim; ++d) out << "i" << axes[d] << ",";
+  for (int d = 0; d < r.dim; ++d) out << axes[d] << "_centre,";
+  for (std::size_t c = 0; c < r.bins.names.size(); ++c)
+    out << r.bins.names[c] << (c + 1 < r.bins.names.size() ? "," : "\n");
+  const auto& b = r.bins.bins;
+  const unsigned n = b[0] * (r.dim > 1 ? b[1] : 1) * (r.dim > 2 ? b[2] : 1);
+  for (unsigned k = 0; k < n; ++k) {
+    unsigned rest = k;
+    std::array<unsigned, 3> idx{{0, 0, 0}};
+    for (int d = 0; d < r.dim; ++d) idx[d] = rest % b[d], rest /= b[d];
+    for (int d = 0; d < r.dim; ++d) out << idx[d] << ",";
+    for (int d = 0; d < r.dim; ++d) out << (idx[d] + 0.5) * p.box[d] / b[d] << ",";
+    for (std::size_t c = 0; c < r.bins.names.size(); ++c)
+      out << r.bins.values[c][k] << (c + 1 < r.bins.names.size() ? "," : "\n");
+  }
+  return out.str();
+}
+
+std::string wall_nusselt_csv(const ContinuumResult& r) {
+  std::ostringstream out;
+  out << std::setprecision(12) << "wall,x,y,z,nusselt_local\n";
+  for (const auto& w : r.walls)
+    for (std::size_t i = 0; i < w.local.size(); ++i)
+      out << "xyz"[w.direction] << (w.side ? "_upper," : "_lower,") << w.points[i][0] << ","
+          << w.points[i][1] << "," << w.points[i][2] << "," << w.local[i] << "\n";
+  return out.str();
+}
+
+} // namespace twinflow::continuum

@@ -1,0 +1,28 @@
+#include "continuum/run.hpp"
+
+#include <stdexcept>
+
+#include "continuum/boussinesq.hpp"
+#include "continuum/boussinesq_distributed.hpp"
+#include "continuum/heat_conduction.hpp"
+
+namespace twinflow::continuum {
+
+ContinuumResult run(const ContinuumParameters& p, const std::filesystem::path& output_dir) {
+  check(p);
+  if (p.model == Model::HeatConduction) {
+    switch (p.dim) {
+    case 1:
+      return HeatConductionProblem<1>(p).run(output_dir);
+    case 2:
+      return HeatConductionProblem<2>(p).run(output_dir);
+    default:
+      return HeatConductionProblem<3>(p).run(output_dir);
+    }
+  }
+  if (p.uses_iterative_solver()) return DistributedBoussinesqProblem<3>(p).run(output_dir);
+  if (p.dim == 2) return BoussinesqProblem<2>(p).run(output_dir);
+  return BoussinesqProblem<3>(p).run(output_dir);
+}
+
+} // namespace twinflow::continuum

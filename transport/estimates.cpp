@@ -1,0 +1,138 @@
+#include "transport/estimates.hpp"
+
+#include <cmath>
+#include <sstream>
+
+namespace twinflow::transport {
+
+PairDistribution PairDistribution::from_csv(const std::string& csv) {
+  PairDistribution g;
+  std::istringstream in(csv);
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.empty() || !(std::isdigit(static_cast<unsigned char>(line[0])) || line[0] == '.'))
+      continue;
+    const auto comma = line.find(',');
+    g.r_.push_back(std::stod(line.substr(0, comma)));
+    g.g_.push_back(std::stod(line.substr(comma + 1)));
+  }
+  return g;
+}
+
+double PairDistribution::operator()(double r) const {
+  if (r_.empty()) return 1.0;
+  if (r <= r_.front()) return g_.front();
+  if (r >= r_.back()) return g_.back();
+  std::size_t k = 1;
+  while (r_[k] < r) ++k;
+  const double t = (r - r_[k - 1]) / (r_[k] - r_[k - 1]);
+  return (1 - t) * g_[k - 1] + t * g_[k];
+}
+
+namespace {
+// Composite Simpson on [0, 1] with an even number of panels.
+template <class F> double integrate01(F&& f, int panels = 2000) {
+  const double h = 1.0 / panels;
+  double s = f(0.0) + f(1.0);
+  for (int k = 1; k < panels; ++k) s += (k % 2 ? 4 : 2) * f(k * h);
+  return s * h / 3;
+}
+double weight(double l, double n) {
+  return l < 1 ? std::pow(1 - l, n) : 0.0;
+}
+} // namespace
+
+Estimates estimate(const particle::ParticleParameters& p, double T, const PairDistribution& g) {
+  using namespace particle;
+  Estimates e;
+  e.temperature = T;
+  e.density = p.density;
+  const int d = p.dim;
+  const double rho = p.density, m = p.mass;
+  const double surface = d == 3 ? 4 * M_PI : 2 * M_PI; // integral over directions
+  const double rd = p.dissipation.cutoff, nd = p.dissipation.exponent;
+  const double rh = p.heat_weight.cutoff, nh = p.heat_weight.exponent;
+  // Friction at equal temperatures: gamma = sigma^2 / (2 k T) for constant sigma (002:(4))
+  const double gamma = p.energy == EnergyModel::Isothermal || p.friction == Friction::ConstantGamma
+                           ? p.gamma
+                           : p.sigma * p.sigma / (2 * T);
+  // int d^d r r^k g(r) w(r) over r < rc, with l = r/rc
+  auto moment = [&](int k, double rc, double n) {
+    return surface * std::pow(rc, d + k) *
+           integrate01([&](double l) { return std::pow(l, d - 1 + k) * g(l * rc) * weight(l, n); });
+  };
+  e.collision_time = 1 / (gamma * rho / (d * m) * moment(0, rd, nd)); // 002:(17), general d
+  e.diffusion = T * e.collision_time / m;                             // 002:(25)
+  e.viscosity_kinetic = rho * m * e.diffusion / 2;
+  e.viscosity_dissipative = gamma * rho * rho / (2 * d * (d + 2)) * moment(2, rd, nd); // 002:(26)
+  e.viscosity = e.viscosity_kinetic + e.viscosity_dissipative;
+
+  // lambda_eff: coefficient of (theta_j - theta_i) at equal temperatures, per w_H
+  double lambda = 0;
+  if (p.energy == EnergyModel::Dpde && p.heat == HeatLaw::Inverse)
+    lambda = (p.heat_coefficient == HeatCoefficient::Constant ? p.kappa0
+                                                              : p.kappa0 * p.cv * p.cv * T * T) /
+             (T * T); // kappa_ij w_H / T^2
+  if (p.energy == EnergyModel::Dpde && p.heat == HeatLaw::Linear)
+    lambda = p.cv * p.kappa0 * (1 + p.linear_noise_factor / (2 * p.cv)); // with the Ito drift
+  const double cv = p.energy == EnergyModel::Dpde ? p.cv : 0.0;
+  e.conductivity_diffusion = rho * cv * e.diffusion;                            // 002:(21)
+  e.conductivity_conduction = rho * rho / (2 * d) * lambda * moment(2, rh, nh); // 000:(3.25)
+  e.conductivity = e.conductivity_diffusion + e.conductivity_conduction;
+
+  if (d == 3) {
+    // 002's coefficients with l = r/rc: I1 = int_0^1 ds (1 - s^2) int_s^1 dl l^3 g w_H
+    //   = int_0^1 dl l^3 g w_H (l - l^3/3) after swapping the order (002:(14))
+    e.i1_002 = integrate01(
+        [&](double l) { return l * l * l * g(l * rh) * weight(l, nh) * (l - l * l * l / 3); });
+    e.i2 = integrate01([&](double l) { return l * l * g(l * rd) * weight(l, nd); }); // 002:(17)
+    e.i3 = integrate01([&](double l) { return std::pow(l, 4) * g(l * rd) * weight(l, nd); });
+    // 002:(22): pi rho^2 (lambda T^2) rh^5 I1 / k + rho c_v D  (lambda T^2 = kappa_ij at T)
+    e.conductivity_002_eq22 =
+        M_PI * rho * rho * lambda * std::pow(rh, 5) * e.i1_002 + e.conductivity_diffusion;
+  }
+  e.expansion = 1 / T;                       // ideal gas, 000:(4.2)
+  e.heat_capacity_v = cv + 1 + 0.5 * d;      // physics.md: c_v + k + (d/2) k
+  e.heat_capacity_p = e.heat_capacity_v + 1; // + k
+  e.kinematic_viscosity = e.viscosity / (rho * m);
+  e.diffusivity = e.conductivity / (rho * e.heat_capacity_p);
+  e.prandtl = e.kinematic_viscosity / e.diffusivity;
+  // 002:(23) as the paper evaluates it: C_P ~ c_v and kappa from its eq. (22)
+  if (d == 3) e.prandtl_002 = e.viscosity * cv / e.conductivity_002_eq22;
+  e.schmidt = e.kinematic_viscosity / e.diffusion; // 002:(24)
+  return e;
+}
+
+double rayleigh(const Estimates& e, double gravity, double delta_t, double height) {
+  return gravity * e.expansion * delta_t * std::pow(height, 3) /
+         (e.kinematic_viscosity * e.diffusivity); // physics.md
+}
+
+io::Json Estimates::json() const {
+  io::Json j = io::Json::object();
+  j["temperature"] = temperature;
+  j["density"] = density;
+  j["collision_time"] = collision_time;
+  j["self_diffusion"] = diffusion;
+  j["viscosity_kinetic"] = viscosity_kinetic;
+  j["viscosity_dissipative"] = viscosity_dissipative;
+  j["viscosity"] = viscosity;
+  j["conductivity_particle_diffusion"] = conductivity_diffusion;
+  j["conductivity_pair_conduction"] = conductivity_conduction;
+  j["conductivity"] = conductivity;
+  j["conductivity_002_eq22"] = conductivity_002_eq22;
+  j["I1_002"] = i1_002;
+  j["I2"] = i2;
+  j["I3"] = i3;
+  j["thermal_expansion"] = expansion;
+  j["heat_capacity_v_per_particle"] = heat_capacity_v;
+  j["heat_capacity_p_per_particle"] = heat_capacity_p;
+  j["kinematic_viscosity"] = kinematic_viscosity;
+  j["thermal_diffusivity"] = diffusivity;
+  j["prandtl"] = prandtl;
+  j["prandtl_002_convention"] = prandtl_002;
+  j["schmidt"] = schmidt;
+  return j;
+}
+
+} // namespace twinflow::transport

@@ -9,7 +9,13 @@ double ParticleParameters::largest_cutoff() const {
   double rc = dissipation.cutoff;
   if (conservative != ConservativeForce::None) rc = std::max(rc, conservative_cutoff);
   if (heat != HeatLaw::None && energy == EnergyModel::Dpde) rc = std::max(rc, heat_weight.cutoff);
-  return rc;
+  return rc; // wall range is per particle, not a pair cutoff
+}
+
+bool ParticleParameters::has_walls() const {
+  for (int d = 0; d < dim; ++d)
+    if (walls[d].present) return true;
+  return false;
 }
 
 long ParticleParameters::particle_count() const {

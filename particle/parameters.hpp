@@ -5,6 +5,7 @@
 #include <array>
 #include <cstdint>
 #include <string>
+#include <vector>
 
 namespace twinflow::particle {
 
@@ -22,6 +23,23 @@ struct WeightParameters {
   double exponent = 1.0;
 };
 
+// Seed 002's heat slabs: `power` (energy per time; < 0 removes it) shared equally by the
+// particles inside lower <= x_direction < upper.
+struct HeatSlab {
+  int direction;
+  double lower, upper, power;
+};
+
+// Walls at x_d = 0 and x_d = L_d of a non-periodic direction (physics.md, "External fields and
+// boundaries"): each interacts with a particle at distance h < range like a particle of infinite
+// mass and heat capacity at rest.
+struct WallPair {
+  bool present = false;
+  std::array<bool, 2> thermal{{true, true}}; // lower, upper; false: adiabatic
+  std::array<double, 2> temperature{{1, 1}};
+  bool no_slip = false;
+};
+
 struct ParticleParameters {
   int dim = 3;
   std::array<double, 3> box{{20.0, 10.0, 10.0}}; // box[2] unused in 2D
@@ -29,7 +47,7 @@ struct ParticleParameters {
   double mass = 1.0;
   std::uint64_t seed = 1;
 
-  Integrator integrator = Integrator::EcVerlet;
+  Integrator integrator = Integrator::Shardlow;
   bool energy_offset = false; // seed 002's per-particle K+P offset, for euler and shardlow
   double dt = 0.005;
   long equilibration_steps = 0;
@@ -58,7 +76,14 @@ struct ParticleParameters {
   double linear_noise_factor =
       2.0; // linear law: Lambda^2 = factor k kappa theta_i theta_j (2: FDT)
 
+  std::vector<HeatSlab> heat_slabs; // hot then cold: equal and opposite powers
+  std::array<WallPair, 3> walls;    // per direction
+  double wall_a0 = 25, wall_range = 1;
+  std::array<double, 3> gravity{{0, 0, 0}};
+  bool has_walls() const;
+
   // Diagnostics
+  std::array<int, 3> bins{{1, 1, 1}}; // field bins per direction (1: averaged over it)
   long sample_interval = 10;
   int blocks = 20; // block averages for standard errors
   int histogram_bins = 60;

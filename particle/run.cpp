@@ -3,9 +3,11 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <memory>
 #include <numeric>
 #include <sstream>
 
+#include "particle/fields.hpp"
 #include "particle/simulation.hpp"
 #include "particle/theory.hpp"
 
@@ -45,6 +47,67 @@ struct Histogram {
   double density(int b) const { return total > 0 ? counts[b] / (total * width()) : 0; }
 };
 
+io::Snapshot snapshot(const BinnedFields& f, double time, double wall, long particle_steps) {
+  io::Snapshot s;
+  s.time = time;
+  s.wall_seconds = wall;
+  s.particle_steps = particle_steps;
+  auto add = [&](const char* name, const FieldEstimate& e, int components) {
+    s.fields.push_back(io::Field{name, components, e.mean, e.stderr_});
+  };
+  add("density", f.density, 1);
+  add("temperature_kinetic", f.temperature_kinetic, 1);
+  add("temperature_internal", f.temperature_internal, 1);
+  add("internal_energy", f.internal_energy, 1);
+  add("velocity", f.velocity, f.dim);
+  return s;
+}
+
+// Seed 002 section III.B: linear fits of T_internal(x) in the central 60% of both halves between
+// the slabs; kappa = J0 / |dT/dx| with J0 = power / (2 A).
+io::Json slab_fit(const ParticleParameters& p, const BinnedFields& f) {
+  const HeatSlab& hot = p.heat_slabs[0];
+  const HeatSlab& cold = p.heat_slabs[1];
+  const int dir = hot.direction;
+  const double length = p.box[dir];
+  double area = 1;
+  for (int d = 0; d < p.dim; ++d)
+    if (d != dir) area *= p.box[d];
+  const double j0 = std::fabs(hot.power) / (2 * area);
+  io::Json out = io::Json::object();
+  out["J0"] = j0;
+  double wsum = 0, ksum = 0;
+  const char* names[2] = {"hot_to_cold", "cold_to_hot"};
+  const double starts[2] = {hot.upper, cold.upper}, ends[2] = {cold.lower, hot.lower};
+  for (int half = 0; half < 2; ++half) {
+    double a = starts[half], b = ends[half];
+    if (b <= a) b += length; // the half wraps around the periodic box
+    const double lo = a + 0.2 * (b - a), hi = b - 0.2 * (b - a);
+    double sw = 0, sx = 0, sy = 0, sxx = 0, sxy = 0;
+    for (int bin = 0; bin < f.bin_count(); ++bin) {
+      double x = f.centre(bin, dir);
+      if (x < a) x += length;
+      if (x < lo || x > hi) continue;
+      const double y = f.temperature_internal.mean[bin], se = f.temperature_internal.stderr_[bin];
+      const double w = se > 0 ? 1 / (se * se) : 1;
+      sw += w, sx += w * x, sy += w * y, sxx += w * x * x, sxy += w * x * y;
+    }
+    const double det = sw * sxx - sx * sx;
+    const double slope = (sw * sxy - sx * sy) / det, intercept = (sxx * sy - sx * sxy) / det;
+    const double slope_se = std::sqrt(sw / det);
+    const double kappa = j0 / std::fabs(slope), kappa_se = kappa * slope_se / std::fabs(slope);
+    io::Json h = io::Json::object();
+    h["fit_from"] = lo, h["fit_to"] = hi;
+    h["slope"] = slope, h["slope_stderr"] = slope_se, h["intercept"] = intercept;
+    h["kappa"] = kappa, h["kappa_stderr"] = kappa_se;
+    out[names[half]] = h;
+    wsum += 1 / (kappa_se * kappa_se), ksum += kappa / (kappa_se * kappa_se);
+  }
+  out["kappa"] = ksum / wsum;
+  out["kappa_stderr"] = 1 / std::sqrt(wsum);
+  return out;
+}
+
 template <class M>
 RunOutput drive(const M& model, const ParticleParameters& p, const RunControl& control) {
   constexpr int D = M::D;
@@ -82,6 +145,26 @@ RunOutput drive(const M& model, const ParticleParameters& p, const RunControl& c
   long sample_count = 0;
 
   const long total_steps = p.equilibration_steps + p.steps;
+  long sampled_rows = 0;
+  for (long step = p.equilibration_steps + 1; step <= total_steps; ++step)
+    sampled_rows += step % p.sample_interval == 0 || step == total_steps;
+  std::array<double, 3> box3{{p.box[0], p.box[1], D == 3 ? p.box[2] : 1.0}};
+  FieldSampler<D> fields(box3, p.bins, p.blocks, sampled_rows, p.mass, p.cv);
+  std::unique_ptr<FieldSampler<D>> slab_profile;
+  if (!p.heat_slabs.empty()) { // 0.5 rc bins along the slab direction
+    std::array<int, 3> bins{{1, 1, 1}};
+    const int dir = p.heat_slabs[0].direction;
+    bins[dir] = std::max(4, static_cast<int>(std::lround(p.box[dir] / 0.5)));
+    slab_profile =
+        std::make_unique<FieldSampler<D>>(box3, bins, p.blocks, sampled_rows, p.mass, p.cv);
+  }
+  long fields_taken = 0;
+  RunOutput out;
+  out.field_grid.dim = D;
+  for (int d = 0; d < D; ++d) {
+    out.field_grid.counts[d] = p.bins[d];
+    out.field_grid.spacing[d] = p.box[d] / p.bins[d];
+  }
   auto last_progress = clock::now();
   for (long step = 1; step <= total_steps; ++step) {
     sim.step();
@@ -89,7 +172,9 @@ RunOutput drive(const M& model, const ParticleParameters& p, const RunControl& c
     const auto& s = sim.state();
     const double k = sim.kinetic_energy(), u = sim.internal_energy(), pot = sim.potential_energy();
     const double e = k + u + pot;
-    drift_max = std::max(drift_max, std::fabs(e - e0) / std::fabs(e0));
+    double inflow = 0; // energy in through thermal walls: E(t) - E(0) - inflow is the error
+    for (const double q : sim.wall_energy_in()) inflow += q;
+    drift_max = std::max(drift_max, std::fabs(e - e0 - inflow) / std::fabs(e0));
     const double t_kin = 2 * k / (D * (n - 1.0)); // total momentum is conserved: d(N-1) dof
     double inv_theta = 0, mean_theta = 0;
     for (const double ui : s.u) inv_theta += model.cv / ui, mean_theta += ui / model.cv;
@@ -126,6 +211,14 @@ RunOutput drive(const M& model, const ParticleParameters& p, const RunControl& c
                   pressure, mom[0], mom[1], mom[2]);
     thermo << row;
     if (sampled) {
+      fields.sample(s);
+      ++fields_taken;
+      if (fields_taken == sampled_rows || fields_taken % std::max(1L, sampled_rows / 10) == 0) {
+        const double wall_now = std::chrono::duration<double>(clock::now() - t0).count();
+        out.field_snapshots.push_back(
+            snapshot(fields.result(), step * p.dt, wall_now, static_cast<long>(n) * step));
+      }
+      if (slab_profile) slab_profile->sample(s);
       s_tk.push_back(t_kin), s_ti.push_back(t_int), s_tm.push_back(mean_theta);
       s_p.push_back(pressure), s_e.push_back(e);
       ++rdf_samples;
@@ -177,7 +270,6 @@ RunOutput drive(const M& model, const ParticleParameters& p, const RunControl& c
   if (control.progress) std::fprintf(stderr, "\n");
   const double wall = std::chrono::duration<double>(clock::now() - t0).count();
 
-  RunOutput out;
   io::Json& j = out.summary;
   j = io::Json::object();
   j["N"] = static_cast<long>(n);
@@ -189,6 +281,7 @@ RunOutput drive(const M& model, const ParticleParameters& p, const RunControl& c
   j["energy_offset"] = p.energy_offset;
   j["wall_seconds"] = wall;
   j["particle_steps_per_second"] = n * static_cast<double>(total_steps) / wall;
+  // |E(t) - E(0) - energy in through walls| / E(0): the integrator's energy error
   j["energy_relative_drift_max"] = drift_max;
   auto put = [&](const std::string& key, const std::vector<double>& series) {
     const Estimate e = block_average(series, p.blocks);
@@ -199,8 +292,20 @@ RunOutput drive(const M& model, const ParticleParameters& p, const RunControl& c
   put("T_internal", s_ti);
   put("T_internal_mean_theta", s_tm);
   put("pressure", s_p);
-  if (M::has_energy && !M::Conservative::active)
+  if (M::has_energy && !M::Conservative::active && !p.has_walls())
     j["T_energy_equation_of_state"] = ideal_dpde_temperature(p, e0 / n); // 000:(3.21)
+  if (p.has_walls()) {
+    io::Json walls = io::Json::object();
+    const char* names[6] = {"x_lower", "x_upper", "y_lower", "y_upper", "z_lower", "z_upper"};
+    const double time = total_steps * p.dt;
+    for (int w = 0; w < 2 * D; ++w) {
+      if (!p.walls[w / 2].present) continue;
+      walls[names[w]]["energy_in"] = sim.wall_energy_in()[w];
+      walls[names[w]]["mean_heat_flow_in"] = sim.wall_energy_in()[w] / time; // energy per time
+    }
+    j["walls"] = walls;
+    j["wall_reflections"] = sim.wall_crossings();
+  }
   j["samples"] = static_cast<long>(s_tk.size());
   j["blocks"] = p.blocks;
   j["stability_hint"] = stability_hint(p);
@@ -237,6 +342,12 @@ RunOutput drive(const M& model, const ParticleParameters& p, const RunControl& c
         << msd[lag] / corr_count[lag] << "\n";
   out.correlations_csv = c.str();
   out.thermo_csv = thermo.str();
+  out.fields_csv = fields.result().csv();
+  if (slab_profile) {
+    const BinnedFields profile = slab_profile->result();
+    out.slab_profile_csv = profile.csv();
+    if (M::has_energy && p.heat_slabs.size() == 2) j["heat_slabs"] = slab_fit(p, profile);
+  }
   return out;
 }
 

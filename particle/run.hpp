@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "io/field_file.hpp"
 #include "io/json.hpp"
 #include "particle/parameters.hpp"
 
@@ -23,6 +24,10 @@ struct RunOutput {
   std::string histograms_csv;   // velocity components and internal energies
   std::string rdf_csv;          // g(r)
   std::string correlations_csv; // VACF and MSD
+  std::string fields_csv;       // binned fields on the scene's bins, with block errors
+  std::string slab_profile_csv; // heat-slab scenes: the profile along the slab direction
+  io::Grid field_grid;          // the scene's bins
+  std::vector<io::Snapshot> field_snapshots; // cumulative averages at a sequence of times
 };
 
 struct RunControl {

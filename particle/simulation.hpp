@@ -49,6 +49,9 @@ public:
   State<D>& state() { return state_; }
   const CellGrid<D>& grid() const { return grid_; }
   const M& model() const { return model_; }
+  // Energy that entered the fluid through each wall (index 2 d + side) since the start.
+  const std::array<double, 6>& wall_energy_in() const { return wall_energy_in_; }
+  long wall_crossings() const { return crossings_; } // particles reflected back into the box
   // Re-sorts after the state was changed from outside (tests permute it; restart loads it).
   void resort() { grid_.sort(state_, carried_); }
   void prepare(); // forces at the current state (call after changing the state)
@@ -69,6 +72,12 @@ private:
   void shardlow_pair(const PairNoise& noise, std::size_t i, std::size_t j, const double* dx,
                      double r2);
   double theta(std::size_t i) const { return state_.u[i] / model_.cv; }
+  void apply_heat_slabs();
+  void external_forces(); // wall repulsion and gravity into carried f and potential
+  void wall_sweep(const PairNoise& noise);
+  void reflect_at_walls();
+  // One S1 update of velocity component `v` against a wall (infinite mass, at rest).
+  double wall_s1(double& v, double w, double sqrt_w, double th_i, double th_wall, double xi) const;
   void check_energies(const char* where) const;
   [[noreturn]] void fail(std::size_t i, const char* where) const;
 
@@ -81,6 +90,12 @@ private:
   double dt_, sqrt_dt_, inv_sqrt_dt_;
   std::array<std::vector<double>, D> v_old_;
   std::vector<double> k_old_, p_old_;
+  std::vector<std::size_t> slab_members_;
+  bool has_external_ = false; // walls or gravity: a per-particle pass, only if present
+  typename M::Friction wall_friction_;
+  typename M::Heat wall_heat_;
+  std::array<double, 6> wall_energy_in_{};
+  long crossings_ = 0;
 };
 
 std::string stability_hint(const ParticleParameters& p);

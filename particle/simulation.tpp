@@ -10,7 +10,17 @@ Simulation<M>::Simulation(const M& model, const ParticleParameters& p)
                                   for (int d = 0; d < D; ++d) box[d] = p.box[d];
                                   return box;
                                 }(),
-                                model.rc) {
+                                model.rc,
+                                [&] {
+                                  std::array<bool, D> periodic;
+                                  for (int d = 0; d < D; ++d) periodic[d] = !p.walls[d].present;
+                                  return periodic;
+                                }()),
+      wall_friction_(model.friction), wall_heat_(model.heat) {
+  has_external_ = p.has_walls();
+  for (int d = 0; d < D; ++d) has_external_ |= p.gravity[d] != 0;
+  wall_friction_.w = Weight(p.wall_range, p.dissipation.exponent);
+  if constexpr (M::Heat::active) wall_heat_.w = Weight(p.wall_range, p.heat_weight.exponent);
   dt_ = p.dt;
   sqrt_dt_ = std::sqrt(dt_);
   inv_sqrt_dt_ = 1 / sqrt_dt_;
@@ -132,6 +142,7 @@ template <class M> void Simulation<M>::conservative_pass(bool with_velocity_term
                           pot[j] += 0.5 * phi;
                         });
   }
+  if (has_external_) external_forces();
 }
 
 template <class M> void Simulation<M>::potential_pass() {
@@ -147,6 +158,10 @@ template <class M> void Simulation<M>::potential_pass() {
       pot[j] += 0.5 * phi;
     });
   }
+  if (has_external_) { // potentials only: forces are not used by the Euler step's energy pass
+    for (int d = 0; d < D; ++d) std::fill(carried_.f[d].begin(), carried_.f[d].end(), 0.0);
+    external_forces();
+  }
 }
 
 template <class M> void Simulation<M>::step() {
@@ -160,6 +175,147 @@ template <class M> void Simulation<M>::step() {
   case Integrator::Shardlow:
     step_shardlow();
     break;
+  }
+  if (!p_.heat_slabs.empty()) apply_heat_slabs();
+}
+
+// Wall repulsion a_w (1 - h/range) along the inward normal with potential a_w range/2 (1 -
+// h/range)^2 (the pair force of physics.md against a wall particle), and gravity m g with potential
+// -m g.x.
+template <class M> void Simulation<M>::external_forces() {
+  const std::size_t n = state_.size();
+  const double range = p_.wall_range, inv_range = 1 / range, a = p_.wall_a0;
+  for (int d = 0; d < D; ++d) {
+    auto& f = carried_.f[d];
+    const auto& x = state_.x[d];
+    const double mg = model_.mass * p_.gravity[d];
+    if (mg != 0)
+      for (std::size_t i = 0; i < n; ++i) f[i] += mg, carried_.potential[i] -= mg * x[i];
+    if (!p_.walls[d].present) continue;
+    for (std::size_t i = 0; i < n; ++i) {
+      for (int side = 0; side < 2; ++side) {
+        const double h = side ? p_.box[d] - x[i] : x[i];
+        if (h >= range) continue;
+        const double c = 1 - h * inv_range;
+        f[i] += side ? -a * c : a * c;
+        carried_.potential[i] += 0.5 * a * range * c * c;
+      }
+    }
+  }
+}
+
+// S1 against a wall for one velocity component v (along the wall's normal or, no-slip, a
+// tangent): as for a pair, with the wall's infinite mass (reduced mass m) and zero velocity.
+// Returns the kinetic energy change.
+template <class M>
+double Simulation<M>::wall_s1(double& v, double w, double sqrt_w, double th_i, double th_wall,
+                              double xi) const {
+  const auto& fr = wall_friction_;
+  const double m = model_.mass;
+  const double kick = fr.sigma_of(fr.harmonic(th_i, th_wall)) * sqrt_w * xi * sqrt_dt_;
+  const double gamma = fr.ito_gamma(th_i, th_wall);
+  const double v0 = v;
+  const double v1 = v0 + 0.5 * (-gamma * w * v0 * dt_ + kick) / m; // explicit half
+  v = (v1 + 0.5 * kick / m) / (1 + 0.5 * gamma * w * dt_ / m);     // implicit half
+  return 0.5 * m * (v * v - v0 * v0);
+}
+
+// The walls' dissipative, random and heat terms, particle by particle (serial: the energy that
+// crosses each wall is summed in one fixed order).
+template <class M> void Simulation<M>::wall_sweep(const PairNoise& noise) {
+  const std::size_t n = state_.size();
+  const double range = p_.wall_range;
+  for (int d = 0; d < D; ++d) {
+    const WallPair& wall = p_.walls[d];
+    if (!wall.present) continue;
+    for (std::size_t i = 0; i < n; ++i) {
+      for (int side = 0; side < 2; ++side) {
+        const double h = side ? p_.box[d] - state_.x[d][i] : state_.x[d][i];
+        if (h >= range) continue;
+        const int index = 2 * d + side;
+        double g[4];
+        noise.particle_gaussians(state_.id[i], 2 * index, g[0], g[1]);
+        noise.particle_gaussians(state_.id[i], 2 * index + 1, g[2], g[3]);
+        double th_i = p_.temperature, th_wall = p_.temperature;
+        const bool thermal = wall.thermal[side];
+        if constexpr (M::has_energy) {
+          th_i = theta(i);
+          th_wall = thermal ? wall.temperature[side] : th_i; // adiabatic: the particle alone
+        }
+        if constexpr (M::Heat::active) {
+          if (thermal && h < wall_heat_.w.rc) {
+            double rate, amplitude;
+            wall_heat_.eval(h, th_i, th_wall, rate, amplitude);
+            const double dq = rate * dt_ + amplitude * g[3] * sqrt_dt_; // q with theta_j = T_w
+            state_.u[i] += dq;
+            wall_energy_in_[index] += dq;
+            th_i = theta(i);
+          }
+        }
+        double w, sqrt_w;
+        wall_friction_.w.eval(h, w, sqrt_w);
+        double dk = wall_s1(state_.v[d][i], w, sqrt_w, th_i, th_wall, g[0]);
+        if (wall.no_slip) {
+          int k = 1;
+          for (int t = 0; t < D; ++t)
+            if (t != d) dk += wall_s1(state_.v[t][i], w, sqrt_w, th_i, th_wall, g[k++]);
+        }
+        if constexpr (M::has_energy) {
+          // Thermal wall: it keeps half the work (physics.md); adiabatic: the particle all of it.
+          const double to_particle = thermal ? 0.5 * dk : dk;
+          state_.u[i] -= to_particle;
+          wall_energy_in_[index] += dk - to_particle;
+        }
+      }
+    }
+  }
+}
+
+// Nothing crosses a wall: a particle past the plane is put back by specular reflection
+// (free-slip) or bounce-back (no-slip). Kinetic energy is unchanged either way.
+template <class M> void Simulation<M>::reflect_at_walls() {
+  for (int d = 0; d < D; ++d) {
+    const WallPair& wall = p_.walls[d];
+    if (!wall.present) continue;
+    const double length = p_.box[d];
+    auto& x = state_.x[d];
+    for (std::size_t i = 0; i < state_.size(); ++i) {
+      if (x[i] >= 0 && x[i] <= length) continue;
+      x[i] = x[i] < 0 ? -x[i] : 2 * length - x[i];
+      ++crossings_;
+      if (wall.no_slip)
+        for (int t = 0; t < D; ++t) state_.v[t][i] = -state_.v[t][i];
+      else
+        state_.v[d][i] = -state_.v[d][i];
+      if (x[i] < 0 || x[i] > length) fail(i, "a particle moved more than a box length in one step");
+    }
+  }
+}
+
+// 002 section III.B: every step the hot slab's particles share +power dt, the cold slab's
+// -power dt; the total energy is unchanged.
+template <class M> void Simulation<M>::apply_heat_slabs() {
+  if constexpr (M::has_energy) {
+    for (const auto& slab : p_.heat_slabs) {
+      slab_members_.clear();
+      const auto& x = state_.x[slab.direction];
+      for (std::size_t i = 0; i < state_.size(); ++i)
+        if (x[i] >= slab.lower && x[i] < slab.upper) slab_members_.push_back(i);
+      if (slab_members_.empty())
+        throw InstabilityError("heat slab [" + std::to_string(slab.lower) + ", " +
+                               std::to_string(slab.upper) + ") is empty at step " +
+                               std::to_string(step_) + ": widen it");
+      const double share = slab.power * dt_ / slab_members_.size();
+      for (const std::size_t i : slab_members_) {
+        state_.u[i] += share;
+        if (!(state_.u[i] > 0))
+          throw InstabilityError(
+              "the cold heat slab took more energy than particle " + std::to_string(state_.id[i]) +
+              " had at step " + std::to_string(step_) + " (u = " + std::to_string(state_.u[i]) +
+              "): the case is too stiff for this dt and power; lower the time step or the "
+              "power, or widen the cold slab so that more particles share the loss");
+      }
+    }
   }
 }
 
@@ -329,22 +485,27 @@ template <class M> void Simulation<M>::step_shardlow() {
                       [&](std::size_t i, std::size_t j, const double* dx, double r2) {
                         shardlow_pair(noise, i, j, dx, r2);
                       });
+  if (p_.has_walls())
+    wall_sweep(PairNoise(p_.seed, static_cast<std::uint64_t>(step_), PairNoise::Wall));
   auto& v = state_.v;
-  const bool offset = M::has_energy && p_.energy_offset && M::Conservative::active;
+  // Velocity-Verlet for the conservative pair force, wall repulsion and gravity (if any).
+  const bool kicks = M::Conservative::active || has_external_;
+  const bool offset = M::has_energy && p_.energy_offset && kicks;
   const double half = 0.5 * dt_ / model_.mass, m2 = 0.5 * model_.mass;
   for (std::size_t i = 0; i < n; ++i) {
     double k_old = 0, k_half = 0;
     for (int d = 0; d < D; ++d) {
       k_old += v[d][i] * v[d][i];
-      if constexpr (M::Conservative::active) v[d][i] += half * carried_.f[d][i];
+      if (kicks) v[d][i] += half * carried_.f[d][i];
       k_half += v[d][i] * v[d][i];
       state_.x[d][i] += v[d][i] * dt_;
     }
     if constexpr (M::has_energy)
       if (offset) state_.u[i] += carried_.potential[i] - m2 * (k_half - k_old);
   }
+  if (p_.has_walls()) reflect_at_walls();
   grid_.sort(state_, carried_);
-  if constexpr (M::Conservative::active) {
+  if (kicks) {
     conservative_pass(false);
     for (std::size_t i = 0; i < n; ++i) {
       double k_half = 0, k_new = 0;

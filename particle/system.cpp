@@ -49,8 +49,8 @@ template <int D> void CellGrid<D>::sort(State<D>& s, Carried<D>& carried) {
     double pos[D];
     for (int d = 0; d < D; ++d) {
       double& xd = s.x[d][i];
-      xd -= box_[d] * std::floor(xd * inv_box_[d]);
-      if (xd >= box_[d]) xd = 0; // -tiny wraps to box exactly
+      xd -= box_[d] * std::floor(xd * inv_box_[d]); // no-op in wall directions (inv_box_ = 0)
+      if (periodic_[d] && xd >= box_[d]) xd = 0;    // -tiny wraps to box exactly
       pos[d] = xd;
     }
     cell_[i] = cell_of(pos);

@@ -30,20 +30,28 @@ template <int D> struct Carried {
 
 template <int D> class CellGrid {
 public:
-  // Cell side >= rc; cells per direction a multiple of 3 (27 / 9 colours keep a half-shell
-  // update free of races), or 1 when the box holds fewer than 3 cutoffs.
-  CellGrid(const std::array<double, D>& box, double rc) : box_(box) {
+  // Cell side >= rc. In a periodic direction the cell count is a multiple of 3 (cells of one of
+  // the 27 / 9 colours then touch disjoint particles, also across the wrap), or 1 when the box
+  // holds fewer than 3 cutoffs. A direction with walls has no wrap and no minimum image.
+  CellGrid(const std::array<double, D>& box, double rc,
+           std::array<bool, D> periodic = all_periodic())
+      : box_(box), periodic_(periodic) {
     for (int d = 0; d < D; ++d) {
       int n = static_cast<int>(std::floor(box[d] / rc));
-      n = n >= 3 ? 3 * (n / 3) : 1;
-      n_[d] = n;
-      inv_side_[d] = n / box[d];
-      inv_box_[d] = 1.0 / box[d];
+      if (periodic[d]) n = n >= 3 ? 3 * (n / 3) : 1;
+      n_[d] = std::max(n, 1);
+      inv_side_[d] = n_[d] / box[d];
+      inv_box_[d] = periodic[d] ? 1.0 / box[d] : 0.0; // 0: nearbyint(0) = 0, no image shift
     }
     total_ = 1;
     for (int d = 0; d < D; ++d) total_ *= n_[d];
     start_.assign(total_ + 1, 0);
     build_stencil();
+  }
+  static std::array<bool, D> all_periodic() {
+    std::array<bool, D> p;
+    p.fill(true);
+    return p;
   }
 
   int cells() const { return total_; }
@@ -108,7 +116,13 @@ private:
     double dx[D];
     for (const auto& offset : stencil_) {
       int nb = 0;
-      for (int d = D - 1; d >= 0; --d) nb = nb * n_[d] + (idx[d] + offset[d] + n_[d]) % n_[d];
+      bool outside = false;
+      for (int d = D - 1; d >= 0; --d) {
+        const int k = idx[d] + offset[d];
+        outside |= !periodic_[d] && (k < 0 || k >= n_[d]);
+        nb = nb * n_[d] + (k + n_[d]) % n_[d];
+      }
+      if (outside) continue;
       const bool same = nb == c;
       for (std::size_t i = start_[c]; i < start_[c + 1]; ++i) {
         for (std::size_t j = same ? i + 1 : start_[nb]; j < start_[nb + 1]; ++j) {
@@ -128,6 +142,7 @@ private:
   void build_stencil();
 
   std::array<double, D> box_, inv_side_, inv_box_;
+  std::array<bool, D> periodic_;
   std::array<int, D> n_;
   int total_ = 1;
   std::vector<std::size_t> start_;

@@ -5,7 +5,7 @@ packages=(
   build-essential cmake clang-format
   libdeal.ii-dev libeigen3-dev libboost-program-options-dev libgtest-dev
   librandom123-dev libhdf5-openmpi-dev hdf5-tools
-  python3-h5py python3-matplotlib
+  python3-h5py python3-matplotlib libxml2-utils openmpi-bin
 )
 missing=()
 for p in "${packages[@]}"; do

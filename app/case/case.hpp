@@ -20,6 +20,12 @@ struct DirectionBoundary {
   bool no_slip = false;
 };
 
+// A slab x_d in [lower, upper] into which `power` (energy per time; < 0: out of) is put.
+struct HeatSlab {
+  int direction;
+  double lower, upper, power;
+};
+
 struct SceneParameters {
   int dim = 3;
   std::array<double, 3> box{{20, 10, 10}};
@@ -27,6 +33,8 @@ struct SceneParameters {
   double temperature = 1.0;
   std::array<double, 3> gravity{{0, 0, 0}};
   std::array<DirectionBoundary, 3> boundary;
+  std::vector<HeatSlab> heat_slabs;   // hot then cold
+  std::array<int, 3> bins{{1, 1, 1}}; // field bins shared by both twins
   bool has_walls() const;
 };
 

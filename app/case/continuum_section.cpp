@@ -114,20 +114,7 @@ void declare_continuum(Registry& r) {
             "Heat conduction: initial T as a muparser expression in x, y, z (constants pi, Lx, Ly, "
             "Lz); empty: the reference temperature.");
 
-  const std::string h = s + "Heat slabs/";
-  r.declare(h + "Direction", "x", Selection("x|y|z"), "Normal direction of the heat slabs.");
-  r.declare(h + "Hot slab", "", List(Double(0), 0, 2),
-            "lower, upper bound of the slab that receives +Power; empty: no slabs.");
-  r.declare(h + "Cold slab", "", List(Double(0), 0, 2),
-            "lower, upper bound of the slab that loses Power.");
-  r.declare(h + "Power", "0", Double(0),
-            "Heat per time put into the hot slab and taken from the "
-            "cold one (k T0 / tau).");
-
   const std::string o = s + "Output/";
-  r.declare(o + "Bins", "10", List(Integer(1, 100000), 1, 3),
-            "Regular grid of bins for field averages: one value for all directions, or one per "
-            "direction.");
   r.declare(o + "Probe points", "", Anything(),
             "Points 'x, y[, z]' separated by ';' where all fields are recorded.");
   r.declare(o + "Write fields", "true", Bool(), "Write fields.h5 + fields.xdmf (ParaView).");
@@ -189,26 +176,9 @@ continuum::ContinuumParameters resolve_continuum(const Registry& r, const SceneP
   r.require(c.model == continuum::Model::HeatConduction || c.initial_temperature.empty(),
             s + "Initial temperature", "empty for the steady Boussinesq model");
 
-  const std::string h = s + "Heat slabs/";
-  const auto hot = r.get_doubles(h + "Hot slab"), cold = r.get_doubles(h + "Cold slab");
-  const double power = r.get_double(h + "Power");
-  const int direction = static_cast<int>(std::string(kAxes).find(r.get(h + "Direction")));
-  if (power > 0 || !hot.empty() || !cold.empty()) {
-    r.require(direction < scene.dim, h + "Direction", "a direction of the scene's dimension");
-    for (const bool is_hot : {true, false}) {
-      const auto& slab = is_hot ? hot : cold;
-      r.require(slab.size() == 2 && slab[0] < slab[1] && slab[1] <= scene.box[direction],
-                h + (is_hot ? "Hot slab" : "Cold slab"),
-                "lower, upper with 0 <= lower < upper <= box length");
-      c.heat_slabs.push_back({direction, slab[0], slab[1], is_hot ? power : -power});
-    }
-  }
-
-  const auto bins = r.get_doubles(s + "Output/Bins");
-  r.require(bins.size() == 1 || static_cast<int>(bins.size()) == scene.dim, s + "Output/Bins",
-            "one value, or one per dimension");
-  for (int d = 0; d < scene.dim; ++d)
-    c.bins[d] = static_cast<unsigned>(bins.size() == 1 ? bins[0] : bins[d]);
+  for (const auto& slab : scene.heat_slabs)
+    c.heat_slabs.push_back({slab.direction, slab.lower, slab.upper, slab.power});
+  for (int d = 0; d < scene.dim; ++d) c.bins[d] = static_cast<unsigned>(scene.bins[d]);
   c.probe_points = points(r, s + "Output/Probe points", scene.dim, scene.box);
   c.write_fields = r.get_bool(s + "Output/Write fields");
   c.profile_samples = static_cast<int>(r.get_integer(s + "Output/Profile samples"));

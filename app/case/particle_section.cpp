@@ -13,7 +13,7 @@ using namespace twinflow::particle;
 void declare_particle(Registry& r) {
   using namespace dealii::Patterns;
   const std::string p = "Particle/";
-  r.declare(p + "Integrator", "ec-verlet", Selection("euler|ec-verlet|shardlow"),
+  r.declare(p + "Integrator", "shardlow", Selection("euler|ec-verlet|shardlow"),
             "euler: explicit first-order update (001 eqs. 1-2; 000:(2.23)-(2.25)). ec-verlet: "
             "velocity-Verlet with each particle's kinetic and potential changes offset against its "
             "internal energy (002 Appendix A). shardlow: pairwise splitting of the stochastic "
@@ -72,6 +72,12 @@ void declare_particle(Registry& r) {
   r.declare(p + "Heat conduction/Cutoff", "1", Double(), "Cutoff rc_H of w_H, > 0.", kPositive);
   r.declare(p + "Heat conduction/Exponent", "0.5", Double(0), "w_H = (1 - r/rc_H)^n_H.");
 
+  r.declare(p + "Walls/Repulsion", "25", Double(0),
+            "Wall repulsion a_w: force a_w (1 - h/range) along the wall normal at distance h.");
+  r.declare(p + "Walls/Range", "1", Double(),
+            "Interaction range of the walls (repulsion, "
+            "friction, heat exchange), > 0.",
+            kPositive);
   r.declare(p + "Diagnostics/Sample interval", "10", Integer(1), "Steps between samples.");
   r.declare(p + "Diagnostics/Blocks", "20", Integer(2, 10000),
             "Number of blocks for block-averaged standard errors.");
@@ -151,6 +157,24 @@ ParticleParameters resolve_particle(const Registry& r, const SceneParameters& sc
   p.histogram_bins = static_cast<int>(r.get_integer(s + "Diagnostics/Histogram bins"));
   p.rdf_bins = static_cast<int>(r.get_integer(s + "Diagnostics/RDF bins"));
   p.correlation_samples = static_cast<int>(r.get_integer(s + "Diagnostics/Correlation samples"));
+
+  for (const auto& slab : scene.heat_slabs)
+    p.heat_slabs.push_back({slab.direction, slab.lower, slab.upper, slab.power});
+  p.bins = scene.bins;
+  p.wall_a0 = r.get_double(s + "Walls/Repulsion");
+  p.wall_range = r.get_double(s + "Walls/Range");
+  r.require(p.wall_range > 0, s + "Walls/Range", kPositive);
+  for (int d = 0; d < p.dim; ++d) {
+    const auto& b = scene.boundary[d];
+    p.walls[d] = WallPair{!b.periodic, b.thermal, b.temperature, b.no_slip};
+    p.gravity[d] = scene.gravity[d];
+    r.require(!(b.periodic && scene.gravity[d] != 0), "Scene/Gravity",
+              "no component along a periodic direction (its potential would jump at the wrap)");
+  }
+  if (p.has_walls())
+    r.require(p.integrator == Integrator::Shardlow, s + "Integrator",
+              "shardlow in scenes with walls (walls in ec-verlet and euler are not implemented "
+              "yet)");
 
   // Minimum image needs every periodic edge >= 2 cutoffs.
   const double rc = p.largest_cutoff();

@@ -22,6 +22,19 @@ void declare_scene(Registry& r) {
             kPositive);
   r.declare("Scene/Gravity", "0, 0, 0", List(Double(), 2, 3),
             "Gravitational acceleration vector g (force m g on every particle).");
+  r.declare("Scene/Field bins", "10", List(Integer(1, 100000), 1, 3),
+            "Regular grid of bins on which both twins' fields are averaged and compared: one "
+            "count for all directions, or one per direction (1 = averaged over that direction).");
+  const std::string h = "Scene/Heat slabs/";
+  r.declare(h + "Direction", "x", Selection("x|y|z"), "Normal direction of the heat slabs.");
+  r.declare(h + "Hot slab", "", List(Double(0), 0, 2),
+            "lower, upper bound of the slab that receives +Power; empty: no slabs.");
+  r.declare(h + "Cold slab", "", List(Double(0), 0, 2),
+            "lower, upper bound of the slab that loses Power.");
+  r.declare(h + "Power", "0", Double(0),
+            "Heat per time put into the hot slab and taken from the cold one (k T0 / tau). In a "
+            "periodic box the heat leaves the hot slab both ways: seed 002's mean flux J0 is "
+            "Power / (2 A), A the slab's cross-section.");
   for (const char* axis : kAxes) {
     const std::string s = std::string("Scene/") + axis + " boundaries/";
     r.declare(s + "Type", "periodic", Selection("periodic|walls"),
@@ -68,6 +81,25 @@ SceneParameters resolve_scene(const Registry& r) {
       }
     }
   }
+  const std::string h = "Scene/Heat slabs/";
+  const auto hot = r.get_doubles(h + "Hot slab"), cold = r.get_doubles(h + "Cold slab");
+  const double power = r.get_double(h + "Power");
+  const int direction = static_cast<int>(std::string("xyz").find(r.get(h + "Direction")));
+  if (power > 0 || !hot.empty() || !cold.empty()) {
+    r.require(direction < s.dim, h + "Direction", "a direction of the scene's dimension");
+    for (const bool is_hot : {true, false}) {
+      const auto& slab = is_hot ? hot : cold;
+      r.require(slab.size() == 2 && slab[0] < slab[1] && slab[1] <= s.box[direction],
+                h + (is_hot ? "Hot slab" : "Cold slab"),
+                "lower, upper with 0 <= lower < upper <= box length");
+      s.heat_slabs.push_back({direction, slab[0], slab[1], is_hot ? power : -power});
+    }
+  }
+  const auto bins = r.get_doubles("Scene/Field bins");
+  r.require(bins.size() == 1 || static_cast<int>(bins.size()) == s.dim, "Scene/Field bins",
+            "one value, or one per dimension");
+  for (int d = 0; d < s.dim; ++d)
+    s.bins[d] = static_cast<int>(bins.size() == 1 ? bins[0] : bins[d]);
   return s;
 }
 

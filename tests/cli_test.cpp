@@ -9,29 +9,19 @@
 #include <string>
 #include <sys/wait.h>
 
+#include "run_twinflow.hpp"
+
 namespace fs = std::filesystem;
 
 namespace {
 
-struct Result {
-  int code;
-  std::string output;
-};
-
+using twinflow::testing::Result;
 Result run(const std::string& args) {
-  const std::string cmd = std::string(TWINFLOW_BINARY) + " " + args + " 2>&1";
-  FILE* pipe = popen(cmd.c_str(), "r");
-  std::string out;
-  std::array<char, 4096> buf{};
-  while (fgets(buf.data(), buf.size(), pipe)) out += buf.data();
-  const int status = pclose(pipe);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+  return twinflow::testing::run_twinflow(args);
 }
 
 fs::path fresh_dir(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("twinflow_cli_test_" + name);
-  fs::remove_all(d);
-  return d;
+  return twinflow::testing::fresh_dir("cli_test", name);
 }
 
 // "# expect: token token ..." on the first line of a broken case.

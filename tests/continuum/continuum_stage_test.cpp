@@ -7,6 +7,7 @@
 #include <string>
 #include <sys/wait.h>
 
+#include "../run_twinflow.hpp"
 #include "io/files.hpp"
 #include "io/json.hpp"
 
@@ -15,25 +16,11 @@ using twinflow::io::Json;
 
 namespace {
 
-struct Result {
-  int code;
-  std::string output;
-};
-
-Result run_twinflow(const std::string& args) {
-  const std::string cmd = std::string(TWINFLOW_BINARY) + " " + args + " 2>&1";
-  FILE* pipe = popen(cmd.c_str(), "r");
-  std::string out;
-  std::array<char, 4096> buf{};
-  while (fgets(buf.data(), buf.size(), pipe)) out += buf.data();
-  const int status = pclose(pipe);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
-}
+using twinflow::testing::Result;
+using twinflow::testing::run_twinflow;
 
 fs::path fresh_dir(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("twinflow_continuum_stage_test_" + name);
-  fs::remove_all(d);
-  return d;
+  return twinflow::testing::fresh_dir("continuum_stage_test", name);
 }
 
 const std::string kCase =

@@ -1,0 +1,34 @@
+#pragma once
+// Runs the twinflow binary from a test: exit code and combined output.
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <sys/wait.h>
+
+namespace twinflow::testing {
+
+struct Result {
+  int code;
+  std::string output;
+};
+
+inline Result run_twinflow(const std::string& args) {
+  const std::string cmd = std::string(TWINFLOW_BINARY) + " " + args + " 2>&1";
+  FILE* pipe = popen(cmd.c_str(), "r");
+  std::string out;
+  std::array<char, 4096> buf{};
+  while (fgets(buf.data(), buf.size(), pipe)) out += buf.data();
+  const int status = pclose(pipe);
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+}
+
+// An empty path under the temporary directory, unique per test and name.
+inline std::filesystem::path fresh_dir(const std::string& test, const std::string& name) {
+  const auto d = std::filesystem::temp_directory_path() / ("twinflow_" + test + "_" + name);
+  std::filesystem::remove_all(d);
+  return d;
+}
+
+} // namespace twinflow::testing

@@ -94,8 +94,6 @@ template <int D> BinnedFields FieldSampler<D>::result() const {
   };
   init(f.density, 1), init(f.temperature_kinetic, 1), init(f.temperature_internal, 1);
   init(f.internal_energy, 1), init(f.velocity, D);
-  int used = 0;
-  for (int b = 0; b < blocks_; ++b) used += block_samples_[b] > 0;
   // Per-block estimates of each field, then mean and standard error over blocks.
   std::vector<double> values(blocks_);
   auto reduce = [&](FieldEstimate& e, std::size_t slot, auto&& per_block) {
@@ -131,7 +129,6 @@ template <int D> BinnedFields FieldSampler<D>::result() const {
     }); // 1/<1/theta>
     reduce(f.internal_energy, bin, [&](int b) { return at(b).n > 0 ? at(b).u / at(b).n : 0.0; });
   }
-  (void)used;
   return f;
 }
 

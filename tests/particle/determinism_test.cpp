@@ -14,16 +14,7 @@ using namespace twinflow::particle;
 using namespace twinflow::particle::testing;
 
 namespace {
-using M = Model<3, TemperatureRepulsion, ConstantSigma, InverseSeed002Heat>;
-
-M model(const ParticleParameters& p) {
-  return {TemperatureRepulsion{p.a0, 1, 1, 0.5},
-          ConstantSigma{p.sigma, Weight(1, 0.5)},
-          InverseSeed002Heat{p.kappa0, p.cv, Weight(1, 0.5)},
-          1,
-          p.cv,
-          1};
-}
+using M = Seed002Model;
 
 // Positions, velocities and energies indexed by particle id.
 std::vector<double> snapshot(const State<3>& s) {
@@ -40,7 +31,7 @@ std::vector<double> run(Integrator integrator, int threads, bool shuffle) {
   omp_set_num_threads(threads);
   auto p = seed002(integrator, 0.01);
   p.box = {{9, 9, 6}};
-  Simulation<M> sim(model(p), p);
+  Simulation<M> sim(seed002_model(p), p);
   if (shuffle) { // scramble the storage order; the sort must restore the canonical one
     auto& s = sim.state();
     std::vector<std::size_t> perm(s.size());

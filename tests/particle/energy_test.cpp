@@ -10,15 +10,6 @@ using namespace twinflow::particle;
 using namespace twinflow::particle::testing;
 
 namespace {
-using Seed002Model = Model<3, TemperatureRepulsion, ConstantSigma, InverseSeed002Heat>;
-Seed002Model seed002_model(const ParticleParameters& p) {
-  return {TemperatureRepulsion{p.a0, 1, 1, 0.5},
-          ConstantSigma{p.sigma, Weight(1, 0.5)},
-          InverseSeed002Heat{p.kappa0, p.cv, Weight(1, 0.5)},
-          1,
-          p.cv,
-          1};
-}
 
 // Largest |E(t) - E(0)| / |E(0)| over `steps`.
 template <class M> double drift(const M& model, const ParticleParameters& p, long steps) {

@@ -2,6 +2,7 @@
 // Shared set-ups for particle tests: the seed 002 case and the ideal DPDE fluid.
 
 #include "particle/parameters.hpp"
+#include "particle/simulation.hpp"
 
 namespace twinflow::particle::testing {
 
@@ -25,6 +26,17 @@ inline ParticleParameters seed002(Integrator integrator, double dt) {
   p.kappa0 = 0.001;
   p.heat_weight = {1.0, 0.5};
   return p;
+}
+
+// The compiled model of seed 002's defaults (a_T, constant sigma, 002's inverse heat law).
+using Seed002Model = Model<3, TemperatureRepulsion, ConstantSigma, InverseSeed002Heat>;
+inline Seed002Model seed002_model(const ParticleParameters& p) {
+  return {TemperatureRepulsion{p.a0, 1, 1, 0.5},
+          ConstantSigma{p.sigma, Weight(1, 0.5)},
+          InverseSeed002Heat{p.kappa0, p.cv, Weight(1, 0.5)},
+          1,
+          p.cv,
+          1};
 }
 
 // Ideal DPDE fluid (no conservative force) with LAMMPS-like weights.

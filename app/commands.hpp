@@ -14,7 +14,11 @@ struct CommandLine {
   int threads = 0; // 0: OpenMP's default
   bool force = false;
   bool restart = false;
+  double wall_time_limit = 0; // seconds; 0: none. Past it a run checkpoints and stops.
 };
+
+// Exit code of a run stopped by a signal or the wall-time limit after writing its checkpoint.
+constexpr int kExitInterrupted = 5;
 
 // Thrown by stages that a later issue fills in; exit code 3.
 struct NotImplemented : std::runtime_error {

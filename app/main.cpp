@@ -54,6 +54,23 @@ void usage(std::ostream& out, const po::options_description& opts) {
   out << "\n" << opts;
 }
 
+// "3600", "90m", "2h", "30s" -> seconds
+double parse_duration(const std::string& text) {
+  std::size_t used = 0;
+  double value = -1;
+  try {
+    value = std::stod(text, &used);
+  } catch (const std::exception&) {
+  }
+  const std::string unit = text.substr(std::min(used, text.size()));
+  const double scale = unit.empty() || unit == "s" ? 1 : unit == "m" ? 60 : unit == "h" ? 3600 : -1;
+  if (!(value > 0) || scale < 0)
+    throw io::InputError("--wall-time '" + text +
+                         "': allowed: a positive number of seconds, or "
+                         "with a unit s, m or h (e.g. 90m)");
+  return value * scale;
+}
+
 } // namespace
 
 int main(int argc, char** argv) {
@@ -68,7 +85,9 @@ int main(int argc, char** argv) {
       "threads,t", po::value<int>(), "OpenMP threads")("seed", po::value<long>(),
                                                        "random seed (Particle/Seed)")(
       "force", "overwrite an earlier run's results")(
-      "restart", "continue an interrupted run from its checkpoint");
+      "restart", "continue an interrupted run from its checkpoint")(
+      "wall-time", po::value<std::string>(),
+      "checkpoint and stop after this long (e.g. 3600, 90m, 2h); continue with --restart");
   po::options_description hidden;
   hidden.add_options()("command", po::value<std::string>())("target", po::value<std::string>());
   po::positional_options_description positional;
@@ -104,6 +123,8 @@ int main(int argc, char** argv) {
     }
     cl.force = vm.count("force") > 0;
     cl.restart = vm.count("restart") > 0;
+    if (vm.count("wall-time"))
+      cl.wall_time_limit = parse_duration(vm["wall-time"].as<std::string>());
     return it->second.run(cl);
   } catch (const po::error& e) {
     std::cerr << "twinflow: error: " << e.what() << " (twinflow --help)\n";

@@ -1,6 +1,9 @@
 #include <chrono>
+#include <csignal>
+#include <cstdlib>
 #include <filesystem>
 #include <iostream>
+#include <optional>
 
 #include <unistd.h>
 
@@ -9,6 +12,7 @@
 #include "io/field_file.hpp"
 #include "particle/run.hpp"
 #include "particle/simulation.hpp"
+#include "transport/estimates.hpp"
 
 namespace twinflow::app {
 
@@ -21,14 +25,54 @@ fs::path run_directory(const CommandLine& cl, const CaseParameters& c) {
 
 } // namespace
 
+namespace {
+volatile std::sig_atomic_t stop_signal = 0;
+extern "C" void on_stop_signal(int sig) {
+  if (stop_signal) std::_Exit(128 + sig); // a second signal: stop now
+  stop_signal = sig;
+}
+} // namespace
+
 int particle_stage(const CommandLine& cl) {
   Case c;
   const CaseParameters p = c.load(cl.target, cl.overrides);
   const fs::path run_dir = run_directory(cl, p);
-  const io::StageDirectory stage(run_dir, "particle", cl.force);
+  const io::StageDirectory stage(run_dir, "particle", cl.force && !cl.restart);
+  const fs::path checkpoint_path = stage.file("checkpoint.twfc");
+  // The checkpoint belongs to these exact parameters: a changed case cannot continue it.
+  const std::string parameters = c.registry().resolved_json().dump();
+  std::optional<io::Checkpoint> resume;
+  if (cl.restart) {
+    if (!fs::exists(checkpoint_path))
+      throw io::InputError(checkpoint_path.string() +
+                           ": no checkpoint to restart from (was the run interrupted?)");
+    resume = io::Checkpoint::read(checkpoint_path);
+    if (resume->get<std::string>("case_parameters") != parameters)
+      throw io::InputError(checkpoint_path.string() +
+                           ": was written for other case parameters; restart with the same case "
+                           "file and --set options (or start afresh with --force)");
+  }
+  stop_signal = 0; // from here on a signal stops the run cleanly, with a checkpoint
+  std::signal(SIGINT, on_stop_signal);
+  std::signal(SIGTERM, on_stop_signal);
   stage.create();
+  if (!cl.restart) fs::remove(checkpoint_path); // a fresh run must not leave an old one behind
+  const auto started = std::chrono::steady_clock::now();
   particle::RunControl control;
   control.progress = isatty(STDERR_FILENO);
+  control.resume = resume ? &*resume : nullptr;
+  control.checkpoint_every_seconds = 1800; // a crash loses at most half an hour
+  control.stop_requested = [&] {
+    return stop_signal != 0 ||
+           (cl.wall_time_limit > 0 &&
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count() >
+                cl.wall_time_limit);
+  };
+  control.write_checkpoint = [&](const io::Checkpoint& state) {
+    io::Checkpoint file = state;
+    file.put("case_parameters", parameters);
+    file.write(checkpoint_path);
+  };
   particle::RunOutput out;
   try {
     out = particle::run_particles(p.particle, control);
@@ -36,15 +80,37 @@ int particle_stage(const CommandLine& cl) {
     std::cerr << "twinflow: particle run stopped: " << e.what() << "\n";
     return 4;
   }
+  std::signal(SIGINT, SIG_DFL);
+  std::signal(SIGTERM, SIG_DFL);
+  if (out.interrupted) {
+    std::cerr << "twinflow: particle run "
+              << (stop_signal ? "interrupted by a signal" : "reached the wall-time limit")
+              << " at step " << out.steps_done << "; checkpoint written to "
+              << fs::absolute(checkpoint_path).string() << "\ncontinue with: twinflow particle "
+              << cl.target << " --out " << run_dir.string() << " --restart\n";
+    return kExitInterrupted;
+  }
   io::write_file_atomically(stage.file("thermo.csv"), out.thermo_csv);
   io::write_file_atomically(stage.file("histograms.csv"), out.histograms_csv);
   io::write_file_atomically(stage.file("rdf.csv"), out.rdf_csv);
   io::write_file_atomically(stage.file("correlations.csv"), out.correlations_csv);
   io::write_file_atomically(stage.file("fields.csv"), out.fields_csv);
+  double max_speed = 0; // largest bin-mean speed of the final averages
+  if (!out.field_snapshots.empty())
+    if (const io::Field* v = out.field_snapshots.back().find("velocity"))
+      for (std::size_t b = 0; b + v->components <= v->values.size(); b += v->components) {
+        double s2 = 0;
+        for (int d = 0; d < v->components; ++d) s2 += v->values[b + d] * v->values[b + d];
+        max_speed = std::max(max_speed, std::sqrt(s2));
+      }
+  const io::Json convection = transport::convection_numbers(p.particle, max_speed);
+  if (!convection.is_null()) out.summary["convection"] = convection;
   if (!out.field_snapshots.empty()) { // cumulative averages at a sequence of times (ParaView)
     io::FieldFile fields(stage.file("fields"), out.field_grid);
     for (auto& s : out.field_snapshots) fields.append(std::move(s));
   }
+  if (!out.relaxation_csv.empty())
+    io::write_file_atomically(stage.file("relaxation.csv"), out.relaxation_csv);
   if (!out.slab_profile_csv.empty())
     io::write_file_atomically(stage.file("slab_profile.csv"), out.slab_profile_csv);
   io::Json summary = io::Json::object();
@@ -55,6 +121,7 @@ int particle_stage(const CommandLine& cl) {
   summary["results"] = out.summary;
   summary["parameters"] = c.registry().resolved_json();
   io::write_file_atomically(stage.file("summary.json"), summary.dump()); // written last: complete
+  fs::remove(checkpoint_path); // finished: nothing to continue
   const auto& r = out.summary;
   std::cout << "particle: N = " << r.find("N")->number() << ", "
             << r.find("particle_steps_per_second")->number()
@@ -64,6 +131,16 @@ int particle_stage(const CommandLine& cl) {
             << r.find("T_internal_stderr")->number()
             << ", max |dE/E| = " << r.find("energy_relative_drift_max")->number() << "\n"
             << "outputs: " << fs::absolute(stage.path()).string() << "\n";
+  if (!convection.is_null()) {
+    const auto get = [&](const char* key) {
+      const io::Json* v = convection.find(key);
+      return v ? v->number() : std::nan("");
+    };
+    std::cout << "convection (estimates): Ra = " << get("rayleigh") << ", Pr = " << get("prandtl")
+              << ", dT/T = " << get("delta_T_over_T")
+              << ", g H/c^2 = " << get("stratification_g_H_over_c2")
+              << ", Mach (measured) = " << get("mach_measured") << "\n";
+  }
   return 0;
 }
 

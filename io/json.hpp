@@ -48,6 +48,7 @@ public:
   const Json* find(const std::string& key) const;
   void push_back(Json v);
 
+  bool is_null() const { return std::holds_alternative<std::nullptr_t>(value_); }
   bool is_object() const { return std::holds_alternative<Object>(value_); }
   bool is_number() const { return std::holds_alternative<double>(value_); }
   bool is_string() const { return std::holds_alternative<std::string>(value_); }

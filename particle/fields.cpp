@@ -20,6 +20,10 @@ std::string BinnedFields::csv() const {
   for (int d = 0; d < dim; ++d) out << axes[d] << ",";
   out << "density,density_se,T_kinetic,T_kinetic_se,T_internal,T_internal_se,u,u_se";
   for (int d = 0; d < dim; ++d) out << ",v" << axes[d] << ",v" << axes[d] << "_se";
+  const char* flux_names[4] = {"J_conductive", "J_internal", "J_kinetic", "J_potential"};
+  for (const char* name : flux_names)
+    for (int d = 0; d < dim; ++d)
+      out << "," << name << "_" << axes[d] << "," << name << "_" << axes[d] << "_se";
   out << "\n";
   char buf[64];
   auto put = [&](double v) {
@@ -34,8 +38,9 @@ std::string BinnedFields::csv() const {
     for (const FieldEstimate* f :
          {&density, &temperature_kinetic, &temperature_internal, &internal_energy})
       put(f->mean[b]), put(f->stderr_[b]);
-    for (int d = 0; d < dim; ++d)
-      put(velocity.mean[b * dim + d]), put(velocity.stderr_[b * dim + d]);
+    for (const FieldEstimate* f :
+         {&velocity, &flux_conductive, &flux_internal, &flux_kinetic, &flux_potential})
+      for (int d = 0; d < dim; ++d) put(f->mean[b * dim + d]), put(f->stderr_[b * dim + d]);
     out << "\n";
   }
   return out.str();
@@ -63,22 +68,59 @@ template <int D> int FieldSampler<D>::bin_of(const State<D>& s, std::size_t i) c
   return b;
 }
 
-template <int D> void FieldSampler<D>::sample(const State<D>& s) {
+template <int D>
+void FieldSampler<D>::sample(const State<D>& s, const std::vector<double>& potential,
+                             const std::array<std::vector<double>, D>& conduction) {
   const int block =
       static_cast<int>(std::min<long>(taken_ * blocks_ / std::max(total_, 1L), blocks_ - 1));
   ++taken_;
   ++block_samples_[block];
   Accumulator* a = &acc_[static_cast<std::size_t>(block) * nbins_];
+  // This sample's means per bin: the diffusive fluxes are taken relative to them (the local rest
+  // frame), which leaves out convection (density x energy x mean velocity, known from the other
+  // fields) and with it most of the noise.
+  now_.assign(static_cast<std::size_t>(nbins_) * (3 + D), 0.0); // n, u, phi, v[D]
+  bin_.resize(s.size());
   for (std::size_t i = 0; i < s.size(); ++i) {
-    Accumulator& c = a[bin_of(s, i)];
+    const int b = bin_of(s, i);
+    bin_[i] = b;
+    double* m = &now_[static_cast<std::size_t>(b) * (3 + D)];
+    m[0] += 1;
+    m[1] += s.u.empty() ? 0.0 : s.u[i];
+    m[2] += potential.empty() ? 0.0 : potential[i];
+    for (int d = 0; d < D; ++d) m[3 + d] += s.v[d][i];
+  }
+  for (int b = 0; b < nbins_; ++b) {
+    double* m = &now_[static_cast<std::size_t>(b) * (3 + D)];
+    if (m[0] > 0)
+      for (int k = 1; k < 3 + D; ++k) m[k] /= m[0];
+  }
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    Accumulator& c = a[bin_[i]];
+    const double* m = &now_[static_cast<std::size_t>(bin_[i]) * (3 + D)];
     c.n += 1;
+    double dv[D], k = 0;
     for (int d = 0; d < D; ++d) {
       c.v[d] += s.v[d][i];
       c.v2 += s.v[d][i] * s.v[d][i];
+      dv[d] = s.v[d][i] - m[3 + d];
+      k += dv[d] * dv[d];
     }
+    k *= 0.5 * mass_; // peculiar kinetic energy
+    double du = 0;
     if (!s.u.empty()) {
       c.u += s.u[i];
       c.inv_theta += cv_ / s.u[i];
+      du = s.u[i] - m[1];
+    }
+    const double dphi = potential.empty() ? 0.0 : potential[i] - m[2];
+    // 002 section III.C's diffusive parts, Irving-Kirkwood form: energy carried by the particle's
+    // motion relative to its bin. The kinetic part needs no mean subtracted: k is peculiar.
+    for (int d = 0; d < D; ++d) {
+      c.j_internal[d] += du * dv[d];
+      c.j_kinetic[d] += k * dv[d];
+      c.j_potential[d] += dphi * dv[d];
+      if (!conduction[d].empty()) c.j_conductive[d] += conduction[d][i];
     }
   }
 }
@@ -94,6 +136,8 @@ template <int D> BinnedFields FieldSampler<D>::result() const {
   };
   init(f.density, 1), init(f.temperature_kinetic, 1), init(f.temperature_internal, 1);
   init(f.internal_energy, 1), init(f.velocity, D);
+  init(f.flux_conductive, D), init(f.flux_internal, D), init(f.flux_kinetic, D);
+  init(f.flux_potential, D);
   // Per-block estimates of each field, then mean and standard error over blocks.
   std::vector<double> values(blocks_);
   auto reduce = [&](FieldEstimate& e, std::size_t slot, auto&& per_block) {
@@ -128,6 +172,18 @@ template <int D> BinnedFields FieldSampler<D>::result() const {
       return at(b).inv_theta > 0 ? at(b).n / at(b).inv_theta : 0.0;
     }); // 1/<1/theta>
     reduce(f.internal_energy, bin, [&](int b) { return at(b).n > 0 ? at(b).u / at(b).n : 0.0; });
+    // Flux densities: the bin's sum over the sample, per volume.
+    for (int d = 0; d < D; ++d) {
+      const std::size_t slot = static_cast<std::size_t>(bin) * D + d;
+      reduce(f.flux_conductive, slot,
+             [&](int b) { return at(b).j_conductive[d] / (block_samples_[b] * bin_volume_); });
+      reduce(f.flux_internal, slot,
+             [&](int b) { return at(b).j_internal[d] / (block_samples_[b] * bin_volume_); });
+      reduce(f.flux_kinetic, slot,
+             [&](int b) { return at(b).j_kinetic[d] / (block_samples_[b] * bin_volume_); });
+      reduce(f.flux_potential, slot,
+             [&](int b) { return at(b).j_potential[d] / (block_samples_[b] * bin_volume_); });
+    }
   }
   return f;
 }

@@ -4,6 +4,8 @@
 
 #include <array>
 #include <cmath>
+#include <cstring>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -20,6 +22,11 @@ struct BinnedFields {
   std::array<double, 3> box{{1, 1, 1}};
   int dim = 3;
   FieldEstimate density, temperature_kinetic, temperature_internal, internal_energy, velocity;
+  // Energy-flux parts (vectors, per bin: Irving-Kirkwood volume averages, which equal the flux
+  // through the bin's planes in a steady state): conduction by pair heat exchange, and the
+  // internal, kinetic and potential energy carried by particles moving relative to their bin's
+  // mean velocity (002 section III.C's diffusive parts; convection is rho u v from the fields).
+  FieldEstimate flux_conductive, flux_internal, flux_kinetic, flux_potential;
   int bin_count() const { return bins[0] * bins[1] * (dim == 3 ? bins[2] : 1); }
   double centre(int bin, int d) const; // bin centre coordinate along d
   std::string csv() const;
@@ -29,14 +36,34 @@ template <int D> class FieldSampler {
 public:
   FieldSampler(const std::array<double, 3>& box, const std::array<int, 3>& bins, int blocks,
                long total_samples, double mass, double cv);
-  void sample(const State<D>& s); // call exactly total_samples times
+  // Call exactly total_samples times. potential: each particle's share of the pair and external
+  // potentials; conduction: each particle's share of sum_pairs q_ij (x_i - x_j) (either may be
+  // empty: that flux part is then zero).
+  void sample(const State<D>& s, const std::vector<double>& potential = {},
+              const std::array<std::vector<double>, D>& conduction = {});
   BinnedFields result() const;
+  long total_samples() const { return total_; }
+
+  template <class A> void archive(A& a) {
+    static_assert(sizeof(Accumulator) == kAccumulatorDoubles * sizeof(double));
+    std::vector<double> flat(acc_.size() * kAccumulatorDoubles);
+    if constexpr (!A::loading) std::memcpy(flat.data(), acc_.data(), flat.size() * sizeof(double));
+    a("accumulators", flat);
+    if constexpr (A::loading) {
+      if (flat.size() != acc_.size() * kAccumulatorDoubles)
+        throw std::invalid_argument("checkpoint: field accumulators of another size");
+      std::memcpy(static_cast<void*>(acc_.data()), flat.data(), flat.size() * sizeof(double));
+    }
+    a("block_samples", block_samples_);
+    a("taken", taken_);
+  }
 
 private:
   struct Accumulator { // per block and bin
     double n = 0, u = 0, inv_theta = 0, v2 = 0;
-    std::array<double, D> v{};
+    std::array<double, D> v{}, j_conductive{}, j_internal{}, j_kinetic{}, j_potential{};
   };
+  static constexpr std::size_t kAccumulatorDoubles = 4 + 5 * D;
   int bin_of(const State<D>& s, std::size_t i) const;
   std::array<double, 3> box_;
   std::array<int, 3> bins_;
@@ -45,6 +72,8 @@ private:
   double mass_, cv_, bin_volume_;
   std::vector<Accumulator> acc_; // [block][bin]
   std::vector<long> block_samples_;
+  std::vector<double> now_; // scratch: this sample's bin means
+  std::vector<int> bin_;    // scratch: each particle's bin
 };
 
 } // namespace twinflow::particle

@@ -53,7 +53,8 @@ struct ParticleParameters {
   long equilibration_steps = 0;
   long steps = 1000;
 
-  double temperature = 1.0; // initial temperature; the fixed T of isothermal DPD
+  double temperature = 1.0;            // initial temperature; the fixed T of isothermal DPD
+  double temperature_perturbation = 0; // initial theta = T (1 + A sin(2 pi x / Lx))
   InitialVelocities initial_velocities = InitialVelocities::Maxwell;
 
   EnergyModel energy = EnergyModel::Dpde;

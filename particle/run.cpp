@@ -1,5 +1,6 @@
 #include "particle/run.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -7,6 +8,7 @@
 #include <numeric>
 #include <sstream>
 
+#include "particle/archive.hpp"
 #include "particle/fields.hpp"
 #include "particle/simulation.hpp"
 #include "particle/theory.hpp"
@@ -60,7 +62,56 @@ io::Snapshot snapshot(const BinnedFields& f, double time, double wall, long part
   add("temperature_internal", f.temperature_internal, 1);
   add("internal_energy", f.internal_energy, 1);
   add("velocity", f.velocity, f.dim);
+  add("flux_conductive", f.flux_conductive, f.dim);
+  add("flux_internal", f.flux_internal, f.dim);
+  add("flux_kinetic", f.flux_kinetic, f.dim);
+  add("flux_potential", f.flux_potential, f.dim);
   return s;
+}
+
+// Weighted least-squares line y = intercept + slope x (weights 1/se^2; errors from the weights).
+struct LineFit {
+  double sw = 0, sx = 0, sy = 0, sxx = 0, sxy = 0;
+  void add(double x, double y, double se) {
+    const double w = se > 0 ? 1 / (se * se) : 1;
+    sw += w, sx += w * x, sy += w * y, sxx += w * x * x, sxy += w * x * y;
+  }
+  double det() const { return sw * sxx - sx * sx; }
+  double slope() const { return (sw * sxy - sx * sy) / det(); }
+  double intercept() const { return (sxx * sy - sx * sxy) / det(); }
+  double slope_stderr() const { return std::sqrt(sw / det()); }
+  // Standard error of the line's value at x.
+  double value_stderr(double x) const { return std::sqrt((sxx - 2 * x * sx + x * x * sw) / det()); }
+};
+
+// Thermal walls at different temperatures along d, fields binned along d only: a line through
+// T_internal in the central 60% and the jump T_wall - T_line(wall) at each wall (Kapitza).
+io::Json wall_profile_fit(const ParticleParameters& p, const BinnedFields& f) {
+  for (int d = 0; d < p.dim; ++d) {
+    const WallPair& w = p.walls[d];
+    if (!w.present || !w.thermal[0] || !w.thermal[1] || f.bins[d] < 5) continue;
+    bool one_d = true;
+    for (int e = 0; e < p.dim; ++e) one_d &= e == d || f.bins[e] == 1;
+    if (!one_d) continue;
+    const double length = p.box[d], lo = 0.2 * length, hi = 0.8 * length;
+    LineFit fit;
+    for (int bin = 0; bin < f.bin_count(); ++bin) {
+      const double x = f.centre(bin, d);
+      if (x >= lo && x <= hi)
+        fit.add(x, f.temperature_internal.mean[bin], f.temperature_internal.stderr_[bin]);
+    }
+    io::Json j = io::Json::object();
+    j["direction"] = d;
+    j["fit_from"] = lo, j["fit_to"] = hi;
+    j["slope"] = fit.slope(), j["slope_stderr"] = fit.slope_stderr();
+    j["intercept"] = fit.intercept();
+    j["jump_lower"] = w.temperature[0] - fit.intercept();
+    j["jump_upper"] = w.temperature[1] - (fit.intercept() + fit.slope() * length);
+    j["jump_lower_stderr"] = fit.value_stderr(0);
+    j["jump_upper_stderr"] = fit.value_stderr(length);
+    return j;
+  }
+  return io::Json();
 }
 
 // Seed 002 section III.B: linear fits of T_internal(x) in the central 60% of both halves between
@@ -83,18 +134,14 @@ io::Json slab_fit(const ParticleParameters& p, const BinnedFields& f) {
     double a = starts[half], b = ends[half];
     if (b <= a) b += length; // the half wraps around the periodic box
     const double lo = a + 0.2 * (b - a), hi = b - 0.2 * (b - a);
-    double sw = 0, sx = 0, sy = 0, sxx = 0, sxy = 0;
+    LineFit fit;
     for (int bin = 0; bin < f.bin_count(); ++bin) {
       double x = f.centre(bin, dir);
       if (x < a) x += length;
-      if (x < lo || x > hi) continue;
-      const double y = f.temperature_internal.mean[bin], se = f.temperature_internal.stderr_[bin];
-      const double w = se > 0 ? 1 / (se * se) : 1;
-      sw += w, sx += w * x, sy += w * y, sxx += w * x * x, sxy += w * x * y;
+      if (x >= lo && x <= hi)
+        fit.add(x, f.temperature_internal.mean[bin], f.temperature_internal.stderr_[bin]);
     }
-    const double det = sw * sxx - sx * sx;
-    const double slope = (sw * sxy - sx * sy) / det, intercept = (sxx * sy - sx * sxy) / det;
-    const double slope_se = std::sqrt(sw / det);
+    const double slope = fit.slope(), intercept = fit.intercept(), slope_se = fit.slope_stderr();
     const double kappa = j0 / std::fabs(slope), kappa_se = kappa * slope_se / std::fabs(slope);
     io::Json h = io::Json::object();
     h["fit_from"] = lo, h["fit_to"] = hi;
@@ -108,247 +155,520 @@ io::Json slab_fit(const ParticleParameters& p, const BinnedFields& f) {
   return out;
 }
 
-template <class M>
-RunOutput drive(const M& model, const ParticleParameters& p, const RunControl& control) {
-  constexpr int D = M::D;
+// Seed 004's relaxation method: the mode's amplitude decays as exp(-chi k^2 t). A least-squares
+// line through ln a(t) while a has fallen to between 80% and 10% of its start (after the sound
+// transients, before the noise floor). The slope's error is the residuals' standard error,
+// widened for their correlation in time by sqrt((1 + r1)/(1 - r1)) (r1: lag-1 autocorrelation).
+io::Json relaxation_fit(const ParticleParameters& p, const std::vector<double>& t,
+                        const std::vector<double>& a) {
+  const double a0 = p.temperature * p.temperature_perturbation;
+  std::vector<double> x, y;
+  for (std::size_t k = 0; k < t.size(); ++k) {
+    if (a[k] > 0.8 * a0) continue;
+    if (a[k] < 0.1 * a0) break;
+    x.push_back(t[k]), y.push_back(std::log(a[k]));
+  }
+  io::Json j = io::Json::object();
+  const double wave = 2 * M_PI / p.box[0];
+  j["wavenumber"] = wave;
+  j["points"] = static_cast<long>(x.size());
+  if (x.size() < 5) {
+    j["note"] = "too few samples between 80% and 10% of the initial amplitude: run longer";
+    return j;
+  }
+  const double n = x.size();
+  double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  for (std::size_t k = 0; k < x.size(); ++k)
+    sx += x[k], sy += y[k], sxx += x[k] * x[k], sxy += x[k] * y[k];
+  const double det = n * sxx - sx * sx;
+  const double slope = (n * sxy - sx * sy) / det, intercept = (sy - slope * sx) / n;
+  std::vector<double> res(x.size());
+  double ss = 0;
+  for (std::size_t k = 0; k < x.size(); ++k)
+    res[k] = y[k] - intercept - slope * x[k], ss += res[k] * res[k];
+  double c1 = 0;
+  for (std::size_t k = 1; k < res.size(); ++k) c1 += res[k] * res[k - 1];
+  const double r1 = std::clamp(c1 / ss, 0.0, 0.95);
+  const double slope_se = std::sqrt(ss / (n - 2) * n / det) * std::sqrt((1 + r1) / (1 - r1));
+  const double chi = -slope / (wave * wave); // a ~ exp(-chi k^2 t), 004
+  j["fit_from_time"] = x.front(), j["fit_to_time"] = x.back();
+  j["decay_rate"] = -slope, j["decay_rate_stderr"] = slope_se;
+  j["chi"] = chi, j["chi_stderr"] = slope_se / (wave * wave);
+  // kappa = rho c_p chi with the ideal DPDE fluid's c_p = c_v + k + (d/2) k + k per particle
+  // (physics.md); the transport stage converts with the measured c_p for other fluids.
+  const double cp = p.cv + 2 + 0.5 * p.dim;
+  j["kappa_ideal_cp"] = p.density * cp * chi;
+  j["kappa_ideal_cp_stderr"] = p.density * cp * slope_se / (wave * wave);
+  return j;
+}
+
+// Energy-flux decomposition through the planes x = x_plane of a slab scene, from the binned
+// profile (the two bins beside the plane), normalised by J0 and signed so that positive means
+// from the hot slab towards the cold one (002 Figs. 5-6).
+io::Json flux_at_planes(const ParticleParameters& p, const BinnedFields& f, double j0) {
+  const int dir = p.heat_slabs[0].direction;
+  const HeatSlab& hot = p.heat_slabs[0];
+  const HeatSlab& cold = p.heat_slabs[1];
+  io::Json out = io::Json::array();
+  for (const double plane : {2.0, 8.0}) {
+    if (plane >= p.box[dir]) continue;
+    // Between the cold slab's upper edge and the hot slab's lower edge heat flows towards -dir.
+    const bool lower_half = plane > cold.upper && plane < hot.lower;
+    const double sign = lower_half ? -1.0 : 1.0;
+    const int n = f.bins[dir];
+    const double width = p.box[dir] / n;
+    const int right = std::min(n - 1, static_cast<int>(std::lround(plane / width)));
+    const int left = std::max(0, right - 1);
+    io::Json j = io::Json::object();
+    j["x"] = plane;
+    double total = 0, total_var = 0;
+    const std::pair<const char*, const FieldEstimate*> parts[4] = {
+        {"J_conductive", &f.flux_conductive},
+        {"J_internal", &f.flux_internal},
+        {"J_kinetic", &f.flux_kinetic},
+        {"J_potential", &f.flux_potential}};
+    for (const auto& [name, e] : parts) {
+      const std::size_t a = static_cast<std::size_t>(left) * f.dim + dir;
+      const std::size_t b = static_cast<std::size_t>(right) * f.dim + dir;
+      const double mean = sign * 0.5 * (e->mean[a] + e->mean[b]) / j0;
+      const double se = 0.5 * std::hypot(e->stderr_[a], e->stderr_[b]) / j0;
+      j[std::string(name) + "_over_J0"] = mean;
+      j[std::string(name) + "_over_J0_stderr"] = se;
+      total += mean, total_var += se * se;
+    }
+    j["sum_over_J0"] = total;
+    j["sum_over_J0_stderr"] = std::sqrt(total_var);
+    out.push_back(j);
+  }
+  return out;
+}
+
+// Cumulative averages at a sequence of times, saved with the run (they cannot be recomputed).
+template <class A> void archive_snapshots(A& a, std::vector<io::Snapshot>& snapshots) {
+  long count = static_cast<long>(snapshots.size());
+  a("count", count);
+  if constexpr (A::loading) snapshots.assign(static_cast<std::size_t>(count), io::Snapshot{});
+  for (long k = 0; k < count; ++k) {
+    auto s = a.nested(std::to_string(k));
+    io::Snapshot& snap = snapshots[k];
+    long steps = snap.particle_steps, fields = static_cast<long>(snap.fields.size());
+    s("time", snap.time), s("wall_seconds", snap.wall_seconds), s("particle_steps", steps);
+    s("fields", fields);
+    if constexpr (A::loading) snap.particle_steps = steps, snap.fields.resize(fields);
+    for (long i = 0; i < fields; ++i) {
+      io::Field& f = snap.fields[i];
+      long components = f.components;
+      auto fs = s.nested("field" + std::to_string(i));
+      fs("name", f.name), fs("components", components);
+      fs("values", f.values), fs("standard_error", f.standard_error);
+      f.components = static_cast<int>(components);
+    }
+  }
+}
+
+// One particle run: set-up, the step loop with its samples, and the results. Everything that
+// changes during the loop is listed once in archive(): a checkpoint holds exactly that.
+template <class M> class ParticleRun {
+public:
+  static constexpr int D = M::D;
   using clock = std::chrono::steady_clock;
-  const auto t0 = clock::now();
-  Simulation<M> sim(model, p);
-  const std::size_t n = sim.state().size();
-  const double volume = [&] {
-    double v = 1;
-    for (int d = 0; d < D; ++d) v *= p.box[d];
-    return v;
-  }();
-  const double e0 = sim.total_energy();
-  double drift_max = 0;
 
-  std::ostringstream thermo;
-  thermo << "# particle thermo: one row per sample. Units: m = k = rc = T0 = 1 (energies in k T0, "
-            "time in tau)\n"
-            "step,time,sampled,E_total,E_kinetic,E_internal,E_potential,T_kinetic,"
-            "T_internal_harmonic,T_internal_mean,pressure,momentum_x,momentum_y,momentum_z\n";
-  std::vector<double> s_tk, s_ti, s_tm, s_p, s_e;
-  const double vmax = 5 * std::sqrt(p.temperature / p.mass);
-  Histogram hv(-vmax, vmax, p.histogram_bins);
-  Histogram hu(0, 3 * p.cv * p.temperature, p.histogram_bins);
-  const double r_max = model.rc;
-  std::vector<double> rdf(p.rdf_bins, 0.0);
-  long rdf_samples = 0;
-  // VACF / MSD of up to 1000 tracked particles (ids 0..), over a window of W samples.
-  const std::size_t tracked = std::min<std::size_t>(n, 1000);
-  const int window = p.correlation_samples;
-  std::vector<std::vector<double>> vbuf, xbuf; // ring buffers [sample][tracked*D]
-  std::vector<double> vacf(window, 0.0), msd(window, 0.0), corr_count(window, 0.0);
-  std::vector<double> unwrapped(tracked * D), last_wrapped(tracked * D);
-  std::vector<std::size_t> index_of(n);
-  long sample_count = 0;
+  ParticleRun(const M& model, const ParticleParameters& p)
+      : model_(model), p_(p), sim_(model, p), n_(sim_.state().size()),
+        hv_(-5 * std::sqrt(p.temperature / p.mass), 5 * std::sqrt(p.temperature / p.mass),
+            p.histogram_bins),
+        hu_(0, 3 * p.cv * p.temperature, p.histogram_bins), rdf_(p.rdf_bins, 0.0),
+        tracked_(std::min<std::size_t>(n_, 1000)), vacf_(p.correlation_samples, 0.0),
+        msd_(p.correlation_samples, 0.0), corr_count_(p.correlation_samples, 0.0),
+        unwrapped_(tracked_ * D), last_wrapped_(tracked_ * D), index_of_(n_),
+        total_steps_(p.equilibration_steps + p.steps),
+        fields_(box3(), p.bins, p.blocks, sampled_rows(), p.mass, p.cv) {
+    volume_ = 1;
+    for (int d = 0; d < D; ++d) volume_ *= p.box[d];
+    e0_ = sim_.total_energy();
+    thermo_ = "# particle thermo: one row per sample. Units: m = k = rc = T0 = 1 (energies in k "
+              "T0, time in tau)\n"
+              "step,time,sampled,E_total,E_kinetic,E_internal,E_potential,T_kinetic,"
+              "T_internal_harmonic,T_internal_mean,pressure,momentum_x,momentum_y,momentum_z\n";
+    if (!p.heat_slabs.empty()) { // 0.5 rc bins along the slab direction
+      std::array<int, 3> bins{{1, 1, 1}};
+      const int dir = p.heat_slabs[0].direction;
+      bins[dir] = std::max(4, static_cast<int>(std::lround(p.box[dir] / 0.5)));
+      slab_profile_ =
+          std::make_unique<FieldSampler<D>>(box3(), bins, p.blocks, sampled_rows(), p.mass, p.cv);
+    }
+    if constexpr (M::Heat::active)
+      for (int d = 0; d < D; ++d) conduction_[d].assign(n_, 0.0);
+  }
 
-  const long total_steps = p.equilibration_steps + p.steps;
-  long sampled_rows = 0;
-  for (long step = p.equilibration_steps + 1; step <= total_steps; ++step)
-    sampled_rows += step % p.sample_interval == 0 || step == total_steps;
-  std::array<double, 3> box3{{p.box[0], p.box[1], D == 3 ? p.box[2] : 1.0}};
-  FieldSampler<D> fields(box3, p.bins, p.blocks, sampled_rows, p.mass, p.cv);
-  std::unique_ptr<FieldSampler<D>> slab_profile;
-  if (!p.heat_slabs.empty()) { // 0.5 rc bins along the slab direction
-    std::array<int, 3> bins{{1, 1, 1}};
-    const int dir = p.heat_slabs[0].direction;
-    bins[dir] = std::max(4, static_cast<int>(std::lround(p.box[dir] / 0.5)));
-    slab_profile =
-        std::make_unique<FieldSampler<D>>(box3, bins, p.blocks, sampled_rows, p.mass, p.cv);
+  template <class A> void archive(A& a) {
+    auto s = a.nested("simulation");
+    sim_.archive(s);
+    a("step", step_), a("wall_seconds", wall_before_), a("e0", e0_), a("drift_max", drift_max_);
+    a("thermo", thermo_);
+    a("T_kinetic", s_tk_), a("T_internal", s_ti_), a("T_internal_mean", s_tm_);
+    a("pressure", s_p_), a("energy", s_e_);
+    a("hist_velocity", hv_.counts), a("hist_velocity_total", hv_.total);
+    a("hist_energy", hu_.counts), a("hist_energy_total", hu_.total);
+    a("rdf", rdf_), a("rdf_samples", rdf_samples_);
+    a("vbuf", vbuf_), a("xbuf", xbuf_), a("vacf", vacf_), a("msd", msd_);
+    a("corr_count", corr_count_), a("unwrapped", unwrapped_), a("last_wrapped", last_wrapped_);
+    a("sample_count", sample_count_), a("fields_taken", fields_taken_);
+    a("wall_last_momentum", wall_last_momentum_), a("wall_last_energy", wall_last_energy_);
+    a("wall_last_step", wall_last_step_);
+    a("wall_pressure", wall_pressure_), a("wall_heat_flux", wall_heat_flux_);
+    a("relax_time", relax_time_), a("relax_amplitude", relax_amplitude_);
+    auto f = a.nested("fields");
+    fields_.archive(f);
+    if (slab_profile_) {
+      auto sp = a.nested("slab_profile");
+      slab_profile_->archive(sp);
+    }
+    auto snaps = a.nested("snapshots");
+    archive_snapshots(snaps, out_.field_snapshots);
   }
-  long fields_taken = 0;
-  RunOutput out;
-  out.field_grid.dim = D;
-  for (int d = 0; d < D; ++d) {
-    out.field_grid.counts[d] = p.bins[d];
-    out.field_grid.spacing[d] = p.box[d] / p.bins[d];
+
+  RunOutput run(const RunControl& control) {
+    if (control.resume) {
+      LoadArchive a(*control.resume, "");
+      archive(a);
+    }
+    t0_ = clock::now() -
+          std::chrono::duration_cast<clock::duration>(std::chrono::duration<double>(wall_before_));
+    auto last_progress = clock::now(), last_checkpoint = clock::now();
+    while (step_ < total_steps_) {
+      sim_.step();
+      ++step_;
+      if (step_ % p_.sample_interval == 0 || step_ == total_steps_) sample();
+      if (control.progress && clock::now() - last_progress > std::chrono::seconds(2)) {
+        last_progress = clock::now();
+        progress_line();
+      }
+      const bool stop = control.stop_requested && control.stop_requested();
+      const bool periodic = control.checkpoint_every_seconds > 0 &&
+                            clock::now() - last_checkpoint >
+                                std::chrono::duration<double>(control.checkpoint_every_seconds);
+      if ((stop || periodic) && control.write_checkpoint && step_ < total_steps_) {
+        wall_before_ = elapsed();
+        io::Checkpoint c;
+        SaveArchive a(c, "");
+        archive(a);
+        control.write_checkpoint(c);
+        last_checkpoint = clock::now();
+        if (stop) {
+          if (control.progress) std::fprintf(stderr, "\n");
+          out_.interrupted = true;
+          out_.steps_done = step_;
+          return std::move(out_);
+        }
+      }
+    }
+    if (control.progress) std::fprintf(stderr, "\n");
+    finish();
+    out_.steps_done = step_;
+    return std::move(out_);
   }
-  auto last_progress = clock::now();
-  for (long step = 1; step <= total_steps; ++step) {
-    sim.step();
-    if (step % p.sample_interval != 0 && step != total_steps) continue;
-    const auto& s = sim.state();
-    const double k = sim.kinetic_energy(), u = sim.internal_energy(), pot = sim.potential_energy();
+
+private:
+  std::array<double, 3> box3() const { return {{p_.box[0], p_.box[1], D == 3 ? p_.box[2] : 1.0}}; }
+  long sampled_rows() const {
+    long rows = 0;
+    for (long step = p_.equilibration_steps + 1; step <= total_steps_; ++step)
+      rows += step % p_.sample_interval == 0 || step == total_steps_;
+    return rows;
+  }
+  double elapsed() const { return std::chrono::duration<double>(clock::now() - t0_).count(); }
+
+  void progress_line() const {
+    const double secs = elapsed();
+    const double rate = step_ / std::max(secs, 1e-9); // includes earlier parts of a restart
+    std::fprintf(stderr,
+                 "\rstep %ld/%ld  t = %.2f  %.0f steps/s  ETA %.0f s  T = %.4f  dE/E = %.1e   ",
+                 step_, total_steps_, step_ * p_.dt, rate, (total_steps_ - step_) / rate,
+                 last_t_kinetic_, drift_max_);
+  }
+
+  void sample() {
+    const auto& s = sim_.state();
+    const double k = sim_.kinetic_energy(), u = sim_.internal_energy(),
+                 pot = sim_.potential_energy();
     const double e = k + u + pot;
     double inflow = 0; // energy in through thermal walls: E(t) - E(0) - inflow is the error
-    for (const double q : sim.wall_energy_in()) inflow += q;
-    drift_max = std::max(drift_max, std::fabs(e - e0 - inflow) / std::fabs(e0));
-    const double t_kin = 2 * k / (D * (n - 1.0)); // total momentum is conserved: d(N-1) dof
+    for (const double q : sim_.wall_energy_in()) inflow += q;
+    drift_max_ = std::max(drift_max_, std::fabs(e - e0_ - inflow) / std::fabs(e0_));
+    const double t_kin = 2 * k / (D * (n_ - 1.0)); // total momentum is conserved: d(N-1) dof
+    last_t_kinetic_ = t_kin;
     double inv_theta = 0, mean_theta = 0;
-    for (const double ui : s.u) inv_theta += model.cv / ui, mean_theta += ui / model.cv;
-    const double t_int = s.u.empty() ? p.temperature : n / inv_theta;
-    mean_theta = s.u.empty() ? p.temperature : mean_theta / n;
-    // Virial pressure from the conservative force; g(r) from the same pass.
+    for (const double ui : s.u) inv_theta += model_.cv / ui, mean_theta += ui / model_.cv;
+    const double t_int = s.u.empty() ? p_.temperature : n_ / inv_theta;
+    mean_theta = s.u.empty() ? p_.temperature : mean_theta / n_;
+    const bool sampled = step_ > p_.equilibration_steps;
+    // One serial pass: virial pressure, g(r), and each particle's share of the conductive flux.
     double virial = 0;
-    const bool sampled = step > p.equilibration_steps;
-    sim.grid().for_each_pair_serial(s, model.rc,
-                                    [&](std::size_t i, std::size_t j, const double*, double r2) {
-                                      const double r = std::sqrt(r2);
-                                      if constexpr (M::Conservative::active) {
-                                        if (r < model.conservative.rc) {
-                                          double th_i = 1, th_j = 1, fc, phi;
-                                          if constexpr (M::has_energy)
-                                            th_i = s.u[i] / model.cv, th_j = s.u[j] / model.cv;
-                                          model.conservative.eval(r, th_i, th_j, fc, phi);
-                                          virial += r * fc; // r_ij . F^C_ij
-                                        }
-                                      }
-                                      if (sampled) {
-                                        const int b = static_cast<int>(r / r_max * rdf.size());
-                                        if (b < static_cast<int>(rdf.size())) rdf[b] += 1;
-                                      }
-                                    });
-    const double pressure = (2 * k + virial) / (D * volume); // virial theorem, 000:(3.9)
+    if constexpr (M::Heat::active)
+      if (sampled)
+        for (auto& c : conduction_) std::fill(c.begin(), c.end(), 0.0);
+    sim_.grid().for_each_pair_serial(
+        s, model_.rc, [&](std::size_t i, std::size_t j, const double* dx, double r2) {
+          const double r = std::sqrt(r2);
+          double th_i = 1, th_j = 1;
+          if constexpr (M::has_energy) th_i = s.u[i] / model_.cv, th_j = s.u[j] / model_.cv;
+          if constexpr (M::Conservative::active) {
+            if (r < model_.conservative.rc) {
+              double fc, phi;
+              model_.conservative.eval(r, th_i, th_j, fc, phi);
+              virial += r * fc; // r_ij . F^C_ij
+            }
+          }
+          if (!sampled) return;
+          const int b = static_cast<int>(r / model_.rc * rdf_.size());
+          if (b < static_cast<int>(rdf_.size())) rdf_[b] += 1;
+          if constexpr (M::Heat::active) {
+            if (r < model_.heat.w.rc) { // the mean heat rate into i: its flux runs from j to i
+              double rate, amplitude;
+              model_.heat.eval(r, th_i, th_j, rate, amplitude);
+              for (int d = 0; d < D; ++d) {
+                conduction_[d][i] += 0.5 * rate * dx[d]; // Irving-Kirkwood, half to each end
+                conduction_[d][j] += 0.5 * rate * dx[d];
+              }
+            }
+          }
+        });
+    const double pressure = (2 * k + virial) / (D * volume_); // virial theorem, 000:(3.9)
+    if (p_.has_walls()) wall_sample(sampled);
+    if (M::has_energy && p_.temperature_perturbation != 0) { // the relaxing mode's amplitude
+      double a = 0;
+      for (std::size_t i = 0; i < n_; ++i)
+        a += s.u[i] / model_.cv * std::sin(2 * M_PI * s.x[0][i] / p_.box[0]);
+      relax_time_.push_back(step_ * p_.dt), relax_amplitude_.push_back(2 * a / n_);
+    }
     std::array<double, 3> mom{0, 0, 0};
     for (int d = 0; d < D; ++d)
-      for (const double v : s.v[d]) mom[d] += model.mass * v;
+      for (const double v : s.v[d]) mom[d] += model_.mass * v;
     char row[512];
     std::snprintf(row, sizeof row,
                   "%ld,%.6f,%d,%.17g,%.17g,%.17g,%.17g,%.10g,%.10g,%.10g,%.10g,%.3e,%.3e,%.3e\n",
-                  step, step * p.dt, sampled ? 1 : 0, e, k, u, pot, t_kin, t_int, mean_theta,
+                  step_, step_ * p_.dt, sampled ? 1 : 0, e, k, u, pot, t_kin, t_int, mean_theta,
                   pressure, mom[0], mom[1], mom[2]);
-    thermo << row;
-    if (sampled) {
-      fields.sample(s);
-      ++fields_taken;
-      if (fields_taken == sampled_rows || fields_taken % std::max(1L, sampled_rows / 10) == 0) {
-        const double wall_now = std::chrono::duration<double>(clock::now() - t0).count();
-        out.field_snapshots.push_back(
-            snapshot(fields.result(), step * p.dt, wall_now, static_cast<long>(n) * step));
-      }
-      if (slab_profile) slab_profile->sample(s);
-      s_tk.push_back(t_kin), s_ti.push_back(t_int), s_tm.push_back(mean_theta);
-      s_p.push_back(pressure), s_e.push_back(e);
-      ++rdf_samples;
-      for (int d = 0; d < D; ++d)
-        for (const double v : s.v[d]) hv.add(v);
-      for (const double ui : s.u) hu.add(ui);
-      // correlations
-      for (std::size_t i = 0; i < n; ++i) index_of[s.id[i]] = i;
-      std::vector<double> vs(tracked * D), xs(tracked * D);
-      for (std::size_t t = 0; t < tracked; ++t) {
-        const std::size_t i = index_of[t];
-        for (int d = 0; d < D; ++d) {
-          vs[t * D + d] = s.v[d][i];
-          double dx = s.x[d][i] - last_wrapped[t * D + d];
-          if (sample_count > 0)
-            dx -= p.box[d] * std::nearbyint(dx / p.box[d]);
-          else
-            dx = 0, unwrapped[t * D + d] = s.x[d][i];
-          unwrapped[t * D + d] += dx;
-          last_wrapped[t * D + d] = s.x[d][i];
-          xs[t * D + d] = unwrapped[t * D + d];
-        }
-      }
-      vbuf.push_back(std::move(vs)), xbuf.push_back(std::move(xs));
-      if (static_cast<int>(vbuf.size()) > window)
-        vbuf.erase(vbuf.begin()), xbuf.erase(xbuf.begin());
-      const std::size_t last = vbuf.size() - 1;
-      for (std::size_t lag = 0; lag <= last; ++lag) {
-        const auto &v0 = vbuf[last - lag], &v1 = vbuf[last], &x0 = xbuf[last - lag],
-                   &x1 = xbuf[last];
-        double cv = 0, dr = 0;
-        for (std::size_t k2 = 0; k2 < tracked * D; ++k2) {
-          cv += v0[k2] * v1[k2];
-          dr += (x1[k2] - x0[k2]) * (x1[k2] - x0[k2]);
-        }
-        vacf[lag] += cv / tracked, msd[lag] += dr / tracked, corr_count[lag] += 1;
-      }
-      ++sample_count;
-    }
-    if (control.progress && clock::now() - last_progress > std::chrono::seconds(2)) {
-      last_progress = clock::now();
-      const double secs = std::chrono::duration<double>(clock::now() - t0).count();
-      const double rate = step / secs;
-      std::fprintf(
-          stderr, "\rstep %ld/%ld  t = %.2f  %.0f steps/s  ETA %.0f s  T = %.4f  dE/E = %.1e   ",
-          step, total_steps, step * p.dt, rate, (total_steps - step) / rate, t_kin, drift_max);
-    }
+    thermo_ += row;
+    if (!sampled) return;
+    const auto& potential = sim_.carried().potential;
+    fields_.sample(s, potential, conduction_);
+    if (slab_profile_) slab_profile_->sample(s, potential, conduction_);
+    ++fields_taken_;
+    const long rows = fields_.total_samples();
+    if (fields_taken_ == rows || fields_taken_ % std::max(1L, rows / 10) == 0)
+      out_.field_snapshots.push_back(
+          snapshot(fields_.result(), step_ * p_.dt, elapsed(), static_cast<long>(n_) * step_));
+    s_tk_.push_back(t_kin), s_ti_.push_back(t_int), s_tm_.push_back(mean_theta);
+    s_p_.push_back(pressure), s_e_.push_back(e);
+    ++rdf_samples_;
+    for (int d = 0; d < D; ++d)
+      for (const double v : s.v[d]) hv_.add(v);
+    for (const double ui : s.u) hu_.add(ui);
+    correlations();
   }
-  if (control.progress) std::fprintf(stderr, "\n");
-  const double wall = std::chrono::duration<double>(clock::now() - t0).count();
 
-  io::Json& j = out.summary;
-  j = io::Json::object();
-  j["N"] = static_cast<long>(n);
-  j["dim"] = D;
-  j["steps"] = p.steps;
-  j["equilibration_steps"] = p.equilibration_steps;
-  j["dt"] = p.dt;
-  j["integrator"] = to_string(p.integrator);
-  j["energy_offset"] = p.energy_offset;
-  j["wall_seconds"] = wall;
-  j["particle_steps_per_second"] = n * static_cast<double>(total_steps) / wall;
-  // |E(t) - E(0) - energy in through walls| / E(0): the integrator's energy error
-  j["energy_relative_drift_max"] = drift_max;
-  auto put = [&](const std::string& key, const std::vector<double>& series) {
-    const Estimate e = block_average(series, p.blocks);
-    j[key] = e.mean;
-    j[key + "_stderr"] = e.stderr_;
-  };
-  put("T_kinetic", s_tk);
-  put("T_internal", s_ti);
-  put("T_internal_mean_theta", s_tm);
-  put("pressure", s_p);
-  if (M::has_energy && !M::Conservative::active && !p.has_walls())
-    j["T_energy_equation_of_state"] = ideal_dpde_temperature(p, e0 / n); // 000:(3.21)
-  if (p.has_walls()) {
-    io::Json walls = io::Json::object();
-    const char* names[6] = {"x_lower", "x_upper", "y_lower", "y_upper", "z_lower", "z_upper"};
-    const double time = total_steps * p.dt;
+  // Per wall, over the interval since the last sample: pressure (momentum in per time and area)
+  // and heat flux density in.
+  void wall_sample(bool sampled) {
+    const double interval = (step_ - wall_last_step_) * p_.dt;
     for (int w = 0; w < 2 * D; ++w) {
-      if (!p.walls[w / 2].present) continue;
-      walls[names[w]]["energy_in"] = sim.wall_energy_in()[w];
-      walls[names[w]]["mean_heat_flow_in"] = sim.wall_energy_in()[w] / time; // energy per time
+      if (!p_.walls[w / 2].present) continue;
+      double area = 1;
+      for (int d = 0; d < D; ++d)
+        if (d != w / 2) area *= p_.box[d];
+      const double dp = sim_.wall_momentum_in()[w] - wall_last_momentum_[w];
+      const double dq = sim_.wall_energy_in()[w] - wall_last_energy_[w];
+      if (sampled) {
+        wall_pressure_[w].push_back(dp / (interval * area));
+        wall_heat_flux_[w].push_back(dq / (interval * area));
+      }
+      wall_last_momentum_[w] = sim_.wall_momentum_in()[w];
+      wall_last_energy_[w] = sim_.wall_energy_in()[w];
     }
-    j["walls"] = walls;
-    j["wall_reflections"] = sim.wall_crossings();
+    wall_last_step_ = step_;
   }
-  j["samples"] = static_cast<long>(s_tk.size());
-  j["blocks"] = p.blocks;
-  j["stability_hint"] = stability_hint(p);
 
-  std::ostringstream h;
-  h << "# histograms over sampled steps; velocity in sqrt(k T0/m), internal energy in k T0\n"
-       "quantity,bin_centre,probability_density\n";
-  for (int b = 0; b < p.histogram_bins; ++b)
-    h << "velocity_component," << hv.lo + (b + 0.5) * hv.width() << "," << hv.density(b) << "\n";
-  if (M::has_energy)
-    for (int b = 0; b < p.histogram_bins; ++b)
-      h << "internal_energy," << hu.lo + (b + 0.5) * hu.width() << "," << hu.density(b) << "\n";
-  out.histograms_csv = h.str();
-
-  std::ostringstream g;
-  g << "# pair distribution function g(r) for r < the largest cutoff; r in rc\nr,g\n";
-  const double dr = r_max / rdf.size();
-  for (std::size_t b = 0; b < rdf.size(); ++b) {
-    const double r0 = b * dr, r1 = r0 + dr;
-    const double shell =
-        D == 3 ? 4.0 / 3.0 * M_PI * (r1 * r1 * r1 - r0 * r0 * r0) : M_PI * (r1 * r1 - r0 * r0);
-    const double ideal = 0.5 * n * (n / volume) * shell * std::max<long>(rdf_samples, 1);
-    g << r0 + 0.5 * dr << "," << rdf[b] / ideal << "\n";
+  // VACF / MSD of up to 1000 tracked particles (ids 0..), over a window of samples.
+  void correlations() {
+    const auto& s = sim_.state();
+    const int window = p_.correlation_samples;
+    for (std::size_t i = 0; i < n_; ++i) index_of_[s.id[i]] = i;
+    std::vector<double> vs(tracked_ * D), xs(tracked_ * D);
+    for (std::size_t t = 0; t < tracked_; ++t) {
+      const std::size_t i = index_of_[t];
+      for (int d = 0; d < D; ++d) {
+        vs[t * D + d] = s.v[d][i];
+        double dx = s.x[d][i] - last_wrapped_[t * D + d];
+        if (sample_count_ > 0)
+          dx -= p_.box[d] * std::nearbyint(dx / p_.box[d]);
+        else
+          dx = 0, unwrapped_[t * D + d] = s.x[d][i];
+        unwrapped_[t * D + d] += dx;
+        last_wrapped_[t * D + d] = s.x[d][i];
+        xs[t * D + d] = unwrapped_[t * D + d];
+      }
+    }
+    vbuf_.push_back(std::move(vs)), xbuf_.push_back(std::move(xs));
+    if (static_cast<int>(vbuf_.size()) > window)
+      vbuf_.erase(vbuf_.begin()), xbuf_.erase(xbuf_.begin());
+    const std::size_t last = vbuf_.size() - 1;
+    for (std::size_t lag = 0; lag <= last; ++lag) {
+      const auto &v0 = vbuf_[last - lag], &v1 = vbuf_[last], &x0 = xbuf_[last - lag],
+                 &x1 = xbuf_[last];
+      double cv = 0, dr = 0;
+      for (std::size_t k = 0; k < tracked_ * D; ++k) {
+        cv += v0[k] * v1[k];
+        dr += (x1[k] - x0[k]) * (x1[k] - x0[k]);
+      }
+      vacf_[lag] += cv / tracked_, msd_[lag] += dr / tracked_, corr_count_[lag] += 1;
+    }
+    ++sample_count_;
   }
-  out.rdf_csv = g.str();
 
-  std::ostringstream c;
-  c << "# velocity autocorrelation <v(0).v(t)> (k T0/m) and mean-square displacement (rc^2), "
-       "averaged over time origins and "
-    << tracked << " particles\ntime,vacf,msd\n";
-  for (int lag = 0; lag < window; ++lag)
-    if (corr_count[lag] > 0)
-      c << lag * p.sample_interval * p.dt << "," << vacf[lag] / corr_count[lag] << ","
-        << msd[lag] / corr_count[lag] << "\n";
-  out.correlations_csv = c.str();
-  out.thermo_csv = thermo.str();
-  out.fields_csv = fields.result().csv();
-  if (slab_profile) {
-    const BinnedFields profile = slab_profile->result();
-    out.slab_profile_csv = profile.csv();
-    if (M::has_energy && p.heat_slabs.size() == 2) j["heat_slabs"] = slab_fit(p, profile);
+  void finish() {
+    const double wall = elapsed();
+    io::Json& j = out_.summary;
+    j = io::Json::object();
+    j["N"] = static_cast<long>(n_);
+    j["dim"] = D;
+    j["steps"] = p_.steps;
+    j["equilibration_steps"] = p_.equilibration_steps;
+    j["dt"] = p_.dt;
+    j["integrator"] = to_string(p_.integrator);
+    j["energy_offset"] = p_.energy_offset;
+    j["wall_seconds"] = wall;
+    j["particle_steps_per_second"] = n_ * static_cast<double>(total_steps_) / wall;
+    // |E(t) - E(0) - energy in through walls| / E(0): the integrator's energy error
+    j["energy_relative_drift_max"] = drift_max_;
+    auto put = [&](const std::string& key, const std::vector<double>& series) {
+      const Estimate e = block_average(series, p_.blocks);
+      j[key] = e.mean;
+      j[key + "_stderr"] = e.stderr_;
+    };
+    put("T_kinetic", s_tk_);
+    put("T_internal", s_ti_);
+    put("T_internal_mean_theta", s_tm_);
+    put("pressure", s_p_);
+    if (M::has_energy && !M::Conservative::active && !p_.has_walls())
+      j["T_energy_equation_of_state"] = ideal_dpde_temperature(p_, e0_ / n_); // 000:(3.21)
+    if (p_.has_walls()) {
+      io::Json walls = io::Json::object();
+      const char* names[6] = {"x_lower", "x_upper", "y_lower", "y_upper", "z_lower", "z_upper"};
+      const double time = total_steps_ * p_.dt;
+      for (int w = 0; w < 2 * D; ++w) {
+        if (!p_.walls[w / 2].present) continue;
+        walls[names[w]]["energy_in"] = sim_.wall_energy_in()[w];
+        walls[names[w]]["mean_heat_flow_in"] = sim_.wall_energy_in()[w] / time; // per time
+        // Over the sampled steps, with block errors:
+        const Estimate pw = block_average(wall_pressure_[w], p_.blocks);
+        const Estimate jw = block_average(wall_heat_flux_[w], p_.blocks);
+        walls[names[w]]["pressure"] = pw.mean, walls[names[w]]["pressure_stderr"] = pw.stderr_;
+        walls[names[w]]["heat_flux_in"] = jw.mean;
+        walls[names[w]]["heat_flux_in_stderr"] = jw.stderr_;
+      }
+      j["walls"] = walls;
+      j["wall_reflections"] = sim_.wall_crossings();
+    }
+    j["samples"] = static_cast<long>(s_tk_.size());
+    j["blocks"] = p_.blocks;
+    j["stability_hint"] = stability_hint(p_);
+
+    std::ostringstream h;
+    h << "# histograms over sampled steps; velocity in sqrt(k T0/m), internal energy in k T0\n"
+         "quantity,bin_centre,probability_density\n";
+    for (int b = 0; b < p_.histogram_bins; ++b)
+      h << "velocity_component," << hv_.lo + (b + 0.5) * hv_.width() << "," << hv_.density(b)
+        << "\n";
+    if (M::has_energy)
+      for (int b = 0; b < p_.histogram_bins; ++b)
+        h << "internal_energy," << hu_.lo + (b + 0.5) * hu_.width() << "," << hu_.density(b)
+          << "\n";
+    out_.histograms_csv = h.str();
+
+    std::ostringstream g;
+    g << "# pair distribution function g(r) for r < the largest cutoff; r in rc\nr,g\n";
+    const double dr = model_.rc / rdf_.size();
+    for (std::size_t b = 0; b < rdf_.size(); ++b) {
+      const double r0 = b * dr, r1 = r0 + dr;
+      const double shell =
+          D == 3 ? 4.0 / 3.0 * M_PI * (r1 * r1 * r1 - r0 * r0 * r0) : M_PI * (r1 * r1 - r0 * r0);
+      const double ideal = 0.5 * n_ * (n_ / volume_) * shell * std::max<long>(rdf_samples_, 1);
+      g << r0 + 0.5 * dr << "," << rdf_[b] / ideal << "\n";
+    }
+    out_.rdf_csv = g.str();
+
+    std::ostringstream c;
+    c << "# velocity autocorrelation <v(0).v(t)> (k T0/m) and mean-square displacement (rc^2), "
+         "averaged over time origins and "
+      << tracked_ << " particles\ntime,vacf,msd\n";
+    for (int lag = 0; lag < p_.correlation_samples; ++lag)
+      if (corr_count_[lag] > 0)
+        c << lag * p_.sample_interval * p_.dt << "," << vacf_[lag] / corr_count_[lag] << ","
+          << msd_[lag] / corr_count_[lag] << "\n";
+    out_.correlations_csv = c.str();
+    out_.thermo_csv = thermo_;
+    if (!relax_time_.empty()) {
+      j["relaxation"] = relaxation_fit(p_, relax_time_, relax_amplitude_);
+      std::ostringstream r;
+      r << "# amplitude of the initial temperature mode: (2/N) sum theta_i sin(2 pi x_i / Lx)\n"
+           "time,amplitude\n";
+      for (std::size_t k = 0; k < relax_time_.size(); ++k)
+        r << relax_time_[k] << "," << relax_amplitude_[k] << "\n";
+      out_.relaxation_csv = r.str();
+    }
+    out_.fields_csv = fields_.result().csv();
+    out_.field_grid.dim = D;
+    for (int d = 0; d < D; ++d) {
+      out_.field_grid.counts[d] = p_.bins[d];
+      out_.field_grid.spacing[d] = p_.box[d] / p_.bins[d];
+    }
+    if (p_.has_walls()) {
+      const io::Json profile = wall_profile_fit(p_, fields_.result());
+      if (!profile.is_null()) j["wall_profile"] = profile;
+    }
+    if (slab_profile_) {
+      const BinnedFields profile = slab_profile_->result();
+      out_.slab_profile_csv = profile.csv();
+      if (M::has_energy && p_.heat_slabs.size() == 2) {
+        j["heat_slabs"] = slab_fit(p_, profile);
+        const double j0 = j["heat_slabs"]["J0"].number();
+        j["heat_slabs"]["flux_decomposition"] = flux_at_planes(p_, profile, j0);
+      }
+    }
   }
-  return out;
+
+  M model_;
+  ParticleParameters p_;
+  Simulation<M> sim_;
+  std::size_t n_;
+  double volume_ = 1, e0_ = 0, drift_max_ = 0, last_t_kinetic_ = 0, wall_before_ = 0;
+  std::string thermo_;
+  std::vector<double> s_tk_, s_ti_, s_tm_, s_p_, s_e_;
+  Histogram hv_, hu_;
+  std::vector<double> rdf_;
+  long rdf_samples_ = 0;
+  std::size_t tracked_;
+  std::vector<std::vector<double>> vbuf_, xbuf_; // ring buffers [sample][tracked * D]
+  std::vector<double> vacf_, msd_, corr_count_, unwrapped_, last_wrapped_;
+  std::vector<std::size_t> index_of_;
+  long sample_count_ = 0, fields_taken_ = 0, step_ = 0, total_steps_;
+  FieldSampler<D> fields_;
+  std::unique_ptr<FieldSampler<D>> slab_profile_;
+  std::array<std::vector<double>, D> conduction_; // per particle, at the current sample
+  std::array<double, 6> wall_last_momentum_{}, wall_last_energy_{};
+  long wall_last_step_ = 0;
+  std::vector<double> relax_time_, relax_amplitude_;
+  std::vector<std::vector<double>> wall_pressure_ = std::vector<std::vector<double>>(6),
+                                   wall_heat_flux_ = std::vector<std::vector<double>>(6);
+  clock::time_point t0_;
+  RunOutput out_;
+};
+
+template <class M>
+RunOutput drive(const M& model, const ParticleParameters& p, const RunControl& control) {
+  return ParticleRun<M>(model, p).run(control);
 }
 
 // ---- resolving the case into a compiled combination (the only place that branches on physics)

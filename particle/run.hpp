@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "io/checkpoint.hpp"
 #include "io/field_file.hpp"
 #include "io/json.hpp"
 #include "particle/parameters.hpp"
@@ -26,12 +27,20 @@ struct RunOutput {
   std::string correlations_csv; // VACF and MSD
   std::string fields_csv;       // binned fields on the scene's bins, with block errors
   std::string slab_profile_csv; // heat-slab scenes: the profile along the slab direction
+  std::string relaxation_csv;   // thermal relaxation scenes: the mode amplitude over time
   io::Grid field_grid;          // the scene's bins
   std::vector<io::Snapshot> field_snapshots; // cumulative averages at a sequence of times
+  bool interrupted = false; // stopped early: a checkpoint was written, the rest is empty
+  long steps_done = 0;
 };
 
 struct RunControl {
   bool progress = false; // a progress line on stderr (terminal only)
+  // Polled after every step; true: write a checkpoint and return (RunOutput::interrupted).
+  std::function<bool()> stop_requested;
+  std::function<void(const io::Checkpoint&)> write_checkpoint;
+  double checkpoint_every_seconds = 0;    // also write one this often (wall clock; 0: never)
+  const io::Checkpoint* resume = nullptr; // continue from this checkpoint (bitwise)
 };
 
 RunOutput run_particles(const ParticleParameters& p, const RunControl& control = {});

@@ -48,13 +48,31 @@ public:
   const State<D>& state() const { return state_; }
   State<D>& state() { return state_; }
   const CellGrid<D>& grid() const { return grid_; }
+  const Carried<D>& carried() const { return carried_; }
   const M& model() const { return model_; }
   // Energy that entered the fluid through each wall (index 2 d + side) since the start.
   const std::array<double, 6>& wall_energy_in() const { return wall_energy_in_; }
   long wall_crossings() const { return crossings_; } // particles reflected back into the box
+  // Momentum along each wall's inward normal given to the fluid since the start (repulsion,
+  // friction and noise, reflections): its rate per area is the pressure on the wall.
+  const std::array<double, 6>& wall_momentum_in() const { return wall_momentum_in_; }
   // Re-sorts after the state was changed from outside (tests permute it; restart loads it).
   void resort() { grid_.sort(state_, carried_); }
   void prepare(); // forces at the current state (call after changing the state)
+
+  // Everything a restart needs, listed once (particle/archive.hpp). Scratch arrays are not in
+  // it: each step rebuilds them before use.
+  template <class A> void archive(A& a) {
+    a("x", state_.x), a("v", state_.v), a("u", state_.u), a("id", state_.id);
+    a("force", carried_.f), a("heat_rate", carried_.q), a("potential", carried_.potential);
+    a("step", step_), a("wall_energy_in", wall_energy_in_), a("wall_crossings", crossings_);
+    a("wall_momentum_in", wall_momentum_in_);
+    if constexpr (A::loading) {
+      if (state_.id.size() != carried_.q.size() || state_.x[0].size() != state_.id.size())
+        throw std::invalid_argument("checkpoint: particle arrays of different lengths");
+      grid_.sort(state_, carried_); // already in (cell, id) order: rebuilds the cell index only
+    }
+  }
 
 private:
   struct PairForce {
@@ -94,7 +112,7 @@ private:
   bool has_external_ = false; // walls or gravity: a per-particle pass, only if present
   typename M::Friction wall_friction_;
   typename M::Heat wall_heat_;
-  std::array<double, 6> wall_energy_in_{};
+  std::array<double, 6> wall_energy_in_{}, wall_momentum_in_{};
   long crossings_ = 0;
 };
 

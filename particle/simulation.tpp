@@ -50,7 +50,13 @@ Simulation<M>::Simulation(const M& model, const ParticleParameters& p)
   }
   for (int d = 0; d < D; ++d)
     for (auto& v : state_.v[d]) v -= mean[d];
-  if constexpr (M::has_energy) state_.u.assign(n, model_.cv * p.temperature); // theta_i = T
+  if constexpr (M::has_energy) {
+    state_.u.assign(n, model_.cv * p.temperature); // theta_i = T
+    if (p.temperature_perturbation != 0)           // the thermal relaxation scene's initial mode
+      for (std::size_t i = 0; i < n; ++i)
+        state_.u[i] *=
+            1 + p.temperature_perturbation * std::sin(2 * M_PI * state_.x[0][i] / p.box[0]);
+  }
   carried_.q.assign(n, 0.0);
   carried_.potential.assign(n, 0.0);
   grid_.sort(state_, carried_);
@@ -198,6 +204,7 @@ template <class M> void Simulation<M>::external_forces() {
         if (h >= range) continue;
         const double c = 1 - h * inv_range;
         f[i] += side ? -a * c : a * c;
+        wall_momentum_in_[2 * d + side] += a * c * dt_; // this force acts for one step
         carried_.potential[i] += 0.5 * a * range * c * c;
       }
     }
@@ -254,7 +261,9 @@ template <class M> void Simulation<M>::wall_sweep(const PairNoise& noise) {
         }
         double w, sqrt_w;
         wall_friction_.w.eval(h, w, sqrt_w);
+        const double v_normal = state_.v[d][i];
         double dk = wall_s1(state_.v[d][i], w, sqrt_w, th_i, th_wall, g[0]);
+        wall_momentum_in_[index] += (side ? -1 : 1) * model_.mass * (state_.v[d][i] - v_normal);
         if (wall.no_slip) {
           int k = 1;
           for (int t = 0; t < D; ++t)
@@ -281,6 +290,8 @@ template <class M> void Simulation<M>::reflect_at_walls() {
     auto& x = state_.x[d];
     for (std::size_t i = 0; i < state_.size(); ++i) {
       if (x[i] >= 0 && x[i] <= length) continue;
+      const int side = x[i] < 0 ? 0 : 1;
+      wall_momentum_in_[2 * d + side] += 2 * model_.mass * std::fabs(state_.v[d][i]);
       x[i] = x[i] < 0 ? -x[i] : 2 * length - x[i];
       ++crossings_;
       if (wall.no_slip)

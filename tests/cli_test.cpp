@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
 #include <sys/wait.h>
 
@@ -118,4 +119,45 @@ TEST(Cli, PrintParametersDocumentsEveryKeyAndIsItselfAValidCase) {
   fs::create_directories(dir);
   std::ofstream(dir / "defaults.prm") << r.output;
   EXPECT_EQ(run("check-case " + (dir / "defaults.prm").string()).code, 0);
+}
+
+// A run stopped by the wall-time limit or a signal writes a checkpoint and exits with 5;
+// --restart continues it to byte-identical outputs; a changed case cannot continue it.
+TEST(Cli, InterruptedRunRestartsToIdenticalOutputs) {
+  const std::string c = std::string(TWINFLOW_SOURCE_DIR) + "/cases/heated_cavity_2d.prm";
+  const std::string size =
+      " --set 'Particle/Equilibration steps=500' --set 'Particle/Steps=2500' --threads 1";
+  const fs::path whole = fresh_dir("whole"), parts = fresh_dir("parts");
+  ASSERT_EQ(run("particle " + c + " --out " + whole.string() + size).code, 0);
+
+  EXPECT_EQ(run("particle " + c + " --out " + parts.string() + size + " --restart").code, 2)
+      << "nothing to restart";
+  const Result stopped =
+      run("particle " + c + " --out " + parts.string() + size + " --wall-time 0.5");
+  ASSERT_EQ(stopped.code, 5) << stopped.output;
+  EXPECT_NE(stopped.output.find("--restart"), std::string::npos);
+  ASSERT_TRUE(fs::exists(parts / "particle" / "checkpoint.twfc"));
+  const Result changed =
+      run("particle " + c + " --out " + parts.string() + size + " --seed 99 --restart");
+  EXPECT_EQ(changed.code, 2);
+  EXPECT_NE(changed.output.find("other case parameters"), std::string::npos) << changed.output;
+  const Result resumed = run("particle " + c + " --out " + parts.string() + size + " --restart");
+  ASSERT_EQ(resumed.code, 0) << resumed.output;
+  EXPECT_FALSE(fs::exists(parts / "particle" / "checkpoint.twfc"));
+  for (const char* f : {"thermo.csv", "fields.csv", "histograms.csv", "rdf.csv"}) {
+    std::ifstream a(whole / "particle" / f), b(parts / "particle" / f);
+    std::stringstream sa, sb;
+    sa << a.rdbuf(), sb << b.rdbuf();
+    EXPECT_EQ(sa.str(), sb.str()) << f;
+    EXPECT_FALSE(sa.str().empty()) << f;
+  }
+
+  // SIGTERM: the same clean stop (sent once the run has created its folder).
+  const fs::path killed = fresh_dir("killed");
+  const Result term = run("particle " + c + " --out " + killed.string() +
+                          " --threads 1 2>&1 & pid=$!; until [ -d " + killed.string() +
+                          "/particle ]; do sleep 0.1; done; sleep 0.3; kill -TERM $pid; wait $pid");
+  EXPECT_EQ(term.code, 5) << term.output;
+  EXPECT_NE(term.output.find("interrupted by a signal"), std::string::npos) << term.output;
+  EXPECT_TRUE(fs::exists(killed / "particle" / "checkpoint.twfc"));
 }

@@ -108,6 +108,44 @@ double rayleigh(const Estimates& e, double gravity, double delta_t, double heigh
          (e.kinematic_viscosity * e.diffusivity); // physics.md
 }
 
+io::Json convection_numbers(const particle::ParticleParameters& p, double max_speed) {
+  double g = 0;
+  int up = -1;
+  for (int d = 0; d < p.dim; ++d)
+    if (std::fabs(p.gravity[d]) > g) g = std::fabs(p.gravity[d]), up = d;
+  int across = -1;
+  for (int d = 0; d < p.dim; ++d) {
+    const auto& w = p.walls[d];
+    if (w.present && w.thermal[0] && w.thermal[1] && w.temperature[0] != w.temperature[1])
+      across = d;
+  }
+  if (up < 0 || across < 0) return io::Json();
+  const auto& w = p.walls[across];
+  const double t_mean = 0.5 * (w.temperature[0] + w.temperature[1]);
+  const double dt = std::fabs(w.temperature[0] - w.temperature[1]);
+  const Estimates e = estimate(p, t_mean, PairDistribution::ideal());
+  // Isothermal sound speed dp/drho: ideal gas k T / m, plus Groot-Warren's 2 * 0.101 a0 rho for
+  // a constant a0 repulsion (3D; an estimate elsewhere).
+  double c2 = t_mean / p.mass;
+  if (p.conservative != particle::ConservativeForce::None)
+    c2 += 2 * 0.101 * p.a0 * p.density / p.mass;
+  const double length = p.box[across], height = p.box[up];
+  io::Json j = io::Json::object();
+  j["mean_wall_temperature"] = t_mean;
+  j["delta_T"] = dt;
+  j["delta_T_over_T"] = dt / t_mean;
+  j["alpha_delta_T"] = e.expansion * dt;
+  j["stratification_g_H_over_c2"] = g * height / c2; // physics.md
+  j["sound_speed"] = std::sqrt(c2);
+  j["rayleigh"] = rayleigh(e, g, dt, length); // on the distance between the thermal walls
+  j["prandtl"] = e.prandtl;
+  const double free_fall = std::sqrt(g * e.expansion * dt * length);
+  j["mach_free_fall"] = free_fall / std::sqrt(c2);
+  if (max_speed > 0) j["mach_measured"] = max_speed / std::sqrt(c2);
+  j["note"] = "estimates at the mean wall temperature with g(r) = 1; alpha = 1/T (ideal gas)";
+  return j;
+}
+
 io::Json Estimates::json() const {
   io::Json j = io::Json::object();
   j["temperature"] = temperature;

@@ -48,4 +48,10 @@ Estimates estimate(const particle::ParticleParameters& p, double temperature,
 // Ra = g alpha dT H^3 / (nu chi).
 double rayleigh(const Estimates& e, double gravity, double delta_t, double height);
 
+// A convection scene's dimensionless numbers from the estimates at the mean wall temperature
+// (physics.md, "What a convection scene costs"): stratification g H / c^2, dT/T, Ra, Pr and a
+// free-fall Mach number. Null when the scene has no gravity or no pair of thermal walls at
+// different temperatures. max_speed > 0 adds the Mach number of that measured speed.
+io::Json convection_numbers(const particle::ParticleParameters& p, double max_speed = 0);
+
 } // namespace twinflow::transport

@@ -31,6 +31,7 @@ struct SceneParameters {
   std::array<double, 3> box{{20, 10, 10}};
   double density = 3.0;
   double temperature = 1.0;
+  double temperature_perturbation = 0; // relative amplitude of sin(2 pi x / Lx) at the start
   std::array<double, 3> gravity{{0, 0, 0}};
   std::array<DirectionBoundary, 3> boundary;
   std::vector<HeatSlab> heat_slabs;   // hot then cold

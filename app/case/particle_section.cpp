@@ -103,6 +103,7 @@ ParticleParameters resolve_particle(const Registry& r, const SceneParameters& sc
   p.box = scene.box;
   p.density = scene.density;
   p.temperature = scene.temperature;
+  p.temperature_perturbation = scene.temperature_perturbation;
   const std::string s = "Particle/";
   const std::string integrator = r.get(s + "Integrator");
   p.integrator = integrator == "euler"      ? Integrator::Euler

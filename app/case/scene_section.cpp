@@ -20,6 +20,10 @@ void declare_scene(Registry& r) {
   r.declare("Scene/Temperature", "1", Double(),
             "Initial temperature T (units of T0), > 0; the fixed temperature of isothermal DPD.",
             kPositive);
+  r.declare("Scene/Temperature perturbation", "0", Double(0, 0.9),
+            "Relative amplitude A of an initial temperature mode T (1 + A sin(2 pi x / Lx)) (the "
+            "thermal relaxation scene; its decay gives chi and kappa); 0: uniform.",
+            "0 <= A <= 0.9");
   r.declare("Scene/Gravity", "0, 0, 0", List(Double(), 2, 3),
             "Gravitational acceleration vector g (force m g on every particle).");
   r.declare("Scene/Field bins", "10", List(Integer(1, 100000), 1, 3),
@@ -64,6 +68,7 @@ SceneParameters resolve_scene(const Registry& r) {
   r.require(s.density > 0, "Scene/Density", kPositive);
   s.temperature = r.get_double("Scene/Temperature");
   r.require(s.temperature > 0, "Scene/Temperature", kPositive);
+  s.temperature_perturbation = r.get_double("Scene/Temperature perturbation");
   const auto g = r.get_doubles("Scene/Gravity");
   for (std::size_t d = 0; d < g.size(); ++d) s.gravity[d] = g[d];
   for (int d = 0; d < 3; ++d) {

@@ -1,0 +1,85 @@
+// Checkpoint and restart: a run stopped (at any step, more than once) and continued from its
+// checkpoint gives byte-identical time series, fields and histograms to an uninterrupted run.
+#include <gtest/gtest.h>
+
+#include <optional>
+
+#include "helpers.hpp"
+#include "particle/run.hpp"
+
+using namespace twinflow::particle;
+using twinflow::io::Checkpoint;
+
+namespace {
+
+// Runs p, stopping after each step in `stops` and continuing from the checkpoint written then
+// (through its serialised bytes, as a file would hold them).
+RunOutput run_with_stops(const ParticleParameters& p, const std::vector<long>& stops) {
+  std::optional<Checkpoint> saved;
+  std::size_t next = 0;
+  long steps = 0;
+  for (;;) {
+    RunControl control;
+    std::optional<Checkpoint> resumed = saved;
+    control.resume = resumed ? &*resumed : nullptr;
+    control.stop_requested = [&] { return next < stops.size() && ++steps == stops[next]; };
+    control.write_checkpoint = [&](const Checkpoint& c) {
+      saved = Checkpoint::deserialize(c.serialize(), "test");
+    };
+    RunOutput out = run_particles(p, control);
+    if (!out.interrupted) return out;
+    EXPECT_EQ(out.steps_done, stops[next]);
+    ++next;
+  }
+}
+
+void expect_identical(const RunOutput& a, const RunOutput& b) {
+  EXPECT_EQ(a.thermo_csv, b.thermo_csv);
+  EXPECT_EQ(a.fields_csv, b.fields_csv);
+  EXPECT_EQ(a.slab_profile_csv, b.slab_profile_csv);
+  EXPECT_EQ(a.histograms_csv, b.histograms_csv);
+  EXPECT_EQ(a.rdf_csv, b.rdf_csv);
+  EXPECT_EQ(a.correlations_csv, b.correlations_csv);
+  ASSERT_EQ(a.field_snapshots.size(), b.field_snapshots.size());
+  for (std::size_t k = 0; k < a.field_snapshots.size(); ++k) {
+    const auto &sa = a.field_snapshots[k], &sb = b.field_snapshots[k];
+    EXPECT_EQ(sa.time, sb.time);
+    EXPECT_EQ(sa.particle_steps, sb.particle_steps);
+    ASSERT_EQ(sa.fields.size(), sb.fields.size());
+    for (std::size_t f = 0; f < sa.fields.size(); ++f) {
+      EXPECT_EQ(sa.fields[f].values, sb.fields[f].values) << sa.fields[f].name;
+      EXPECT_EQ(sa.fields[f].standard_error, sb.fields[f].standard_error) << sa.fields[f].name;
+    }
+  }
+  for (const char* key : {"energy_relative_drift_max", "T_kinetic", "T_kinetic_stderr",
+                          "T_internal", "pressure", "pressure_stderr"})
+    EXPECT_EQ(a.summary.find(key)->number(), b.summary.find(key)->number()) << key;
+}
+
+} // namespace
+
+// Walls (thermal and adiabatic, no-slip), gravity and 2D bins: the heated cavity's machinery.
+TEST(Restart, CavityContinuesBitwise) {
+  ParticleParameters p = twinflow::particle::testing::ideal(2, Integrator::Shardlow, 10);
+  p.box = {{8, 8, 1}};
+  p.walls[0] = WallPair{true, {{true, true}}, {{1.5, 0.5}}, true};
+  p.walls[1] = WallPair{true, {{false, false}}, {{1, 1}}, true};
+  p.gravity = {{0, -0.05, 0}};
+  p.bins = {{4, 4, 1}};
+  p.equilibration_steps = 60, p.steps = 300, p.sample_interval = 7, p.blocks = 4;
+  p.correlation_samples = 10;
+  const RunOutput whole = run_particles(p);
+  expect_identical(whole, run_with_stops(p, {1, 59, 137, 138, 299}));
+}
+
+// Heat slabs, conservative a_T forces, ec-verlet: the slab profile and the flux parts too.
+TEST(Restart, SlabContinuesBitwise) {
+  ParticleParameters p = twinflow::particle::testing::seed002(Integrator::EcVerlet, 0.01);
+  p.box = {{8, 4, 4}};
+  p.heat_slabs = {HeatSlab{0, 4, 4.5, 20}, HeatSlab{0, 0, 0.5, -20}};
+  p.bins = {{4, 1, 1}};
+  p.equilibration_steps = 20, p.steps = 100, p.sample_interval = 5, p.blocks = 4;
+  const RunOutput whole = run_particles(p);
+  ASSERT_FALSE(whole.slab_profile_csv.empty());
+  expect_identical(whole, run_with_stops(p, {33, 71}));
+}

@@ -55,6 +55,7 @@ struct ParticleParameters {
 
   double temperature = 1.0;            // initial temperature; the fixed T of isothermal DPD
   double temperature_perturbation = 0; // initial theta = T (1 + A sin(2 pi x / Lx))
+  double poiseuille_force = 0;         // +F along x where y < Ly/2, -F above (reverse Poiseuille)
   InitialVelocities initial_velocities = InitialVelocities::Maxwell;
 
   EnergyModel energy = EnergyModel::Dpde;

@@ -114,6 +114,55 @@ io::Json wall_profile_fit(const ParticleParameters& p, const BinnedFields& f) {
   return io::Json();
 }
 
+// Reverse Poiseuille flow: in each half the steady v_x(y) is a parabola with v'' = -n F / eta
+// (n F the force density). A weighted quadratic fit per half over the bins away from the two
+// planes where the force flips (the central 80% of each half); eta combined over both halves.
+io::Json poiseuille_fit(const ParticleParameters& p, const BinnedFields& f) {
+  io::Json j = io::Json::object();
+  if (f.bins[1] < 8) {
+    j["note"] = "needs at least 8 bins along y";
+    return j;
+  }
+  const double ly = p.box[1];
+  double wsum = 0, esum = 0;
+  const char* names[2] = {"lower_half", "upper_half"};
+  for (int half = 0; half < 2; ++half) {
+    const double lo = half * 0.5 * ly + 0.05 * ly, hi = (half + 1) * 0.5 * ly - 0.05 * ly;
+    double s[5] = {0, 0, 0, 0, 0}, t[3] = {0, 0, 0}; // sums of w y^k and w v y^k
+    for (int bin = 0; bin < f.bin_count(); ++bin) {
+      const double y = f.centre(bin, 1);
+      if (y < lo || y > hi) continue;
+      const double v = f.velocity.mean[bin * f.dim], se = f.velocity.stderr_[bin * f.dim];
+      const double w = se > 0 ? 1 / (se * se) : 1;
+      for (int k = 0; k < 5; ++k) s[k] += w * std::pow(y, k);
+      for (int k = 0; k < 3; ++k) t[k] += w * v * std::pow(y, k);
+    }
+    // Normal equations for v = c0 + c1 y + c2 y^2; c2 and its variance by Cramer's rule.
+    const double m[3][3] = {{s[0], s[1], s[2]}, {s[1], s[2], s[3]}, {s[2], s[3], s[4]}};
+    auto det3 = [](const double a[3][3]) {
+      return a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) -
+             a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
+             a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
+    };
+    const double det = det3(m);
+    double mc[3][3];
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) mc[r][c] = c == 2 ? t[r] : m[r][c];
+    const double c2 = det3(mc) / det;
+    const double c2_var = (s[0] * s[2] - s[1] * s[1]) / det; // (M^-1)_22
+    const double force = half == 0 ? p.poiseuille_force : -p.poiseuille_force;
+    const double eta = -p.density * force / (2 * c2); // v'' = 2 c2 = -n F / eta
+    const double eta_se = std::fabs(eta) * std::sqrt(c2_var) / std::fabs(c2);
+    io::Json h = io::Json::object();
+    h["curvature"] = 2 * c2, h["viscosity"] = eta, h["viscosity_stderr"] = eta_se;
+    j[names[half]] = h;
+    wsum += 1 / (eta_se * eta_se), esum += eta / (eta_se * eta_se);
+  }
+  j["viscosity"] = esum / wsum;
+  j["viscosity_stderr"] = 1 / std::sqrt(wsum);
+  return j;
+}
+
 // Seed 002 section III.B: linear fits of T_internal(x) in the central 60% of both halves between
 // the slabs; kappa = J0 / |dT/dx| with J0 = power / (2 A).
 io::Json slab_fit(const ParticleParameters& p, const BinnedFields& f) {
@@ -155,13 +204,13 @@ io::Json slab_fit(const ParticleParameters& p, const BinnedFields& f) {
   return out;
 }
 
-// Seed 004's relaxation method: the mode's amplitude decays as exp(-chi k^2 t). A least-squares
-// line through ln a(t) while a has fallen to between 80% and 10% of its start (after the sound
-// transients, before the noise floor). The slope's error is the residuals' standard error,
+// Seed 004's relaxation method: the heat mode's amplitude decays as exp(-chi k^2 t). A
+// least-squares line through ln a(t) while a has fallen to between 80% and 10% of its first
+// sample (after the fastest transients, before the noise floor). The slope's error is the residuals' standard error,
 // widened for their correlation in time by sqrt((1 + r1)/(1 - r1)) (r1: lag-1 autocorrelation).
 io::Json relaxation_fit(const ParticleParameters& p, const std::vector<double>& t,
                         const std::vector<double>& a) {
-  const double a0 = p.temperature * p.temperature_perturbation;
+  const double a0 = a.front();
   std::vector<double> x, y;
   for (std::size_t k = 0; k < t.size(); ++k) {
     if (a[k] > 0.8 * a0) continue;
@@ -436,10 +485,18 @@ private:
         });
     const double pressure = (2 * k + virial) / (D * volume_); // virial theorem, 000:(3.9)
     if (p_.has_walls()) wall_sample(sampled);
-    if (M::has_energy && p_.temperature_perturbation != 0) { // the relaxing mode's amplitude
+    if (M::has_energy && p_.temperature_perturbation != 0) {
+      // The heat mode: the Fourier amplitude of the heat density e - h n (h = (E + p V)/N, the
+      // enthalpy per particle), which decouples from sound and decays as exp(-chi k^2 t) in
+      // linear hydrodynamics; the temperature mode alone rides on sound waves.
+      const double h = e / n_ + pressure * volume_ / n_;
+      const auto& phi = sim_.carried().potential;
       double a = 0;
-      for (std::size_t i = 0; i < n_; ++i)
-        a += s.u[i] / model_.cv * std::sin(2 * M_PI * s.x[0][i] / p_.box[0]);
+      for (std::size_t i = 0; i < n_; ++i) {
+        double ei = s.u[i] + phi[i];
+        for (int d = 0; d < D; ++d) ei += 0.5 * model_.mass * s.v[d][i] * s.v[d][i];
+        a += (ei - h) * std::sin(2 * M_PI * s.x[0][i] / p_.box[0]);
+      }
       relax_time_.push_back(step_ * p_.dt), relax_amplitude_.push_back(2 * a / n_);
     }
     std::array<double, 3> mom{0, 0, 0};
@@ -612,7 +669,8 @@ private:
     if (!relax_time_.empty()) {
       j["relaxation"] = relaxation_fit(p_, relax_time_, relax_amplitude_);
       std::ostringstream r;
-      r << "# amplitude of the initial temperature mode: (2/N) sum theta_i sin(2 pi x_i / Lx)\n"
+      r << "# amplitude of the heat mode: (2/N) sum (e_i - h) sin(2 pi x_i / Lx), e_i = u_i + "
+           "K_i + phi_i, h = (E + p V)/N\n"
            "time,amplitude\n";
       for (std::size_t k = 0; k < relax_time_.size(); ++k)
         r << relax_time_[k] << "," << relax_amplitude_[k] << "\n";
@@ -624,6 +682,7 @@ private:
       out_.field_grid.counts[d] = p_.bins[d];
       out_.field_grid.spacing[d] = p_.box[d] / p_.bins[d];
     }
+    if (p_.poiseuille_force != 0) j["poiseuille"] = poiseuille_fit(p_, fields_.result());
     if (p_.has_walls()) {
       const io::Json profile = wall_profile_fit(p_, fields_.result());
       if (!profile.is_null()) j["wall_profile"] = profile;

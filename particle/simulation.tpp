@@ -19,6 +19,7 @@ Simulation<M>::Simulation(const M& model, const ParticleParameters& p)
       wall_friction_(model.friction), wall_heat_(model.heat) {
   has_external_ = p.has_walls();
   for (int d = 0; d < D; ++d) has_external_ |= p.gravity[d] != 0;
+  has_external_ |= p.poiseuille_force != 0;
   wall_friction_.w = Weight(p.wall_range, p.dissipation.exponent);
   if constexpr (M::Heat::active) wall_heat_.w = Weight(p.wall_range, p.heat_weight.exponent);
   dt_ = p.dt;
@@ -191,6 +192,10 @@ template <class M> void Simulation<M>::step() {
 template <class M> void Simulation<M>::external_forces() {
   const std::size_t n = state_.size();
   const double range = p_.wall_range, inv_range = 1 / range, a = p_.wall_a0;
+  if (p_.poiseuille_force != 0) { // no potential: its work heats the fluid
+    const double half = 0.5 * p_.box[1], force = p_.poiseuille_force;
+    for (std::size_t i = 0; i < n; ++i) carried_.f[0][i] += state_.x[1][i] < half ? force : -force;
+  }
   for (int d = 0; d < D; ++d) {
     auto& f = carried_.f[d];
     const auto& x = state_.x[d];

@@ -32,6 +32,7 @@ struct SceneParameters {
   double density = 3.0;
   double temperature = 1.0;
   double temperature_perturbation = 0; // relative amplitude of sin(2 pi x / Lx) at the start
+  double poiseuille_force = 0;         // reverse Poiseuille: +F x-hat for y < Ly/2, -F above
   std::array<double, 3> gravity{{0, 0, 0}};
   std::array<DirectionBoundary, 3> boundary;
   std::vector<HeatSlab> heat_slabs;   // hot then cold

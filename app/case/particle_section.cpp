@@ -104,6 +104,7 @@ ParticleParameters resolve_particle(const Registry& r, const SceneParameters& sc
   p.density = scene.density;
   p.temperature = scene.temperature;
   p.temperature_perturbation = scene.temperature_perturbation;
+  p.poiseuille_force = scene.poiseuille_force;
   const std::string s = "Particle/";
   const std::string integrator = r.get(s + "Integrator");
   p.integrator = integrator == "euler"      ? Integrator::Euler
@@ -172,6 +173,10 @@ ParticleParameters resolve_particle(const Registry& r, const SceneParameters& sc
     r.require(!(b.periodic && scene.gravity[d] != 0), "Scene/Gravity",
               "no component along a periodic direction (its potential would jump at the wrap)");
   }
+  r.require(p.poiseuille_force == 0 ||
+                (p.integrator != Integrator::Euler && p.dim >= 2 && !p.walls[1].present),
+            "Scene/Reverse Poiseuille force",
+            "0 with euler or walls along y (it needs a periodic y and ec-verlet or shardlow)");
   if (p.has_walls())
     r.require(p.integrator == Integrator::Shardlow, s + "Integrator",
               "shardlow in scenes with walls (walls in ec-verlet and euler are not implemented "

@@ -24,6 +24,10 @@ void declare_scene(Registry& r) {
             "Relative amplitude A of an initial temperature mode T (1 + A sin(2 pi x / Lx)) (the "
             "thermal relaxation scene; its decay gives chi and kappa); 0: uniform.",
             "0 <= A <= 0.9");
+  r.declare("Scene/Reverse Poiseuille force", "0", Double(),
+            "Body force F per particle along x, +F where y < Ly/2 and -F above (the reverse "
+            "Poiseuille flow that measures the viscosity from the two parabolic halves); 0: none. "
+            "The work it does heats the fluid.");
   r.declare("Scene/Gravity", "0, 0, 0", List(Double(), 2, 3),
             "Gravitational acceleration vector g (force m g on every particle).");
   r.declare("Scene/Field bins", "10", List(Integer(1, 100000), 1, 3),
@@ -69,6 +73,7 @@ SceneParameters resolve_scene(const Registry& r) {
   s.temperature = r.get_double("Scene/Temperature");
   r.require(s.temperature > 0, "Scene/Temperature", kPositive);
   s.temperature_perturbation = r.get_double("Scene/Temperature perturbation");
+  s.poiseuille_force = r.get_double("Scene/Reverse Poiseuille force");
   const auto g = r.get_doubles("Scene/Gravity");
   for (std::size_t d = 0; d < g.size(); ++d) s.gravity[d] = g[d];
   for (int d = 0; d < 3; ++d) {

@@ -23,8 +23,8 @@ inline std::string case_path(const std::string& name) {
 inline io::Json run_case(const std::string& name, const std::string& extra,
                          std::filesystem::path* dir_out = nullptr) {
   const auto dir = fresh_dir("scenes", name);
-  const Result r = run_twinflow("particle " + case_path(name) + " --out " + dir.string() + " " +
-                                extra);
+  const Result r =
+      run_twinflow("particle " + case_path(name) + " --out " + dir.string() + " " + extra);
   EXPECT_EQ(r.code, 0) << r.output;
   if (dir_out) *dir_out = dir;
   if (r.code != 0) return io::Json::object();

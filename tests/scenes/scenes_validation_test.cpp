@@ -22,8 +22,8 @@ TEST(ScenesValidation, WallsEquilibriumFullSize) {
   EXPECT_NEAR(u_star / (n * 1.1275), 1, 1e-3);
   const double scale = std::pow(2.0, 1.5); // P* = P 2^(3/2) / rho*, rho* = 1
   for (const char* wall : {"walls.x_lower", "walls.x_upper"})
-    std::cout << wall << ": P* = " << scale * number(r, std::string(wall) + ".pressure")
-              << " +- " << scale * number(r, std::string(wall) + ".pressure_stderr")
+    std::cout << wall << ": P* = " << scale * number(r, std::string(wall) + ".pressure") << " +- "
+              << scale * number(r, std::string(wall) + ".pressure_stderr")
               << " (paper 1.137 +- 0.005, ideal 1.1)\n";
 }
 
@@ -37,7 +37,8 @@ TEST(ScenesValidation, SlabConductionPeriodic) {
     EXPECT_NEAR(std::fabs(number(r, half)) / 0.018, 1, 0.05) << half;
   for (const auto& plane : r.find("heat_slabs")->find("flux_decomposition")->elements()) {
     std::cout << "x = " << plane.find("x")->number();
-    for (const auto& [key, value] : plane.items()) std::cout << "  " << key << " " << value.number();
+    for (const auto& [key, value] : plane.items())
+      std::cout << "  " << key << " " << value.number();
     std::cout << "\n";
   }
 }

@@ -103,7 +103,7 @@ struct ContinuumParameters {
   // Output
   std::array<unsigned, 3> bins{{10, 10, 10}};
   std::vector<std::array<double, 3>> probe_points;
-  int profile_samples = 401; // samples per mid-line before the maximum is refined
+  int profile_samples = 401; // samples per mid-line before zooming in on the maximum
   bool write_fields = true;  // HDF5 + XDMF
 
   // Derived material numbers

@@ -141,7 +141,7 @@ void declare_continuum(Registry& r) {
             "Points 'x, y[, z]' separated by ';' where all fields are recorded.");
   r.declare(o + "Write fields", "true", Bool(), "Write fields.h5 + fields.xdmf (ParaView).");
   r.declare(o + "Profile samples", "401", Integer(3, 1000000),
-            "Samples per mid-line before the velocity maximum is refined by golden section.");
+            "Samples per mid-line before the velocity maximum is refined (10x zooms).");
 }
 
 continuum::ContinuumParameters resolve_continuum(const Registry& r, const SceneParameters& scene) {

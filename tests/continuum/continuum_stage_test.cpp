@@ -105,12 +105,16 @@ TEST(ContinuumStage, TransientModeEndToEnd) {
 
 TEST(ContinuumStage, ModeIsParsedAndCheckedAgainstTheCase) {
   const fs::path out = fresh_dir("mode");
-  // The key is declared and shown with its allowed values.
+  // The key is parsed and shown resolved, with an initial temperature (transient only).
   const Result printed = run_twinflow("check-case " + kCase +
                                       " --set 'Continuum/Mode=transient'"
-                                      " --set 'Continuum/Time/End time=1'");
+                                      " --set 'Continuum/Time/End time=1'"
+                                      " --set 'Continuum/Initial temperature=0.5 + x / Lx'");
   EXPECT_EQ(printed.code, 0) << printed.output;
-  EXPECT_NE(printed.output.find("Mode"), std::string::npos) << printed.output;
+  const auto begin = printed.output.find("set Mode ");
+  ASSERT_NE(begin, std::string::npos) << printed.output;
+  const std::string line = printed.output.substr(begin, printed.output.find('\n', begin) - begin);
+  EXPECT_NE(line.find("= transient"), std::string::npos) << line;
   for (const char* set : {"Continuum/Mode=unsteady", "Continuum/Mode=transient", // no end time
                           "Continuum/Time/Snapshot times=1", "Continuum/Time/Series every=0",
                           "Continuum/Initial temperature=1 + x"}) { // steady: no initial state

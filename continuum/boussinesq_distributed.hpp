@@ -49,6 +49,7 @@ private:
   bool newton(double gravity_factor, int& iterations);
   void solve_with_continuation();
   void refine_mesh_and_transfer();
+  void normalize_pressure();
   void postprocess(ContinuumResult& result) const;
   void output_fields(const std::filesystem::path& dir, ContinuumResult& result) const;
 

@@ -98,12 +98,7 @@ ContinuumResult DistributedBoussinesqProblem<dim>::run(const std::filesystem::pa
     solve_on_each_level(result);
   {
     detail::ScopedTimer timer(times_.postprocess);
-    // Pressure: zero mean (the iterative solve leaves the constant undetermined).
-    evaluation_point_ = solution_;
-    const double mean = dealii::VectorTools::compute_mean_value(
-        dof_handler_, dealii::QGauss<dim>(3), evaluation_point_, dim);
-    solution_.block(1).add(-mean);
-    evaluation_point_ = solution_;
+    normalize_pressure();
     postprocess(result);
   }
   if (!out.empty() && prm_.write_fields && !prm_.transient()) {
@@ -112,6 +107,15 @@ ContinuumResult DistributedBoussinesqProblem<dim>::run(const std::filesystem::pa
   }
   result.times = times_;
   return result;
+}
+
+template <int dim> void DistributedBoussinesqProblem<dim>::normalize_pressure() {
+  // Zero mean (the iterative solve leaves the constant undetermined); updates evaluation_point_.
+  evaluation_point_ = solution_;
+  const double mean = dealii::VectorTools::compute_mean_value(dof_handler_, dealii::QGauss<dim>(3),
+                                                              evaluation_point_, dim);
+  solution_.block(1).add(-mean);
+  evaluation_point_ = solution_;
 }
 
 template <int dim> void DistributedBoussinesqProblem<dim>::make_mesh() {
@@ -180,7 +184,7 @@ void DistributedBoussinesqProblem<dim>::march_in_time(const std::filesystem::pat
   dt_ = schedule.dt();
   detail::FieldSeriesWriter<dim> snapshots(dir, comm_);
   auto record = [&](int step, int iterations) {
-    evaluation_point_ = solution_;
+    normalize_pressure(); // also the ghosted copy that the post-processing reads
     {
       detail::ScopedTimer timer(times_.postprocess);
       if (schedule.is_sample(step)) result.time_series.push_back(sample(step, iterations));

@@ -192,7 +192,9 @@ continuum::ContinuumParameters resolve_continuum(const Registry& r, const SceneP
 
   c.mode = r.get(s + "Mode") == "transient" ? continuum::Mode::Transient : continuum::Mode::Steady;
   c.end_time = r.get_double(s + "Time/End time");
-  r.require(!c.transient() || c.end_time > 0, s + "Time/End time", "> 0 with Mode = transient");
+  r.require(c.transient() ? c.end_time > 0 : c.end_time == 0, s + "Time/End time",
+            c.transient() ? "> 0 with Mode = transient"
+                          : "0 with Mode = steady (set Mode = transient to march in time)");
   c.time_step = r.get_double(s + "Time/Time step");
   r.require(c.time_step > 0, s + "Time/Time step", kPositive);
   c.theta = r.get_double(s + "Time/Theta");

@@ -116,6 +116,7 @@ TEST(ContinuumStage, ModeIsParsedAndCheckedAgainstTheCase) {
   const std::string line = printed.output.substr(begin, printed.output.find('\n', begin) - begin);
   EXPECT_NE(line.find("= transient"), std::string::npos) << line;
   for (const char* set : {"Continuum/Mode=unsteady", "Continuum/Mode=transient", // no end time
+                          "Continuum/Time/End time=5",                           // but steady
                           "Continuum/Time/Snapshot times=1", "Continuum/Time/Series every=0",
                           "Continuum/Initial temperature=1 + x"}) { // steady: no initial state
     const Result r = run_twinflow("continuum " + kCase + " --out " + out.string() + " --set '" +

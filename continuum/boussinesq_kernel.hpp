@@ -8,7 +8,8 @@
 // eps(u) the symmetric gradient; flux walls add - int_Gamma h phi_T. Residual R and its exact
 // Jacobian (Gateaux derivative) for Newton's method. Steady: no time derivatives. In time, a
 // multistep (BDF) derivative d/dt x ~ a0 x + h with the history h = sum_k a_k x^{n+1-k} of the
-// earlier steps (BDF2: a0 = 3/(2 dt), h = (-4 x^n + x^{n-1})/(2 dt); Hairer & Wanner II, III.1).
+// earlier steps (BDF2: a0 = 3/(2 dt), h = (-4 x^n + x^{n-1})/(2 dt); Hairer, Norsett & Wanner I,
+// sec. III.1).
 
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/dofs/dof_handler.h>

@@ -36,8 +36,8 @@ int continuum_stage(const CommandLine& cl) {
               << (p.model == continuum::Model::Boussinesq ? "Boussinesq"
                                                           : "heat "
                                                             "conduction")
-              << ", " << p.dim << "D, Ra = " << numbers.rayleigh << ", Pr = " << numbers.prandtl
-              << std::endl;
+              << (p.transient() ? " in time" : ", steady") << ", " << p.dim
+              << "D, Ra = " << numbers.rayleigh << ", Pr = " << numbers.prandtl << std::endl;
 
   if (root) stage.create();
   MPI_Barrier(MPI_COMM_WORLD);
@@ -50,6 +50,10 @@ int continuum_stage(const CommandLine& cl) {
   if (!result.walls.empty() && !result.walls.front().local.empty()) {
     io::write_file_atomically(stage.file("wall_nusselt.csv"), continuum::wall_nusselt_csv(result));
     files.push_back("wall_nusselt.csv");
+  }
+  if (!result.time_series.empty()) {
+    io::write_file_atomically(stage.file("time_series.csv"), continuum::time_series_csv(result));
+    files.push_back("time_series.csv");
   }
 
   io::Json summary = io::Json::object();
@@ -68,7 +72,9 @@ int continuum_stage(const CommandLine& cl) {
   io::write_file_atomically(stage.file("summary.json"), summary.dump());
 
   if (result.model == "boussinesq") {
-    std::cout << "continuum: Nu = " << result.nusselt;
+    std::cout << "continuum: ";
+    if (p.transient()) std::cout << "at t = " << result.time << ", ";
+    std::cout << "Nu = " << result.nusselt;
     if (result.has_midline_maxima)
       std::cout << ", u_max(x = Lx/2) = " << result.u_max_vertical_midline.value
                 << ", v_max(y = Ly/2) = " << result.v_max_horizontal_midline.value << " (chi/H)";

@@ -2,7 +2,8 @@
 // BoussinesqProblem<dim>: included by boussinesq_2d.cpp and boussinesq_3d.cpp only.
 //
 // Equations and cell integrals: boussinesq_kernel.hpp. Newton's method on the weak residual with
-// its exact Jacobian, direct solves.
+// its exact Jacobian, direct solves; in time, one such solve per BDF2 step. Post-processing
+// shared with the distributed solver: boussinesq_postprocess.templates.hpp.
 
 #include <deal.II/base/function.h>
 #include <deal.II/base/quadrature_lib.h>
@@ -19,11 +20,15 @@
 #include <cmath>
 #include <cstdlib>
 #include <iostream>
+#include <memory>
+#include <set>
 #include <stdexcept>
 
 #include "continuum/boussinesq.hpp"
 #include "continuum/boussinesq_kernel.hpp"
+#include "continuum/boussinesq_postprocess.templates.hpp"
 #include "continuum/fields.templates.hpp"
+#include "continuum/time_schedule.hpp"
 
 namespace twinflow::continuum {
 
@@ -47,6 +52,24 @@ template <int dim> ContinuumResult BoussinesqProblem<dim>::run(const std::filesy
     ScopedTimer timer(times_.setup);
     make_coarse_mesh();
   }
+  if (prm_.transient())
+    march_in_time(out, result);
+  else
+    solve_on_each_level(result);
+  {
+    ScopedTimer timer(times_.postprocess);
+    normalize_pressure();
+    postprocess(result);
+  }
+  if (!out.empty() && !prm_.transient()) {
+    ScopedTimer timer(times_.output);
+    output_fields(out, result);
+  }
+  result.times = times_;
+  return result;
+}
+
+template <int dim> void BoussinesqProblem<dim>::solve_on_each_level(ContinuumResult& result) {
   double previous_nusselt = 0;
   for (level_ = 0; level_ <= prm_.refinements; ++level_) {
     const auto start = std::chrono::steady_clock::now();
@@ -68,7 +91,7 @@ template <int dim> ContinuumResult BoussinesqProblem<dim>::run(const std::filesy
     m.dofs = dof_handler_.n_dofs();
     {
       ScopedTimer timer(times_.postprocess);
-      m.nusselt = volume_nusselt();
+      m.nusselt = detail::flow_integrals(dof_handler_, solution_, prm_, numbers_).nusselt;
     }
     m.change_in_nusselt = level_ == 0 ? 0.0 : m.nusselt - previous_nusselt;
     previous_nusselt = m.nusselt;
@@ -79,17 +102,65 @@ template <int dim> ContinuumResult BoussinesqProblem<dim>::run(const std::filesy
               << ", " << m.newton_iterations << " Newton iterations, " << m.wall_time << " s"
               << std::endl;
   }
+}
+
+template <int dim>
+void BoussinesqProblem<dim>::march_in_time(const std::filesystem::path& dir,
+                                           ContinuumResult& result) {
+  // On the finest mesh from the initial state; one Newton solve per step, from the last state.
   {
-    ScopedTimer timer(times_.postprocess);
-    normalize_pressure();
-    postprocess(result);
+    ScopedTimer timer(times_.setup);
+    triangulation_.refine_global(prm_.refinements);
   }
-  if (!out.empty()) {
-    ScopedTimer timer(times_.output);
-    output_fields(out, result);
+  level_ = prm_.refinements;
+  setup_dofs();
+  initial_guess();
+  const detail::TimeSchedule schedule(prm_);
+  dt_ = schedule.dt();
+  detail::FieldSeriesWriter<dim> snapshots(dir);
+  auto record = [&](int step, int iterations) {
+    {
+      ScopedTimer timer(times_.postprocess);
+      if (schedule.is_sample(step)) result.time_series.push_back(sample(step, iterations));
+    }
+    if (schedule.is_snapshot(step) && !dir.empty() && prm_.write_fields) {
+      ScopedTimer timer(times_.output);
+      dealii::DataOut<dim> data_out;
+      attach_fields(data_out);
+      snapshots.write(data_out, schedule.time(step), result.files);
+    }
+  };
+  record(0, 0);
+
+  dealii::Vector<double> previous = solution_; // x^{n-1}
+  history_.reinit(dof_handler_.n_dofs());
+  const auto start = std::chrono::steady_clock::now();
+  for (int step = 1; step <= schedule.steps(); ++step) {
+    // d/dt x ~ a0 x + history, history from x^n and x^{n-1} (time_schedule.hpp).
+    const auto c = schedule.coefficients(step);
+    time_a0_ = c[0];
+    history_.equ(c[1], solution_);
+    history_.add(c[2], previous);
+    previous = solution_;
+    int iterations = 0;
+    if (!newton(1.0, iterations))
+      throw std::runtime_error("Newton did not converge in time step " + std::to_string(step) +
+                               " (t = " + std::to_string(schedule.time(step)) +
+                               "); try a smaller time step");
+    normalize_pressure(); // the gauge of p does not enter the residual
+    record(step, iterations);
+    if (schedule.is_report(step)) {
+      const TimeSample s = sample(step, iterations);
+      std::cout << "continuum: step " << step << "/" << schedule.steps() << ", t = " << s.time
+                << ", Nu = " << s.nusselt << ", kinetic energy = " << s.kinetic_energy
+                << ", max speed = " << s.max_speed << " chi/H, " << iterations
+                << " Newton iterations, " << detail::seconds_since(start) << " s" << std::endl;
+    }
   }
-  result.times = times_;
-  return result;
+  time_a0_ = 0;
+  result.time = schedule.time(schedule.steps());
+  result.time_steps = schedule.steps();
+  result.time_step = schedule.dt();
 }
 
 template <int dim> void BoussinesqProblem<dim>::make_coarse_mesh() {
@@ -158,12 +229,17 @@ template <int dim> void BoussinesqProblem<dim>::make_constraints() {
 }
 
 template <int dim> void BoussinesqProblem<dim>::initial_guess() {
-  // At rest, with the conduction profile between the walls of the heated direction.
+  // At rest, with the case's initial temperature or the conduction profile between the walls
+  // of the heated direction.
   const int d = numbers_.heated_direction;
   const auto& b = prm_.boundary[std::max(d, 0)];
   const double T_ref = prm_.reference_temperature, H = numbers_.height;
+  std::unique_ptr<dealii::FunctionParser<dim>> expression;
+  if (!prm_.initial_temperature.empty())
+    expression = detail::initial_temperature_expression<dim>(prm_);
   const dealii::VectorFunctionFromScalarFunctionObject<dim> initial(
       [&](const dealii::Point<dim>& x) {
+        if (expression) return expression->value(x);
         return d < 0 ? T_ref : b.temperature[0] + (b.temperature[1] - b.temperature[0]) * x[d] / H;
       },
       dim + 1, dim + 2);
@@ -182,7 +258,8 @@ double BoussinesqProblem<dim>::assemble(bool with_jacobian, double gravity_facto
   dealii::Vector<double> cell_rhs(n);
   std::vector<dealii::types::global_dof_index> dofs(n);
   for (const auto& cell : dof_handler_.active_cell_iterators()) {
-    kernel.assemble(cell, evaluation_point_, with_jacobian, gravity_factor, cell_matrix, cell_rhs);
+    kernel.assemble(cell, evaluation_point_, with_jacobian, gravity_factor, cell_matrix, cell_rhs,
+                    time_a0_, time_a0_ > 0 ? &history_ : nullptr);
     cell->get_dof_indices(dofs);
     if (with_jacobian)
       zero_constraints_.distribute_local_to_global(cell_matrix, cell_rhs, dofs, jacobian_,
@@ -307,126 +384,6 @@ template <int dim> void BoussinesqProblem<dim>::refine_mesh_and_transfer() {
   nonzero_constraints_.distribute(solution_);
 }
 
-template <int dim> double BoussinesqProblem<dim>::volume_nusselt() const {
-  // Nu = (1/|Omega|) int (n c_p u_d (T - T_ref) - kappa dT/dx_d) / q_cond: the mean heat flux
-  // across planes x_d = const over the conduction flux (build-notes; de Vahl Davis 1983 eq. 7
-  // averaged over x).
-  const int d = numbers_.heated_direction;
-  if (d < 0) return 0.0;
-  const dealii::QGauss<dim> quadrature(3);
-  dealii::FEValues<dim> fe_values(fe_, quadrature,
-                                  dealii::update_values | dealii::update_gradients |
-                                      dealii::update_JxW_values);
-  const dealii::FEValuesExtractors::Vector velocities(0);
-  const dealii::FEValuesExtractors::Scalar temperature(dim + 1);
-  std::vector<dealii::Tensor<1, dim>> u(quadrature.size()), grad_T(quadrature.size());
-  std::vector<double> T(quadrature.size());
-  const double ncp = prm_.heat_capacity_per_volume(), T_ref = prm_.reference_temperature;
-  double flux = 0, volume = 0;
-  for (const auto& cell : dof_handler_.active_cell_iterators()) {
-    fe_values.reinit(cell);
-    fe_values[velocities].get_function_values(solution_, u);
-    fe_values[temperature].get_function_values(solution_, T);
-    fe_values[temperature].get_function_gradients(solution_, grad_T);
-    for (unsigned q = 0; q < quadrature.size(); ++q) {
-      flux += (ncp * u[q][d] * (T[q] - T_ref) - prm_.conductivity.at(T[q], T_ref) * grad_T[q][d]) *
-              fe_values.JxW(q);
-      volume += fe_values.JxW(q);
-    }
-  }
-  return flux / volume / numbers_.conduction_flux;
-}
-
-template <int dim> void BoussinesqProblem<dim>::wall_nusselt(ContinuumResult& result) const {
-  // Local Nu = heat flux into the fluid (lower wall) or out of it (upper wall) over the
-  // conduction flux: +-kappa n.grad T / q_cond, n the outward normal.
-  const int d = numbers_.heated_direction;
-  if (d < 0) return;
-  const dealii::QGauss<dim - 1> face_quadrature(3);
-  dealii::FEFaceValues<dim> fe_face_values(
-      fe_, face_quadrature,
-      dealii::update_values | dealii::update_gradients | dealii::update_normal_vectors |
-          dealii::update_quadrature_points | dealii::update_JxW_values);
-  const dealii::FEValuesExtractors::Scalar temperature(dim + 1);
-  std::vector<double> T(face_quadrature.size());
-  std::vector<dealii::Tensor<1, dim>> grad_T(face_quadrature.size());
-  for (int side = 0; side < 2; ++side) {
-    WallNusselt wall;
-    wall.direction = d;
-    wall.side = side;
-    double area = 0, integral = 0;
-    for (const auto& cell : dof_handler_.active_cell_iterators())
-      for (const auto& face : cell->face_iterators()) {
-        if (!face->at_boundary() || face->boundary_id() != static_cast<unsigned>(2 * d + side))
-          continue;
-        fe_face_values.reinit(cell, face);
-        fe_face_values[temperature].get_function_values(solution_, T);
-        fe_face_values[temperature].get_function_gradients(solution_, grad_T);
-        for (unsigned q = 0; q < face_quadrature.size(); ++q) {
-          const double nu =
-              (side == 0 ? 1.0 : -1.0) * prm_.conductivity.at(T[q], prm_.reference_temperature) *
-              (grad_T[q] * fe_face_values.normal_vector(q)) / numbers_.conduction_flux;
-          std::array<double, 3> x{{0, 0, 0}};
-          for (int k = 0; k < dim; ++k) x[k] = fe_face_values.quadrature_point(q)[k];
-          wall.points.push_back(x);
-          wall.local.push_back(nu);
-          integral += nu * fe_face_values.JxW(q);
-          area += fe_face_values.JxW(q);
-        }
-      }
-    wall.average = integral / area;
-    result.walls.push_back(wall);
-  }
-}
-
-namespace detail {
-// Maximum of f on [a, b]: `samples` equidistant values, then golden-section search in the
-// bracket of the best sample (Press et al., Numerical Recipes 3rd ed., sec. 10.2).
-template <class F> LineMaximum line_maximum(const F& f, double a, double b, int samples) {
-  int best = 0;
-  double best_value = -1e300;
-  const double h = (b - a) / (samples - 1);
-  for (int i = 0; i < samples; ++i)
-    if (const double v = f(a + i * h); v > best_value) best_value = v, best = i;
-  double lo = a + std::max(best - 1, 0) * h, hi = a + std::min(best + 1, samples - 1) * h;
-  const double ratio = 0.5 * (std::sqrt(5.0) - 1.0); // golden section
-  double x1 = hi - ratio * (hi - lo), x2 = lo + ratio * (hi - lo);
-  double f1 = f(x1), f2 = f(x2);
-  while (hi - lo > 1e-9 * (b - a)) {
-    if (f1 > f2)
-      hi = x2, x2 = x1, f2 = f1, x1 = hi - ratio * (hi - lo), f1 = f(x1);
-    else
-      lo = x1, x1 = x2, f1 = f2, x2 = lo + ratio * (hi - lo), f2 = f(x2);
-  }
-  LineMaximum m;
-  m.position = 0.5 * (lo + hi);
-  m.value = f(m.position);
-  if (best_value > m.value) m.value = best_value, m.position = a + best * h; // at an end point
-  return m;
-}
-} // namespace detail
-
-template <int dim> void BoussinesqProblem<dim>::midline_maxima(ContinuumResult& result) const {
-  // de Vahl Davis 1983: max u on the vertical mid-line x = 1/2 and max v on the horizontal
-  // mid-line y = 1/2, velocities in units of chi/H, positions as fractions of the box.
-  dealii::Functions::FEFieldFunction<dim> field(dof_handler_, solution_);
-  const double scale = numbers_.velocity_scale;
-  auto velocity = [&](double x, double y, int component) {
-    dealii::Point<dim> point;
-    point[0] = x, point[1] = y;
-    if (dim == 3) point[dim - 1] = 0.5 * prm_.box[2];
-    return field.value(point, component) / scale;
-  };
-  const double Lx = prm_.box[0], Ly = prm_.box[1];
-  result.has_midline_maxima = true;
-  result.u_max_vertical_midline = detail::line_maximum(
-      [&](double y) { return velocity(0.5 * Lx, y, 0); }, 0.0, Ly, prm_.profile_samples);
-  result.u_max_vertical_midline.position /= Ly;
-  result.v_max_horizontal_midline = detail::line_maximum(
-      [&](double x) { return velocity(x, 0.5 * Ly, 1); }, 0.0, Lx, prm_.profile_samples);
-  result.v_max_horizontal_midline.position /= Lx;
-}
-
 template <int dim> void BoussinesqProblem<dim>::stream_function(ContinuumResult& result) const {
   // 2D walled cavities: -Laplace psi = omega = dv/dx - du/dy, psi = 0 on the walls
   // (u = dpsi/dy, v = -dpsi/dx); the vortex centre is where |psi| is largest.
@@ -513,9 +470,14 @@ template <int dim> void BoussinesqProblem<dim>::postprocess(ContinuumResult& res
   result.cells = detail::current_cells(triangulation_, prm_);
   result.newton_iterations = newton_iterations_;
   result.continuation_rayleigh = continuation_rayleigh_;
-  result.nusselt = result.mesh_study.back().nusselt;
-  wall_nusselt(result);
-  midline_maxima(result);
+  const detail::FlowIntegrals integrals =
+      detail::flow_integrals(dof_handler_, solution_, prm_, numbers_);
+  result.nusselt = integrals.nusselt;
+  result.kinetic_energy = integrals.kinetic_energy;
+  result.max_speed = integrals.max_speed;
+  result.temperature_mean = integrals.temperature_mean;
+  result.walls = detail::wall_nusselt(dof_handler_, solution_, prm_, numbers_);
+  detail::midline_maxima(dof_handler_, solution_, prm_, numbers_, result);
   stream_function(result);
   std::vector<std::string> names;
   for (int d = 0; d < dim; ++d) names.push_back(std::string("u_") + "xyz"[d]);
@@ -523,7 +485,7 @@ template <int dim> void BoussinesqProblem<dim>::postprocess(ContinuumResult& res
   names.push_back("T");
   result.bins = detail::bin_averages(dof_handler_, solution_, names, prm_);
   detail::probe(dof_handler_, solution_, prm_, result);
-  // Temperature extremes at the nodes; speed and mean temperature at the quadrature points.
+  // Temperature extremes at the nodes.
   result.temperature_min = 1e300, result.temperature_max = -1e300;
   const dealii::IndexSet temperature_dofs = dealii::DoFTools::extract_dofs(
       dof_handler_, fe_.component_mask(dealii::FEValuesExtractors::Scalar(dim + 1)));
@@ -531,29 +493,24 @@ template <int dim> void BoussinesqProblem<dim>::postprocess(ContinuumResult& res
     result.temperature_min = std::min(result.temperature_min, solution_[i]);
     result.temperature_max = std::max(result.temperature_max, solution_[i]);
   }
-  const dealii::QGauss<dim> quadrature(3);
-  dealii::FEValues<dim> fe_values(fe_, quadrature,
-                                  dealii::update_values | dealii::update_JxW_values);
-  std::vector<dealii::Tensor<1, dim>> u(quadrature.size());
-  std::vector<double> T(quadrature.size());
-  double volume = 0, integral = 0;
-  for (const auto& cell : dof_handler_.active_cell_iterators()) {
-    fe_values.reinit(cell);
-    fe_values[dealii::FEValuesExtractors::Vector(0)].get_function_values(solution_, u);
-    fe_values[dealii::FEValuesExtractors::Scalar(dim + 1)].get_function_values(solution_, T);
-    for (unsigned q = 0; q < quadrature.size(); ++q) {
-      result.max_speed = std::max(result.max_speed, u[q].norm() / numbers_.velocity_scale);
-      integral += T[q] * fe_values.JxW(q);
-      volume += fe_values.JxW(q);
-    }
-  }
-  result.temperature_mean = integral / volume;
 }
 
 template <int dim>
-void BoussinesqProblem<dim>::output_fields(const std::filesystem::path& dir,
-                                           ContinuumResult& result) const {
-  if (!prm_.write_fields) return;
+TimeSample BoussinesqProblem<dim>::sample(int step, int newton_iterations) const {
+  const detail::FlowIntegrals integrals =
+      detail::flow_integrals(dof_handler_, solution_, prm_, numbers_);
+  TimeSample s;
+  s.step = step;
+  s.time = step * dt_;
+  s.nusselt = integrals.nusselt;
+  s.kinetic_energy = integrals.kinetic_energy;
+  s.max_speed = integrals.max_speed;
+  s.newton_iterations = newton_iterations;
+  return s;
+}
+
+template <int dim>
+void BoussinesqProblem<dim>::attach_fields(dealii::DataOut<dim>& data_out) const {
   std::vector<std::string> names(dim, "velocity");
   names.push_back("p");
   names.push_back("T");
@@ -561,10 +518,17 @@ void BoussinesqProblem<dim>::output_fields(const std::filesystem::path& dir,
       dim, dealii::DataComponentInterpretation::component_is_part_of_vector);
   kinds.push_back(dealii::DataComponentInterpretation::component_is_scalar);
   kinds.push_back(dealii::DataComponentInterpretation::component_is_scalar);
-  dealii::DataOut<dim> data_out;
   data_out.attach_dof_handler(dof_handler_);
   data_out.add_data_vector(solution_, names, dealii::DataOut<dim>::type_dof_data, kinds);
   data_out.build_patches(2); // Q2 fields on 2x2 sub-cells
+}
+
+template <int dim>
+void BoussinesqProblem<dim>::output_fields(const std::filesystem::path& dir,
+                                           ContinuumResult& result) const {
+  if (!prm_.write_fields) return;
+  dealii::DataOut<dim> data_out;
+  attach_fields(data_out);
   detail::write_hdf5_xdmf(data_out, dir, 0.0, result.files);
 }
 

@@ -27,7 +27,9 @@
 
 #include "continuum/boussinesq_distributed.hpp"
 #include "continuum/boussinesq_kernel.hpp"
+#include "continuum/boussinesq_postprocess.templates.hpp"
 #include "continuum/fields.templates.hpp"
+#include "continuum/time_schedule.hpp"
 
 namespace twinflow::continuum {
 
@@ -85,22 +87,52 @@ DistributedBoussinesqProblem<dim>::DistributedBoussinesqProblem(
 
 template <int dim>
 ContinuumResult DistributedBoussinesqProblem<dim>::run(const std::filesystem::path& out) {
-  dealii::ConditionalOStream pcout(std::cout, dealii::Utilities::MPI::this_mpi_process(comm_) == 0);
   ContinuumResult result;
   result.model = "boussinesq";
   result.dim = dim;
   result.numbers = numbers_;
+  make_mesh();
+  if (prm_.transient())
+    march_in_time(out, result);
+  else
+    solve_on_each_level(result);
   {
-    detail::ScopedTimer timer(times_.setup);
-    detail::make_box_mesh(triangulation_, prm_);
-    std::vector<dealii::GridTools::PeriodicFacePair<
-        typename dealii::parallel::distributed::Triangulation<dim>::cell_iterator>>
-        pairs;
-    for (int d = 0; d < dim; ++d)
-      if (prm_.boundary[d].periodic)
-        dealii::GridTools::collect_periodic_faces(triangulation_, 2 * d, 2 * d + 1, d, pairs);
-    if (!pairs.empty()) triangulation_.add_periodicity(pairs);
+    detail::ScopedTimer timer(times_.postprocess);
+    normalize_pressure();
+    postprocess(result);
   }
+  if (!out.empty() && prm_.write_fields && !prm_.transient()) {
+    detail::ScopedTimer timer(times_.output);
+    output_fields(out, result);
+  }
+  result.times = times_;
+  return result;
+}
+
+template <int dim> void DistributedBoussinesqProblem<dim>::normalize_pressure() {
+  // Zero mean (the iterative solve leaves the constant undetermined); updates evaluation_point_.
+  evaluation_point_ = solution_;
+  const double mean = dealii::VectorTools::compute_mean_value(dof_handler_, dealii::QGauss<dim>(3),
+                                                              evaluation_point_, dim);
+  solution_.block(1).add(-mean);
+  evaluation_point_ = solution_;
+}
+
+template <int dim> void DistributedBoussinesqProblem<dim>::make_mesh() {
+  detail::ScopedTimer timer(times_.setup);
+  detail::make_box_mesh(triangulation_, prm_);
+  std::vector<dealii::GridTools::PeriodicFacePair<
+      typename dealii::parallel::distributed::Triangulation<dim>::cell_iterator>>
+      pairs;
+  for (int d = 0; d < dim; ++d)
+    if (prm_.boundary[d].periodic)
+      dealii::GridTools::collect_periodic_faces(triangulation_, 2 * d, 2 * d + 1, d, pairs);
+  if (!pairs.empty()) triangulation_.add_periodicity(pairs);
+}
+
+template <int dim>
+void DistributedBoussinesqProblem<dim>::solve_on_each_level(ContinuumResult& result) {
+  dealii::ConditionalOStream pcout(std::cout, dealii::Utilities::MPI::this_mpi_process(comm_) == 0);
   double previous_nusselt = 0;
   for (int level = 0; level <= prm_.refinements; ++level) {
     const auto start = std::chrono::steady_clock::now();
@@ -123,7 +155,7 @@ ContinuumResult DistributedBoussinesqProblem<dim>::run(const std::filesystem::pa
     m.dofs = dof_handler_.n_dofs();
     {
       detail::ScopedTimer timer(times_.postprocess);
-      m.nusselt = volume_nusselt();
+      m.nusselt = detail::flow_integrals(dof_handler_, evaluation_point_, prm_, numbers_).nusselt;
     }
     m.change_in_nusselt = level == 0 ? 0.0 : m.nusselt - previous_nusselt;
     previous_nusselt = m.nusselt;
@@ -135,21 +167,82 @@ ContinuumResult DistributedBoussinesqProblem<dim>::run(const std::filesystem::pa
           << ", " << m.newton_iterations << " Newton iterations, " << m.wall_time << " s"
           << std::endl;
   }
+}
+
+template <int dim>
+void DistributedBoussinesqProblem<dim>::march_in_time(const std::filesystem::path& dir,
+                                                      ContinuumResult& result) {
+  // As BoussinesqProblem::march_in_time: on the finest mesh, one Newton solve per step.
+  dealii::ConditionalOStream pcout(std::cout, dealii::Utilities::MPI::this_mpi_process(comm_) == 0);
   {
-    detail::ScopedTimer timer(times_.postprocess);
-    // Pressure: zero mean (the iterative solve leaves the constant undetermined).
-    const double mean = dealii::VectorTools::compute_mean_value(
-        dof_handler_, dealii::QGauss<dim>(3), evaluation_point_, dim);
-    solution_.block(1).add(-mean);
-    evaluation_point_ = solution_;
-    postprocess(result);
+    detail::ScopedTimer timer(times_.setup);
+    triangulation_.refine_global(prm_.refinements);
   }
-  if (!out.empty() && prm_.write_fields) {
-    detail::ScopedTimer timer(times_.output);
-    output_fields(out, result);
+  setup_dofs();
+  initial_guess();
+  const detail::TimeSchedule schedule(prm_);
+  dt_ = schedule.dt();
+  detail::FieldSeriesWriter<dim> snapshots(dir, comm_);
+  auto record = [&](int step, int iterations) {
+    normalize_pressure(); // also the ghosted copy that the post-processing reads
+    {
+      detail::ScopedTimer timer(times_.postprocess);
+      if (schedule.is_sample(step)) result.time_series.push_back(sample(step, iterations));
+    }
+    if (schedule.is_snapshot(step) && !dir.empty() && prm_.write_fields) {
+      detail::ScopedTimer timer(times_.output);
+      dealii::DataOut<dim> data_out;
+      attach_fields(data_out);
+      snapshots.write(data_out, schedule.time(step), result.files);
+    }
+  };
+  record(0, 0);
+
+  detail::BlockVector previous = solution_, history = solution_; // owned: x^{n-1}, history
+  history_.reinit(owned_partitioning_, relevant_partitioning_, comm_);
+  const auto start = std::chrono::steady_clock::now();
+  for (int step = 1; step <= schedule.steps(); ++step) {
+    // d/dt x ~ a0 x + history, history from x^n and x^{n-1} (time_schedule.hpp).
+    const auto c = schedule.coefficients(step);
+    time_a0_ = c[0];
+    history = solution_;
+    history *= c[1];
+    history.add(c[2], previous);
+    history_ = history;
+    previous = solution_;
+    int iterations = 0;
+    if (!newton(1.0, iterations))
+      throw std::runtime_error("Newton did not converge in time step " + std::to_string(step) +
+                               " (t = " + std::to_string(schedule.time(step)) +
+                               "); try a smaller time step");
+    record(step, iterations);
+    if (schedule.is_report(step)) {
+      const TimeSample s = sample(step, iterations);
+      pcout << "continuum: step " << step << "/" << schedule.steps() << ", t = " << s.time
+            << ", Nu = " << s.nusselt << ", kinetic energy = " << s.kinetic_energy
+            << ", max speed = " << s.max_speed << " chi/H, " << iterations << " Newton iterations, "
+            << detail::seconds_since(start) << " s" << std::endl;
+    }
   }
-  result.times = times_;
-  return result;
+  time_a0_ = 0;
+  result.time = schedule.time(schedule.steps());
+  result.time_steps = schedule.steps();
+  result.time_step = schedule.dt();
+}
+
+template <int dim>
+TimeSample DistributedBoussinesqProblem<dim>::sample(int step, int newton_iterations) const {
+  // Reads evaluation_point_ (the ghosted copy of the solution).
+  const detail::FlowIntegrals integrals =
+      detail::flow_integrals(dof_handler_, evaluation_point_, prm_, numbers_);
+  TimeSample s;
+  s.step = step;
+  s.time = step * dt_;
+  s.nusselt = integrals.nusselt;
+  s.kinetic_energy = integrals.kinetic_energy;
+  s.max_speed = integrals.max_speed;
+  s.newton_iterations = newton_iterations;
+  return s;
 }
 
 template <int dim> void DistributedBoussinesqProblem<dim>::setup_dofs() {
@@ -282,7 +375,8 @@ double DistributedBoussinesqProblem<dim>::assemble(bool with_jacobian, double gr
   std::vector<dealii::types::global_dof_index> dofs(n);
   for (const auto& cell : dof_handler_.active_cell_iterators()) {
     if (!cell->is_locally_owned()) continue;
-    kernel.assemble(cell, evaluation_point_, with_jacobian, gravity_factor, cell_matrix, cell_rhs);
+    kernel.assemble(cell, evaluation_point_, with_jacobian, gravity_factor, cell_matrix, cell_rhs,
+                    time_a0_, time_a0_ > 0 ? &history_ : nullptr);
     cell->get_dof_indices(dofs);
     if (with_jacobian)
       zero_constraints_.distribute_local_to_global(cell_matrix, cell_rhs, dofs, jacobian_,
@@ -425,88 +519,27 @@ template <int dim> void DistributedBoussinesqProblem<dim>::refine_mesh_and_trans
   nonzero_constraints_.distribute(solution_);
 }
 
-template <int dim> double DistributedBoussinesqProblem<dim>::volume_nusselt() const {
-  // As BoussinesqProblem::volume_nusselt (de Vahl Davis 1983 eq. 7 averaged over x), summed
-  // over the processes; reads evaluation_point_ (ghosted copy of the solution).
-  const int d = numbers_.heated_direction;
-  if (d < 0) return 0.0;
-  const dealii::QGauss<dim> quadrature(3);
-  dealii::FEValues<dim> fe_values(fe_, quadrature,
-                                  dealii::update_values | dealii::update_gradients |
-                                      dealii::update_JxW_values);
-  const dealii::FEValuesExtractors::Vector velocities(0);
-  const dealii::FEValuesExtractors::Scalar temperature(dim + 1);
-  std::vector<dealii::Tensor<1, dim>> u(quadrature.size()), grad_T(quadrature.size());
-  std::vector<double> T(quadrature.size());
-  const double ncp = prm_.heat_capacity_per_volume(), T_ref = prm_.reference_temperature;
-  double flux = 0, volume = 0;
-  for (const auto& cell : dof_handler_.active_cell_iterators()) {
-    if (!cell->is_locally_owned()) continue;
-    fe_values.reinit(cell);
-    fe_values[velocities].get_function_values(evaluation_point_, u);
-    fe_values[temperature].get_function_values(evaluation_point_, T);
-    fe_values[temperature].get_function_gradients(evaluation_point_, grad_T);
-    for (unsigned q = 0; q < quadrature.size(); ++q) {
-      flux += (ncp * u[q][d] * (T[q] - T_ref) - prm_.conductivity.at(T[q], T_ref) * grad_T[q][d]) *
-              fe_values.JxW(q);
-      volume += fe_values.JxW(q);
-    }
-  }
-  flux = dealii::Utilities::MPI::sum(flux, comm_);
-  volume = dealii::Utilities::MPI::sum(volume, comm_);
-  return flux / volume / numbers_.conduction_flux;
-}
-
 template <int dim>
 void DistributedBoussinesqProblem<dim>::postprocess(ContinuumResult& result) const {
+  // Reads evaluation_point_ (the ghosted copy of the solution).
   result.dofs = dof_handler_.n_dofs();
   for (int d = 0; d < dim; ++d) result.cells[d] = prm_.cells[d] << prm_.refinements;
   result.newton_iterations = newton_iterations_;
   result.continuation_rayleigh = continuation_rayleigh_;
-  result.nusselt = result.mesh_study.back().nusselt;
-  // Average Nu of both walls of the heated direction: +-kappa n.grad T / q_cond.
-  if (const int d = numbers_.heated_direction; d >= 0) {
-    const dealii::QGauss<dim - 1> face_quadrature(3);
-    dealii::FEFaceValues<dim> fe_face_values(fe_, face_quadrature,
-                                             dealii::update_values | dealii::update_gradients |
-                                                 dealii::update_normal_vectors |
-                                                 dealii::update_JxW_values);
-    const dealii::FEValuesExtractors::Scalar temperature(dim + 1);
-    std::vector<double> T(face_quadrature.size());
-    std::vector<dealii::Tensor<1, dim>> grad_T(face_quadrature.size());
-    for (int side = 0; side < 2; ++side) {
-      double integral = 0, area = 0;
-      for (const auto& cell : dof_handler_.active_cell_iterators()) {
-        if (!cell->is_locally_owned()) continue;
-        for (const auto& face : cell->face_iterators()) {
-          if (!face->at_boundary() || face->boundary_id() != static_cast<unsigned>(2 * d + side))
-            continue;
-          fe_face_values.reinit(cell, face);
-          fe_face_values[temperature].get_function_values(evaluation_point_, T);
-          fe_face_values[temperature].get_function_gradients(evaluation_point_, grad_T);
-          for (unsigned q = 0; q < face_quadrature.size(); ++q) {
-            integral += (side == 0 ? 1.0 : -1.0) *
-                        prm_.conductivity.at(T[q], prm_.reference_temperature) *
-                        (grad_T[q] * fe_face_values.normal_vector(q)) / numbers_.conduction_flux *
-                        fe_face_values.JxW(q);
-            area += fe_face_values.JxW(q);
-          }
-        }
-      }
-      WallNusselt wall;
-      wall.direction = d;
-      wall.side = side;
-      wall.average =
-          dealii::Utilities::MPI::sum(integral, comm_) / dealii::Utilities::MPI::sum(area, comm_);
-      result.walls.push_back(wall);
-    }
-  }
+  const detail::FlowIntegrals integrals =
+      detail::flow_integrals(dof_handler_, evaluation_point_, prm_, numbers_);
+  result.nusselt = integrals.nusselt;
+  result.kinetic_energy = integrals.kinetic_energy;
+  result.max_speed = integrals.max_speed;
+  result.temperature_mean = integrals.temperature_mean;
+  result.walls = detail::wall_nusselt(dof_handler_, evaluation_point_, prm_, numbers_);
+  detail::midline_maxima(dof_handler_, evaluation_point_, prm_, numbers_, result);
   std::vector<std::string> names;
   for (int d = 0; d < dim; ++d) names.push_back(std::string("u_") + "xyz"[d]);
   names.push_back("p");
   names.push_back("T");
   result.bins = detail::bin_averages(dof_handler_, evaluation_point_, names, prm_, comm_);
-  // Temperature range at the owned nodes, mean over the volume.
+  // Temperature range at the owned nodes.
   double t_min = 1e300, t_max = -1e300;
   for (const auto i : solution_.block(2).locally_owned_elements()) {
     t_min = std::min(t_min, solution_.block(2)[i]);
@@ -514,13 +547,10 @@ void DistributedBoussinesqProblem<dim>::postprocess(ContinuumResult& result) con
   }
   result.temperature_min = dealii::Utilities::MPI::min(t_min, comm_);
   result.temperature_max = dealii::Utilities::MPI::max(t_max, comm_);
-  result.temperature_mean = dealii::VectorTools::compute_mean_value(
-      dof_handler_, dealii::QGauss<dim>(3), evaluation_point_, dim + 1);
 }
 
 template <int dim>
-void DistributedBoussinesqProblem<dim>::output_fields(const std::filesystem::path& dir,
-                                                      ContinuumResult& result) const {
+void DistributedBoussinesqProblem<dim>::attach_fields(dealii::DataOut<dim>& data_out) const {
   std::vector<std::string> names(dim, "velocity");
   names.push_back("p");
   names.push_back("T");
@@ -528,10 +558,16 @@ void DistributedBoussinesqProblem<dim>::output_fields(const std::filesystem::pat
       dim, dealii::DataComponentInterpretation::component_is_part_of_vector);
   kinds.push_back(dealii::DataComponentInterpretation::component_is_scalar);
   kinds.push_back(dealii::DataComponentInterpretation::component_is_scalar);
-  dealii::DataOut<dim> data_out;
   data_out.attach_dof_handler(dof_handler_);
   data_out.add_data_vector(evaluation_point_, names, dealii::DataOut<dim>::type_dof_data, kinds);
   data_out.build_patches(2);
+}
+
+template <int dim>
+void DistributedBoussinesqProblem<dim>::output_fields(const std::filesystem::path& dir,
+                                                      ContinuumResult& result) const {
+  dealii::DataOut<dim> data_out;
+  attach_fields(data_out);
   detail::write_hdf5_xdmf(data_out, dir, 0.0, result.files, comm_);
 }
 

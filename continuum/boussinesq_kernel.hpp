@@ -1,12 +1,15 @@
 #pragma once
 // The cell integrals of the steady Boussinesq system (one place for the serial and the
-// distributed solver). Steady Oberbeck-Boussinesq equations in the particle units (step-31 for
+// distributed solver). Oberbeck-Boussinesq equations in the particle units (step-31 for
 // Stokes + heat, with the inertial term of step-57), unknowns (u, p, T):
-//   n m (u . grad) u - div(2 eta(T) eps(u)) + grad p = -n m alpha (T - T_ref) g
+//   n m (du/dt + (u . grad) u) - div(2 eta(T) eps(u)) + grad p = -n m alpha (T - T_ref) g
 //   div u = 0
-//   n c_p u . grad T - div(kappa(T) grad T) = Q
+//   n c_p (dT/dt + u . grad T) - div(kappa(T) grad T) = Q
 // eps(u) the symmetric gradient; flux walls add - int_Gamma h phi_T. Residual R and its exact
-// Jacobian (Gateaux derivative) for Newton's method.
+// Jacobian (Gateaux derivative) for Newton's method. Steady: no time derivatives. In time, a
+// multistep (BDF) derivative d/dt x ~ a0 x + h with the history h = sum_k a_k x^{n+1-k} of the
+// earlier steps (BDF2: a0 = 3/(2 dt), h = (-4 x^n + x^{n-1})/(2 dt); Hairer, Norsett & Wanner I,
+// sec. III.1).
 
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/dofs/dof_handler.h>
@@ -27,15 +30,17 @@ public:
                        dealii::update_quadrature_points | dealii::update_JxW_values),
         fe_face_values_(fe, face_quadrature_, dealii::update_values | dealii::update_JxW_values),
         n_(fe.n_dofs_per_cell()), u_(quadrature_.size()), grad_T_(quadrature_.size()),
-        grad_u_(quadrature_.size()), p_(quadrature_.size()), T_(quadrature_.size()), phi_u_(n_),
-        grad_phi_T_(n_), grad_phi_u_(n_), eps_phi_u_(n_), div_phi_u_(n_), phi_p_(n_), phi_T_(n_) {}
+        grad_u_(quadrature_.size()), p_(quadrature_.size()), T_(quadrature_.size()),
+        history_u_(quadrature_.size()), history_T_(quadrature_.size()), phi_u_(n_), grad_phi_T_(n_),
+        grad_phi_u_(n_), eps_phi_u_(n_), div_phi_u_(n_), phi_p_(n_), phi_T_(n_) {}
 
   // cell_rhs = -R (and cell_matrix = dR/dx if with_jacobian) at the state x, gravity scaled by
-  // gravity_factor.
+  // gravity_factor; with a `history`, the time derivatives a0 x + history are included.
   template <class VectorType>
   void assemble(const typename dealii::DoFHandler<dim>::active_cell_iterator& cell,
                 const VectorType& x, bool with_jacobian, double gravity_factor,
-                dealii::FullMatrix<double>& cell_matrix, dealii::Vector<double>& cell_rhs) {
+                dealii::FullMatrix<double>& cell_matrix, dealii::Vector<double>& cell_rhs,
+                double a0 = 0.0, const VectorType* history = nullptr) {
     const dealii::FEValuesExtractors::Vector velocities(0);
     const dealii::FEValuesExtractors::Scalar pressure(dim), temperature(dim + 1);
     auto& fv = fe_values_;
@@ -47,6 +52,10 @@ public:
     fv[pressure].get_function_values(x, p_);
     fv[temperature].get_function_values(x, T_);
     fv[temperature].get_function_gradients(x, grad_T_);
+    if (history) {
+      fv[velocities].get_function_values(*history, history_u_);
+      fv[temperature].get_function_values(*history, history_T_);
+    }
     const double rho = prm_.mass_density(), ncp = prm_.heat_capacity_per_volume();
     const double alpha = prm_.thermal_expansion, T_ref = prm_.reference_temperature;
     dealii::Tensor<1, dim> g;
@@ -64,6 +73,13 @@ public:
       const dealii::SymmetricTensor<2, dim> eps_u = dealii::symmetrize(grad_u_[q]);
       const double div_u = dealii::trace(grad_u_[q]);
       const dealii::Tensor<1, dim> advection = grad_u_[q] * u_[q]; // (u . grad) u
+      // Time derivatives (zero when steady): du/dt ~ a0 u + h_u, dT/dt ~ a0 T + h_T.
+      dealii::Tensor<1, dim> du_dt;
+      double dT_dt = 0;
+      if (history) {
+        du_dt = a0 * u_[q] + history_u_[q];
+        dT_dt = a0 * T_[q] + history_T_[q];
+      }
       const double JxW = fv.JxW(q);
       for (unsigned k = 0; k < n_; ++k) {
         phi_u_[k] = fv[velocities].value(k, q);
@@ -76,21 +92,21 @@ public:
       }
       for (unsigned i = 0; i < n_; ++i) {
         // Weak residual of momentum, continuity, energy (equations at the top of this file).
-        const double residual = rho * advection * phi_u_[i] + 2 * eta * (eps_u * eps_phi_u_[i]) -
-                                p_[q] * div_phi_u_[i] - buoyancy * phi_u_[i] - phi_p_[i] * div_u +
-                                ncp * (u_[q] * grad_T_[q]) * phi_T_[i] +
+        const double residual = rho * (du_dt + advection) * phi_u_[i] +
+                                2 * eta * (eps_u * eps_phi_u_[i]) - p_[q] * div_phi_u_[i] -
+                                buoyancy * phi_u_[i] - phi_p_[i] * div_u +
+                                ncp * (dT_dt + u_[q] * grad_T_[q]) * phi_T_[i] +
                                 kappa * (grad_T_[q] * grad_phi_T_[i]) - source * phi_T_[i];
         cell_rhs(i) -= residual * JxW;
         if (!with_jacobian) continue;
         for (unsigned j = 0; j < n_; ++j) {
           // Exact derivative of the residual above in direction (phi_u_j, phi_p_j, phi_T_j).
           const double jacobian =
-              rho * (grad_phi_u_[j] * u_[q] + grad_u_[q] * phi_u_[j]) * phi_u_[i] +
+              rho * (a0 * phi_u_[j] + grad_phi_u_[j] * u_[q] + grad_u_[q] * phi_u_[j]) * phi_u_[i] +
               2 * eta * (eps_phi_u_[j] * eps_phi_u_[i]) +
               2 * deta * phi_T_[j] * (eps_u * eps_phi_u_[i]) - phi_p_[j] * div_phi_u_[i] +
               rho * alpha * phi_T_[j] * (g * phi_u_[i]) - phi_p_[i] * div_phi_u_[j] +
-              ncp * (phi_u_[j] * grad_T_[q]) * phi_T_[i] +
-              ncp * (u_[q] * grad_phi_T_[j]) * phi_T_[i] +
+              ncp * (a0 * phi_T_[j] + phi_u_[j] * grad_T_[q] + u_[q] * grad_phi_T_[j]) * phi_T_[i] +
               kappa * (grad_phi_T_[j] * grad_phi_T_[i]) +
               dkappa * phi_T_[j] * (grad_T_[q] * grad_phi_T_[i]);
           cell_matrix(i, j) += jacobian * JxW;
@@ -121,6 +137,8 @@ private:
   std::vector<dealii::Tensor<1, dim>> u_, grad_T_;
   std::vector<dealii::Tensor<2, dim>> grad_u_;
   std::vector<double> p_, T_;
+  std::vector<dealii::Tensor<1, dim>> history_u_;
+  std::vector<double> history_T_;
   std::vector<dealii::Tensor<1, dim>> phi_u_, grad_phi_T_;
   std::vector<dealii::Tensor<2, dim>> grad_phi_u_;
   std::vector<dealii::SymmetricTensor<2, dim>> eps_phi_u_;

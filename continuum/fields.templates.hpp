@@ -1,8 +1,9 @@
 #pragma once
 // Pieces both continuum problems share: the box mesh with boundary ids 2d (x_d = 0) and 2d+1
-// (x_d = L_d), periodicity, bin averages, point values, HDF5 + XDMF output. Included only by the
-// continuum's instantiation units.
+// (x_d = L_d), periodicity, bin averages, point values, HDF5 + XDMF output (one field, or a time
+// series). Included only by the continuum's instantiation units.
 
+#include <deal.II/base/function_parser.h>
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/dofs/dof_tools.h>
@@ -15,6 +16,8 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <map>
+#include <memory>
 
 #include "continuum/parameters.hpp"
 #include "continuum/results.hpp"
@@ -52,6 +55,19 @@ void make_box_mesh(dealii::Triangulation<dim>& tria, const ContinuumParameters& 
   }
   dealii::GridGenerator::subdivided_hyper_rectangle(tria, repetitions, dealii::Point<dim>(), upper,
                                                     /*colorize=*/true);
+}
+
+// The case's initial temperature: a muparser expression in x, y, z with the constants pi, Lx,
+// Ly, Lz (prm.initial_temperature, not empty).
+template <int dim>
+std::unique_ptr<dealii::FunctionParser<dim>>
+initial_temperature_expression(const ContinuumParameters& prm) {
+  const std::string variables = std::string("x,y,z").substr(0, 2 * dim - 1);
+  std::map<std::string, double> constants{{"pi", M_PI}};
+  for (int d = 0; d < dim; ++d) constants[std::string("L") + "xyz"[d]] = prm.box[d];
+  auto f = std::make_unique<dealii::FunctionParser<dim>>(1);
+  f->initialize(variables, prm.initial_temperature, constants);
+  return f;
 }
 
 // Periodicity constraints first, so that wall values set afterwards stay consistent.
@@ -162,5 +178,42 @@ void write_hdf5_xdmf(const dealii::DataOut<dim>& data_out, const std::filesystem
   files.push_back(h5);
   files.push_back(xdmf);
 }
+
+// Field snapshots of a run in time, as a series ParaView opens with its time controls: the mesh
+// once (fields_mesh.h5: it does not change), one solution file per snapshot (fields_NNNN.h5) and
+// fields.xdmf, a temporal collection of all snapshots so far, rewritten (atomically) after each.
+template <int dim> class FieldSeriesWriter {
+public:
+  FieldSeriesWriter(std::filesystem::path dir, const MPI_Comm comm = MPI_COMM_SELF)
+      : dir_(std::move(dir)), comm_(comm) {}
+
+  void write(const dealii::DataOut<dim>& data_out, double time, std::vector<std::string>& files) {
+    dealii::DataOutBase::DataOutFilter filter(
+        dealii::DataOutBase::DataOutFilterFlags(/*filter_duplicate_vertices=*/true,
+                                                /*xdmf_hdf5_output=*/true));
+    data_out.write_filtered_data(filter);
+    const bool root = dealii::Utilities::MPI::this_mpi_process(comm_) == 0;
+    const bool first = entries_.empty();
+    const std::string mesh = "fields_mesh.h5";
+    const std::string solution =
+        "fields_" + dealii::Utilities::int_to_string(entries_.size(), 4) + ".h5";
+    data_out.write_hdf5_parallel(filter, first, (dir_ / (mesh + ".tmp")).string(),
+                                 (dir_ / (solution + ".tmp")).string(), comm_);
+    if (root) {
+      if (first) std::filesystem::rename(dir_ / (mesh + ".tmp"), dir_ / mesh);
+      std::filesystem::rename(dir_ / (solution + ".tmp"), dir_ / solution);
+    }
+    entries_.push_back(data_out.create_xdmf_entry(filter, mesh, solution, time, comm_));
+    data_out.write_xdmf_file(entries_, (dir_ / "fields.xdmf.tmp").string(), comm_);
+    if (root) std::filesystem::rename(dir_ / "fields.xdmf.tmp", dir_ / "fields.xdmf");
+    if (first) files.push_back(mesh), files.push_back("fields.xdmf");
+    files.push_back(solution);
+  }
+
+private:
+  std::filesystem::path dir_;
+  MPI_Comm comm_;
+  std::vector<dealii::XDMFEntry> entries_;
+};
 
 } // namespace twinflow::continuum::detail

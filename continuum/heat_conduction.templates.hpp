@@ -43,7 +43,7 @@ HeatConductionProblem<dim>::HeatConductionProblem(const ContinuumParameters& par
       has_fixed_temperature_ |=
           !prm_.boundary[d].periodic && prm_.boundary[d].fixed_temperature[side];
   linear_ = prm_.conductivity.is_constant();
-  transient_ = prm_.end_time > 0;
+  transient_ = prm_.transient();
   if (!transient_ && !has_fixed_temperature_) {
     // Steady state without a fixed temperature exists only if no net heat enters.
     double power = 0, scale = 0;
@@ -138,12 +138,8 @@ template <int dim> void HeatConductionProblem<dim>::initial_condition() {
   if (prm_.initial_temperature.empty()) {
     solution_ = prm_.reference_temperature;
   } else {
-    const std::string variables = std::string("x,y,z").substr(0, 2 * dim - 1);
-    std::map<std::string, double> constants{{"pi", M_PI}};
-    for (int d = 0; d < dim; ++d) constants[std::string("L") + "xyz"[d]] = prm_.box[d];
-    dealii::FunctionParser<dim> initial(1);
-    initial.initialize(variables, prm_.initial_temperature, constants);
-    dealii::VectorTools::interpolate(dof_handler_, initial, solution_);
+    dealii::VectorTools::interpolate(dof_handler_,
+                                     *detail::initial_temperature_expression<dim>(prm_), solution_);
   }
   nonzero_constraints_.distribute(solution_);
   old_solution_ = solution_;

@@ -101,8 +101,11 @@ void check(const ContinuumParameters& p) {
   require(p.refinements >= 0 && p.refinements <= 12, "refinements in [0, 12]");
   require(p.newton_tolerance > 0 && p.max_newton_iterations >= 1, "Newton tolerance > 0");
   require(p.continuation_start_rayleigh > 0, "continuation start Ra > 0");
-  require(p.end_time >= 0, "end time >= 0");
-  require(p.end_time == 0 || p.time_step > 0, "time step > 0");
+  require(!p.transient() || p.end_time > 0, "end time > 0 in transient mode");
+  require(!p.transient() || p.time_step > 0, "time step > 0");
+  require(p.series_every >= 1 && p.snapshot_every >= 0, "series every >= 1, snapshot every >= 0");
+  for (const double t : p.snapshot_times)
+    require(t >= 0 && t <= p.end_time, "snapshot times in [0, end time]");
   require(p.theta >= 0.5 && p.theta <= 1.0, "theta in [0.5, 1]");
   require(p.profile_samples >= 3, "profile samples >= 3");
   require(!p.uses_iterative_solver() || p.dim == 3, "the iterative Boussinesq solver is 3D only");

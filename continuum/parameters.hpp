@@ -11,6 +11,9 @@
 namespace twinflow::continuum {
 
 enum class Model { Boussinesq, HeatConduction };
+// Steady: the stationary equations (Newton). Transient: march in time from the initial state to
+// end_time (Boussinesq: BDF2, heat conduction: theta scheme).
+enum class Mode { Steady, Transient };
 // Boussinesq linear solver: direct (serial UMFPACK) or iterative (p4est + Trilinos FGMRES, 3D);
 // automatic: direct in 2D, iterative in 3D.
 enum class LinearSolver { Automatic, Direct, Iterative };
@@ -81,16 +84,26 @@ struct ContinuumParameters {
                                           (linear_solver == LinearSolver::Automatic && dim == 3));
   }
 
-  // Heat conduction in time (end_time 0: steady)
+  // In time (mode Transient): the step is adjusted to end_time / round(end_time / time_step).
+  Mode mode = Mode::Steady;
   double end_time = 0.0;
   double time_step = 0.01;
-  double theta = 0.5;                   // 0.5: Crank-Nicolson, 1: implicit Euler
-  std::string initial_temperature = ""; // muparser expression in x, y, z; "": T_ref
+  double theta = 0.5; // heat conduction: 0.5 Crank-Nicolson, 1 implicit Euler (Boussinesq: BDF2)
+  // muparser expression in x, y, z; "": T_ref (heat conduction), the conduction profile between
+  // the walls of the heated direction (Boussinesq, which starts at rest).
+  std::string initial_temperature = "";
+  // Boussinesq in time: field snapshots at these times (the nearest step) and every
+  // `snapshot_every` steps (0: none), always at the end; a time-series row (Nu, kinetic energy,
+  // max speed) every `series_every` steps and at the end.
+  std::vector<double> snapshot_times;
+  int snapshot_every = 0;
+  int series_every = 1;
+  bool transient() const { return mode == Mode::Transient; }
 
   // Output
   std::array<unsigned, 3> bins{{10, 10, 10}};
   std::vector<std::array<double, 3>> probe_points;
-  int profile_samples = 401; // samples per mid-line before the maximum is refined
+  int profile_samples = 401; // samples per mid-line before zooming in on the maximum
   bool write_fields = true;  // HDF5 + XDMF
 
   // Derived material numbers

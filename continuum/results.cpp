@@ -70,11 +70,18 @@ io::Json to_json(const ContinuumParameters& p) {
   j["refinements"] = p.refinements;
   j["newton_tolerance"] = p.newton_tolerance;
   j["continuation_start_rayleigh"] = p.continuation_start_rayleigh;
-  if (p.model == Model::HeatConduction) {
+  j["mode"] = p.transient() ? "transient" : "steady";
+  if (p.transient()) {
     j["end_time"] = p.end_time;
     j["time_step"] = p.time_step;
-    j["theta"] = p.theta;
+    if (p.model == Model::HeatConduction)
+      j["theta"] = p.theta;
+    else
+      j["time_scheme"] = "BDF2 (first step BDF1)";
     j["initial_temperature"] = p.initial_temperature;
+    j["snapshot_times"] = p.snapshot_times;
+    j["snapshot_every"] = p.snapshot_every;
+    j["series_every"] = p.series_every;
   }
   j["bins"] = cells_json(p.bins, p.dim);
   return j;
@@ -127,7 +134,26 @@ io::Json to_json(const ContinuumResult& r) {
           std::vector<double>{r.vortex_centre[0], r.vortex_centre[1]};
     }
     results["max_speed_chi_over_H"] = r.max_speed;
+    results["kinetic_energy"] = r.kinetic_energy;
     results["newton_iterations"] = r.newton_iterations;
+    if (!r.time_series.empty()) {
+      results["time"] = r.time;
+      results["time_steps"] = r.time_steps;
+      results["time_step"] = r.time_step;
+      io::Json series = io::Json::object();
+      std::vector<double> t, nu, ke, speed;
+      for (const auto& s : r.time_series) {
+        t.push_back(s.time);
+        nu.push_back(s.nusselt);
+        ke.push_back(s.kinetic_energy);
+        speed.push_back(s.max_speed);
+      }
+      series["time"] = t;
+      series["nusselt"] = nu;
+      series["kinetic_energy"] = ke;
+      series["max_speed_chi_over_H"] = speed;
+      results["time_series"] = series;
+    }
     results["continuation_rayleigh"] = r.continuation_rayleigh;
     io::Json study = io::Json::array();
     for (const auto& m : r.mesh_study) {
@@ -197,6 +223,18 @@ std::string bins_csv(const ContinuumResult& r, const ContinuumParameters& p) {
     for (std::size_t c = 0; c < r.bins.names.size(); ++c)
       out << r.bins.values[c][k] << (c + 1 < r.bins.names.size() ? "," : "\n");
   }
+  return out.str();
+}
+
+std::string time_series_csv(const ContinuumResult& r) {
+  std::ostringstream out;
+  out << std::setprecision(12)
+      << "# Boussinesq in time, BDF2 (first step BDF1); nusselt: volume form; kinetic_energy: int "
+         "(1/2) n m |u|^2 dV (particle units); max_speed: units chi/H\n"
+      << "step,time,nusselt,kinetic_energy,max_speed,newton_iterations\n";
+  for (const auto& s : r.time_series)
+    out << s.step << "," << s.time << "," << s.nusselt << "," << s.kinetic_energy << ","
+        << s.max_speed << "," << s.newton_iterations << "\n";
   return out.str();
 }
 

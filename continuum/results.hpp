@@ -46,6 +46,16 @@ struct MeshLevel {
   double wall_time = 0;
 };
 
+// One row of a Boussinesq run in time.
+struct TimeSample {
+  int step = 0;
+  double time = 0;
+  double nusselt = 0;        // volume form, as ContinuumResult::nusselt
+  double kinetic_energy = 0; // int (1/2) n m |u|^2 dV, particle units
+  double max_speed = 0;      // max |u| at the quadrature points, units chi/H
+  int newton_iterations = 0; // of this step
+};
+
 struct ContinuumResult {
   std::string model;
   int dim = 2;
@@ -57,17 +67,20 @@ struct ContinuumResult {
   PhaseTimes times;
 
   // Boussinesq
-  double nusselt = 0;                 // volume form, (1/|Omega|) int (n c_p u_d T - kappa dT/dx_d)
-  std::vector<WallNusselt> walls;     // local and average Nu of each fixed-temperature wall
-  bool has_midline_maxima = false;    // not computed on the distributed path
-  LineMaximum u_max_vertical_midline; // max u_x on x = Lx/2 (position: y / Ly)
+  double nusselt = 0;             // volume form, (1/|Omega|) int (n c_p u_d T - kappa dT/dx_d)
+  std::vector<WallNusselt> walls; // local and average Nu of each fixed-temperature wall
+  bool has_midline_maxima = false;
+  LineMaximum u_max_vertical_midline;          // max u_x on x = Lx/2 (position: y / Ly)
   LineMaximum v_max_horizontal_midline;        // max u_y on y = Ly/2 (position: x / Lx)
   double stream_function_max = 0;              // max |psi| / chi (2D walled cavities)
   std::array<double, 2> vortex_centre{{0, 0}}; // where |psi| is largest, fractions of the box
-  double max_speed = 0;                        // max |u| at the mesh nodes, units chi/H
+  double max_speed = 0;                        // max |u| at the quadrature points, chi/H
+  double kinetic_energy = 0;                   // int (1/2) n m |u|^2 dV, particle units
   std::vector<MeshLevel> mesh_study;
+  std::vector<TimeSample> time_series; // Boussinesq in time: BDF2 (first step BDF1)
+  double time_step = 0;                // in time: the step used
 
-  // Heat conduction
+  // In time (both models)
   double time = 0;
   int time_steps = 0;
   double heat_flux_lower = 0, heat_flux_upper = 0; // into the domain through the walls of the
@@ -86,5 +99,7 @@ io::Json to_json(const ContinuumResult&);
 std::string bins_csv(const ContinuumResult&, const ContinuumParameters&);
 // One line per face quadrature point of each fixed-temperature wall.
 std::string wall_nusselt_csv(const ContinuumResult&);
+// One line per TimeSample, units in the header.
+std::string time_series_csv(const ContinuumResult&);
 
 } // namespace twinflow::continuum

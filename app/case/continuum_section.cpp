@@ -60,8 +60,15 @@ std::vector<std::array<double, 3>> points(const Registry& r, const std::string& 
 void declare_continuum(Registry& r) {
   using namespace dealii::Patterns;
   r.declare(s + "Model", "boussinesq", Selection("boussinesq|heat-conduction"),
-            "Equations of the continuum twin: steady Boussinesq natural convection (Taylor-Hood "
-            "Q2/Q1 + Q2 temperature, Newton), or heat conduction without flow.");
+            "Equations of the continuum twin: Boussinesq natural convection (Taylor-Hood Q2/Q1 + "
+            "Q2 temperature, Newton), or heat conduction without flow.");
+  r.declare(s + "Mode", "steady", Selection("steady|transient"),
+            "steady: the stationary state (Newton, with continuation in Ra and the mesh study "
+            "over the refinement levels); transient: march in time from the initial state to "
+            "Time/End time on the finest mesh (Boussinesq: BDF2 with a BDF1 first step, inertia "
+            "included, one Newton solve per step; heat conduction: the theta scheme). Boussinesq "
+            "in time writes time_series.csv (Nu, kinetic energy, max speed) and field snapshots "
+            "(fields.xdmf, a ParaView time series).");
 
   const std::string c = s + "Coefficients/";
   r.declare(c + "Viscosity", "1", Double(),
@@ -106,20 +113,35 @@ void declare_continuum(Registry& r) {
 
   const std::string t = s + "Time/";
   r.declare(t + "End time", "0", Double(0),
-            "Heat conduction: simulated time (tau); 0 solves for the steady state.");
-  r.declare(t + "Time step", "0.01", Double(), "Time step (tau), > 0.", kPositive);
+            "Mode transient: simulated time (tau), > 0 (unused when steady).");
+  r.declare(t + "Time step", "0.01", Double(),
+            "Mode transient: time step (tau), > 0; adjusted to End time / round(End time / "
+            "Time step).",
+            kPositive);
   r.declare(t + "Theta", "0.5", Double(0.5, 1),
-            "Theta scheme: 0.5 Crank-Nicolson, 1 implicit Euler.");
+            "Heat conduction in time: theta scheme, 0.5 Crank-Nicolson, 1 implicit Euler "
+            "(Boussinesq uses BDF2).");
+  r.declare(t + "Snapshot times", "", List(Double(0)),
+            "Boussinesq in time: times (tau) of field snapshots, each at the nearest step, "
+            "comma-separated, within [0, End time]; the end time is always written.",
+            "times in [0, End time], comma-separated");
+  r.declare(t + "Snapshot every", "0", Integer(0),
+            "Boussinesq in time: a field snapshot every this many steps, from the initial state "
+            "on; 0: none besides Snapshot times and the end.");
+  r.declare(t + "Series every", "1", Integer(1),
+            "Boussinesq in time: a row of time_series.csv (Nu, kinetic energy, max speed) every "
+            "this many steps (and at the end), >= 1.");
   r.declare(s + "Initial temperature", "", Anything(),
-            "Heat conduction: initial T as a muparser expression in x, y, z (constants pi, Lx, Ly, "
-            "Lz); empty: the reference temperature.");
+            "Mode transient: initial T as a muparser expression in x, y, z (constants pi, Lx, "
+            "Ly, Lz); empty: the reference temperature (heat conduction), the conduction profile "
+            "between the walls of the heated direction (Boussinesq, which starts at rest).");
 
   const std::string o = s + "Output/";
   r.declare(o + "Probe points", "", Anything(),
             "Points 'x, y[, z]' separated by ';' where all fields are recorded.");
   r.declare(o + "Write fields", "true", Bool(), "Write fields.h5 + fields.xdmf (ParaView).");
   r.declare(o + "Profile samples", "401", Integer(3, 1000000),
-            "Samples per mid-line before the velocity maximum is refined by golden section.");
+            "Samples per mid-line before the velocity maximum is refined (10x zooms).");
 }
 
 continuum::ContinuumParameters resolve_continuum(const Registry& r, const SceneParameters& scene) {
@@ -168,13 +190,23 @@ continuum::ContinuumParameters resolve_continuum(const Registry& r, const SceneP
   r.require(!c.uses_iterative_solver() || scene.dim == 3, s + "Solver/Linear solver",
             "auto or direct in 2D (the iterative path is 3D only)");
 
+  c.mode = r.get(s + "Mode") == "transient" ? continuum::Mode::Transient : continuum::Mode::Steady;
   c.end_time = r.get_double(s + "Time/End time");
+  r.require(c.transient() ? c.end_time > 0 : c.end_time == 0, s + "Time/End time",
+            c.transient() ? "> 0 with Mode = transient"
+                          : "0 with Mode = steady (set Mode = transient to march in time)");
   c.time_step = r.get_double(s + "Time/Time step");
   r.require(c.time_step > 0, s + "Time/Time step", kPositive);
   c.theta = r.get_double(s + "Time/Theta");
+  c.snapshot_times = r.get_doubles(s + "Time/Snapshot times");
+  for (const double time : c.snapshot_times)
+    r.require(time <= c.end_time, s + "Time/Snapshot times",
+              "times in [0, End time], comma-separated");
+  c.snapshot_every = static_cast<int>(r.get_integer(s + "Time/Snapshot every"));
+  c.series_every = static_cast<int>(r.get_integer(s + "Time/Series every"));
   c.initial_temperature = r.get(s + "Initial temperature");
-  r.require(c.model == continuum::Model::HeatConduction || c.initial_temperature.empty(),
-            s + "Initial temperature", "empty for the steady Boussinesq model");
+  r.require(c.transient() || c.initial_temperature.empty(), s + "Initial temperature",
+            "empty with Mode = steady");
 
   for (const auto& slab : scene.heat_slabs)
     c.heat_slabs.push_back({slab.direction, slab.lower, slab.upper, slab.power});

@@ -86,4 +86,10 @@ TEST(Cavity3D, IterativeDistributedPathReproduces2D) {
   EXPECT_NEAR(r3.nusselt, r2.nusselt, 1e-6 * r2.nusselt);
   ASSERT_EQ(r3.walls.size(), 2u);
   EXPECT_NEAR(r3.walls[0].average, r2.walls[0].average, 1e-6 * r2.nusselt);
+  // Mid-line maxima (shared post-processing, point values across processes).
+  ASSERT_TRUE(r3.has_midline_maxima);
+  EXPECT_NEAR(r3.u_max_vertical_midline.value, r2.u_max_vertical_midline.value, 1e-5 * 16);
+  EXPECT_NEAR(r3.u_max_vertical_midline.position, r2.u_max_vertical_midline.position, 1e-6);
+  EXPECT_NEAR(r3.v_max_horizontal_midline.value, r2.v_max_horizontal_midline.value, 1e-5 * 20);
+  EXPECT_NEAR(r3.v_max_horizontal_midline.position, r2.v_max_horizontal_midline.position, 1e-6);
 }

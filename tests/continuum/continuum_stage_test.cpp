@@ -1,6 +1,7 @@
 // `twinflow continuum CASE --out DIR` end to end: results, summary.json, refusal of bad input.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdio>
 #include <filesystem>
@@ -64,6 +65,64 @@ TEST(ContinuumStage, BadInputWritesNothing) {
     EXPECT_TRUE(r.output.find("Continuum/") != std::string::npos ||
                 r.output.find("Scene/") != std::string::npos)
         << r.output;
+    EXPECT_FALSE(fs::exists(out)) << set;
+  }
+}
+
+TEST(ContinuumStage, TransientModeEndToEnd) {
+  // Mode = transient on the shipped case, shrunk to 8x8 and 5 steps: the time series (CSV and
+  // summary.json) and the field snapshots as an XDMF temporal collection.
+  const fs::path out = fresh_dir("transient");
+  const Result r =
+      run_twinflow("continuum " + kCase + " --out " + out.string() +
+                   " --set 'Continuum/Mode=transient' --set 'Continuum/Mesh/Refinements=0'"
+                   " --set 'Continuum/Time/End time=50' --set 'Continuum/Time/Time step=10'"
+                   " --set 'Continuum/Time/Snapshot times=20'");
+  ASSERT_EQ(r.code, 0) << r.output;
+  const fs::path dir = out / "continuum";
+  for (const char* f : {"summary.json", "time_series.csv", "fields.xdmf", "fields_mesh.h5",
+                        "fields_0000.h5", "fields_0001.h5"})
+    EXPECT_TRUE(fs::exists(dir / f)) << f;
+  EXPECT_FALSE(fs::exists(dir / "fields_0002.h5")); // snapshots at t = 20 and the end only
+  const std::string xdmf = twinflow::io::read_file(dir / "fields.xdmf");
+  EXPECT_NE(xdmf.find("CollectionType=\"Temporal\""), std::string::npos) << xdmf;
+  EXPECT_NE(xdmf.find("Time Value=\"50\""), std::string::npos) << xdmf;
+  const Json summary = Json::parse(twinflow::io::read_file(dir / "summary.json"));
+  EXPECT_EQ(summary.find("continuum_parameters")->find("mode")->string(), "transient");
+  const Json* results = summary.find("results");
+  ASSERT_NE(results, nullptr);
+  EXPECT_EQ(results->find("time_steps")->number(), 5);
+  EXPECT_EQ(results->find("time")->number(), 50);
+  const Json* series = results->find("time_series");
+  ASSERT_NE(series, nullptr);
+  EXPECT_EQ(series->find("time")->elements().size(), 6u); // t = 0 and five steps
+  EXPECT_NEAR(series->find("nusselt")->elements().front().number(), 1.0, 1e-10); // conduction
+  EXPECT_GT(series->find("kinetic_energy")->elements().back().number(), 0.0);
+  // CSV: a comment line, the header, one row per step.
+  const std::string csv = twinflow::io::read_file(dir / "time_series.csv");
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 8) << csv;
+}
+
+TEST(ContinuumStage, ModeIsParsedAndCheckedAgainstTheCase) {
+  const fs::path out = fresh_dir("mode");
+  // The key is parsed and shown resolved, with an initial temperature (transient only).
+  const Result printed = run_twinflow("check-case " + kCase +
+                                      " --set 'Continuum/Mode=transient'"
+                                      " --set 'Continuum/Time/End time=1'"
+                                      " --set 'Continuum/Initial temperature=0.5 + x / Lx'");
+  EXPECT_EQ(printed.code, 0) << printed.output;
+  const auto begin = printed.output.find("set Mode ");
+  ASSERT_NE(begin, std::string::npos) << printed.output;
+  const std::string line = printed.output.substr(begin, printed.output.find('\n', begin) - begin);
+  EXPECT_NE(line.find("= transient"), std::string::npos) << line;
+  for (const char* set : {"Continuum/Mode=unsteady", "Continuum/Mode=transient", // no end time
+                          "Continuum/Time/End time=5",                           // but steady
+                          "Continuum/Time/Snapshot times=1", "Continuum/Time/Series every=0",
+                          "Continuum/Initial temperature=1 + x"}) { // steady: no initial state
+    const Result r = run_twinflow("continuum " + kCase + " --out " + out.string() + " --set '" +
+                                  std::string(set) + "'");
+    EXPECT_EQ(r.code, 2) << set << ": " << r.output;
+    EXPECT_NE(r.output.find("Continuum/"), std::string::npos) << r.output;
     EXPECT_FALSE(fs::exists(out)) << set;
   }
 }

@@ -132,6 +132,7 @@ template <int dim> double sine_mode_error(unsigned cells, double dt) {
   p.refinements = 0;
   p.number_density = 2.0, p.heat_capacity = 1.5, p.conductivity = {0.6, 0.0};
   const double chi = 0.6 / 3.0, k = 2 * M_PI / 2.0, amplitude = 0.1;
+  p.mode = Mode::Transient;
   p.end_time = 1.0 / (chi * k * k); // one e-folding
   p.time_step = dt * p.end_time;
   p.initial_temperature = "1 + 0.1 * sin(2 * pi * x / Lx)";

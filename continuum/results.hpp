@@ -67,6 +67,16 @@ struct ContinuumResult {
   double max_speed = 0;                        // max |u| at the mesh nodes, units chi/H
   std::vector<MeshLevel> mesh_study;
 
+  // Low-Mach (continuum/low_mach.hpp); its Nu is normalised by kappa(T_ref) dT / H (Le Quere 2005)
+  double thermodynamic_pressure = 0; // P of the closed box, from its mass
+  double pressure_ratio = 0;         // P / p0, p0 = n k T_ref (the box at rest at T_ref)
+  double mass_error = 0;             // int n dV / N - 1 at the end
+  double density_min = 0;            // number density n = P / (k T) at the nodes
+  double density_max = 0;
+  // Per wall as `walls`: Nu from the consistent (residual) flux, converges faster than the
+  // wall gradient.
+  std::vector<double> consistent_wall_nusselt;
+
   // Heat conduction
   double time = 0;
   int time_steps = 0;

@@ -59,9 +59,12 @@ std::vector<std::array<double, 3>> points(const Registry& r, const std::string& 
 
 void declare_continuum(Registry& r) {
   using namespace dealii::Patterns;
-  r.declare(s + "Model", "boussinesq", Selection("boussinesq|heat-conduction"),
+  r.declare(s + "Model", "boussinesq", Selection("boussinesq|low-mach|heat-conduction"),
             "Equations of the continuum twin: steady Boussinesq natural convection (Taylor-Hood "
-            "Q2/Q1 + Q2 temperature, Newton), or heat conduction without flow.");
+            "Q2/Q1 + Q2 temperature, Newton); steady low-Mach-number convection of a "
+            "variable-density ideal gas in the closed box (n = P/(k T), P from the box's mass "
+            "N = Scene density x volume, for large temperature differences; Thermal expansion "
+            "is then 1/T_ref and the key is ignored); or heat conduction without flow.");
 
   const std::string c = s + "Coefficients/";
   r.declare(c + "Viscosity", "1", Double(),
@@ -69,11 +72,16 @@ void declare_continuum(Registry& r) {
             kPositive);
   r.declare(c + "Viscosity exponent", "0", Double(),
             "eta = eta_0 (T/T_ref)^exponent; 0: constant.");
+  r.declare(c + "Viscosity Sutherland temperature", "0", Double(0),
+            "S > 0: Sutherland's law eta = eta_0 (T/T_ref)^(3/2) (T_ref + S)/(T + S) instead of "
+            "the power law (units of T0; Le Quere et al. 2005: S = 110.5 K / T0); 0: off.");
   r.declare(c + "Conductivity", "1", Double(),
             "Thermal conductivity kappa at the reference temperature (k/(rc tau)), > 0.",
             kPositive);
   r.declare(c + "Conductivity exponent", "0", Double(),
             "kappa = kappa_0 (T/T_ref)^exponent (seed 000: -2); 0: constant.");
+  r.declare(c + "Conductivity Sutherland temperature", "0", Double(0),
+            "S > 0: Sutherland's law for kappa as for the viscosity (constant Pr); 0: off.");
   r.declare(c + "Heat capacity", "1", Double(),
             "Heat capacity at constant pressure per particle c_p (units of k); n c_p per volume, "
             "> 0.",
@@ -126,8 +134,10 @@ continuum::ContinuumParameters resolve_continuum(const Registry& r, const SceneP
   continuum::ContinuumParameters c;
   c.dim = scene.dim;
   c.box = scene.box;
-  c.model = r.get(s + "Model") == "heat-conduction" ? continuum::Model::HeatConduction
-                                                    : continuum::Model::Boussinesq;
+  const std::string model = r.get(s + "Model");
+  c.model = model == "heat-conduction" ? continuum::Model::HeatConduction
+            : model == "low-mach"      ? continuum::Model::LowMach
+                                       : continuum::Model::Boussinesq;
   c.gravity = scene.gravity;
   for (int d = 0; d < 3; ++d) {
     const auto& from = scene.boundary[d];
@@ -143,9 +153,11 @@ continuum::ContinuumParameters resolve_continuum(const Registry& r, const SceneP
   c.number_density = scene.density;
   c.particle_mass = r.get_double("Particle/Mass");
   const std::string k = s + "Coefficients/";
-  c.viscosity = {r.get_double(k + "Viscosity"), r.get_double(k + "Viscosity exponent")};
+  c.viscosity = {r.get_double(k + "Viscosity"), r.get_double(k + "Viscosity exponent"),
+                 r.get_double(k + "Viscosity Sutherland temperature")};
   r.require(c.viscosity.value_at_reference > 0, k + "Viscosity", kPositive);
-  c.conductivity = {r.get_double(k + "Conductivity"), r.get_double(k + "Conductivity exponent")};
+  c.conductivity = {r.get_double(k + "Conductivity"), r.get_double(k + "Conductivity exponent"),
+                    r.get_double(k + "Conductivity Sutherland temperature")};
   r.require(c.conductivity.value_at_reference > 0, k + "Conductivity", kPositive);
   c.heat_capacity = r.get_double(k + "Heat capacity");
   r.require(c.heat_capacity > 0, k + "Heat capacity", kPositive);
@@ -174,7 +186,7 @@ continuum::ContinuumParameters resolve_continuum(const Registry& r, const SceneP
   c.theta = r.get_double(s + "Time/Theta");
   c.initial_temperature = r.get(s + "Initial temperature");
   r.require(c.model == continuum::Model::HeatConduction || c.initial_temperature.empty(),
-            s + "Initial temperature", "empty for the steady Boussinesq model");
+            s + "Initial temperature", "empty for the steady Boussinesq and low-Mach models");
 
   for (const auto& slab : scene.heat_slabs)
     c.heat_slabs.push_back({slab.direction, slab.lower, slab.upper, slab.power});

@@ -74,14 +74,16 @@ void declare_continuum(Registry& r) {
             "eta = eta_0 (T/T_ref)^exponent; 0: constant.");
   r.declare(c + "Viscosity Sutherland temperature", "0", Double(0),
             "S > 0: Sutherland's law eta = eta_0 (T/T_ref)^(3/2) (T_ref + S)/(T + S) instead of "
-            "the power law (units of T0; Le Quere et al. 2005: S = 110.5 K / T0); 0: off.");
+            "the power law (units of T0; Le Quere et al. 2005: S = 110.5 K / T0); 0: off.",
+            "a number >= 0 (0: off)");
   r.declare(c + "Conductivity", "1", Double(),
             "Thermal conductivity kappa at the reference temperature (k/(rc tau)), > 0.",
             kPositive);
   r.declare(c + "Conductivity exponent", "0", Double(),
             "kappa = kappa_0 (T/T_ref)^exponent (seed 000: -2); 0: constant.");
   r.declare(c + "Conductivity Sutherland temperature", "0", Double(0),
-            "S > 0: Sutherland's law for kappa as for the viscosity (constant Pr); 0: off.");
+            "S > 0: Sutherland's law for kappa as for the viscosity (constant Pr); 0: off.",
+            "a number >= 0 (0: off)");
   r.declare(c + "Heat capacity", "1", Double(),
             "Heat capacity at constant pressure per particle c_p (units of k); n c_p per volume, "
             "> 0.",

@@ -3,7 +3,8 @@
 // temperature differences, beside the Boussinesq model). Same mesh, elements (Taylor-Hood Q2/Q1
 // velocity/pressure + Q2 temperature), continuation and output as BoussinesqProblem; equations
 // and the Newton method in low_mach.templates.hpp. Instantiated for dim = 2 (low_mach_2d.cpp) and
-// 3 (low_mach_3d.cpp; serial and direct, thin boxes only). Steady state only (no transient mode).
+// 3 (low_mach_3d.cpp; serial and direct, thin boxes only). Steady (Newton) or, with an end time,
+// transient by implicit Euler steps.
 // TWINFLOW_NEWTON_DEBUG prints every Newton iteration.
 
 #include <deal.II/base/function.h>
@@ -22,6 +23,16 @@
 #include "continuum/results.hpp"
 
 namespace twinflow::continuum {
+
+namespace detail {
+// Implicit Euler terms of the transient mode (Le Quere 2005 (2.1)-(2.3) with d/dt): the previous
+// state and 1/dt; inverse_time_step = 0: steady.
+struct LowMachTimeTerms {
+  const dealii::Vector<double>* old_solution = nullptr;
+  double old_pressure = 0;      // P at the previous time
+  double inverse_time_step = 0; // 1/dt
+};
+} // namespace detail
 
 template <int dim> class LowMachProblem {
 public:
@@ -50,6 +61,9 @@ private:
   void solve_linear_system(); // Sherman-Morrison for the rank-one term
   bool newton(double gravity_factor, int& iterations);
   void solve_with_continuation();
+  // Transient mode (end_time > 0): from rest at T_ref (walls at their temperatures) by implicit
+  // Euler steps on the finest mesh, a Newton solve per step.
+  void run_transient();
   void refine_mesh_and_transfer();
   void normalize_pressure();
   double volume_nusselt() const;
@@ -76,6 +90,12 @@ private:
   dealii::Vector<double> solution_, evaluation_point_, newton_update_, residual_;
   dealii::Vector<double> residual_P_derivative_; // dR/dP (condensed)
   dealii::Vector<double> pressure_gradient_;     // dP/dx (raw, all DoFs)
+
+  detail::LowMachTimeTerms time_terms_;
+  dealii::Vector<double> old_solution_;
+  double time_ = 0;
+  int time_steps_ = 0;
+  MeshLevel mesh_study_transient_; // the one mesh of a transient run
 
   PhaseTimes times_;
   int level_ = 0;

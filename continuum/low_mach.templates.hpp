@@ -60,13 +60,15 @@ public:
         fe_face_values_(fe, face_quadrature_, dealii::update_values | dealii::update_JxW_values),
         n_(fe.n_dofs_per_cell()), u_(quadrature_.size()), grad_T_(quadrature_.size()),
         grad_u_(quadrature_.size()), p_(quadrature_.size()), T_(quadrature_.size()), phi_u_(n_),
-        grad_phi_T_(n_), grad_phi_u_(n_), eps_phi_u_(n_), div_phi_u_(n_), phi_p_(n_), phi_T_(n_) {}
+        grad_phi_T_(n_), grad_phi_u_(n_), eps_phi_u_(n_), div_phi_u_(n_), phi_p_(n_), phi_T_(n_),
+        u_old_(quadrature_.size()), T_old_(quadrature_.size()) {}
 
   void assemble(const typename dealii::DoFHandler<dim>::active_cell_iterator& cell,
                 const dealii::Vector<double>& x, double P, bool with_jacobian,
                 double gravity_factor, dealii::FullMatrix<double>& cell_matrix,
                 dealii::Vector<double>& cell_rhs, dealii::Vector<double>& cell_dR_dP,
-                dealii::Vector<double>& cell_dn_dT, double& dn_dP_integral) {
+                dealii::Vector<double>& cell_dn_dT, double& dn_dP_integral,
+                const LowMachTimeTerms& time) {
     const dealii::FEValuesExtractors::Vector velocities(0);
     const dealii::FEValuesExtractors::Scalar pressure(dim), temperature(dim + 1);
     auto& fv = fe_values_;
@@ -80,6 +82,11 @@ public:
     fv[pressure].get_function_values(x, p_);
     fv[temperature].get_function_values(x, T_);
     fv[temperature].get_function_gradients(x, grad_T_);
+    const double inv_dt = time.inverse_time_step;
+    if (inv_dt > 0) {
+      fv[velocities].get_function_values(*time.old_solution, u_old_);
+      fv[temperature].get_function_values(*time.old_solution, T_old_);
+    }
     const double m = prm_.particle_mass, cp = prm_.heat_capacity;
     const double n_mean = prm_.number_density, T_ref = prm_.reference_temperature;
     dealii::Tensor<1, dim> g;
@@ -98,6 +105,12 @@ public:
       const dealii::Tensor<1, dim> advection = grad_u_[q] * u_[q]; // (u . grad) u
       const double u_grad_T = u_[q] * grad_T_[q];
       const double JxW = fv.JxW(q);
+      // Transient: (u - u_old)/dt, (n - n_old)/dt, (T - T_old)/dt, (P - P_old)/dt.
+      const dealii::Tensor<1, dim> du = inv_dt > 0 ? u_[q] - u_old_[q] : dealii::Tensor<1, dim>();
+      const double dT = inv_dt > 0 ? T_[q] - T_old_[q] : 0.0;
+      const double n_old =
+          inv_dt > 0 ? number_density(prm_.equation_of_state, time.old_pressure, T_old_[q]).n : 0.0;
+      const double dP = P - time.old_pressure;
       for (unsigned k = 0; k < n_; ++k) {
         phi_u_[k] = fv[velocities].value(k, q);
         grad_phi_u_[k] = fv[velocities].gradient(k, q);
@@ -118,13 +131,24 @@ public:
                                 phi_p_[i] * (s.n * div_u + s.n_T * u_grad_T) +
                                 cp * s.n * u_grad_T * phi_T_[i] +
                                 kappa * (grad_T_[q] * grad_phi_T_[i]) - source * phi_T_[i];
-        cell_rhs(i) -= residual * JxW;
+        // Implicit Euler: m n du/dt . v - q dn/dt + (n c_p dT/dt - dP/dt) w (Le Quere 2005
+        // (2.1)-(2.3); the dP/dt of the energy equation vanishes in a steady state).
+        const double transient =
+            inv_dt > 0 ? inv_dt * (m * s.n * (du * phi_u_[i]) - phi_p_[i] * (s.n - n_old) +
+                                   (cp * s.n * dT - dP) * phi_T_[i])
+                       : 0.0;
+        cell_rhs(i) -= (residual + transient) * JxW;
         if (!with_jacobian) continue;
         // dR/dP: n and n_T depend on P (grad n = n_T grad T at uniform P).
         cell_dR_dP(i) +=
             (m * s.n_P * (advection * phi_u_[i]) - m * s.n_P * (g * phi_u_[i]) -
              phi_p_[i] * (s.n_P * div_u + s.n_TP * u_grad_T) + cp * s.n_P * u_grad_T * phi_T_[i]) *
             JxW;
+        if (inv_dt > 0)
+          cell_dR_dP(i) += inv_dt *
+                           (m * s.n_P * (du * phi_u_[i]) - phi_p_[i] * s.n_P +
+                            (cp * s.n_P * dT - 1.0) * phi_T_[i]) *
+                           JxW;
         cell_dn_dT(i) += s.n_T * phi_T_[i] * JxW;
         const double stress_u_i =
             2 * (eps_u * eps_phi_u_[i]) - 2.0 / 3.0 * div_u * div_phi_u_[i]; // viscous_i / eta
@@ -143,7 +167,13 @@ public:
               cp * s.n_T * phi_T_[j] * u_grad_T * phi_T_[i] + cp * s.n * u_grad_T_j * phi_T_[i] +
               kappa * (grad_phi_T_[j] * grad_phi_T_[i]) +
               dkappa * phi_T_[j] * (grad_T_[q] * grad_phi_T_[i]);
-          cell_matrix(i, j) += jacobian * JxW;
+          const double transient_j =
+              inv_dt > 0 ? inv_dt * (m * s.n * (phi_u_[j] * phi_u_[i]) +
+                                     m * s.n_T * phi_T_[j] * (du * phi_u_[i]) -
+                                     phi_p_[i] * s.n_T * phi_T_[j] +
+                                     cp * (s.n + s.n_T * dT) * phi_T_[j] * phi_T_[i])
+                         : 0.0;
+          cell_matrix(i, j) += (jacobian + transient_j) * JxW;
         }
       }
     }
@@ -175,6 +205,8 @@ private:
   std::vector<dealii::Tensor<2, dim>> grad_phi_u_;
   std::vector<dealii::SymmetricTensor<2, dim>> eps_phi_u_;
   std::vector<double> div_phi_u_, phi_p_, phi_T_;
+  std::vector<dealii::Tensor<1, dim>> u_old_;
+  std::vector<double> T_old_;
 };
 
 // Number density n(P, T) from the temperature component, for the field output.
@@ -223,6 +255,20 @@ template <int dim> ContinuumResult LowMachProblem<dim>::run(const std::filesyste
   {
     detail::ScopedTimer timer(times_.setup);
     detail::make_box_mesh(triangulation_, prm_);
+  }
+  if (prm_.end_time > 0) {
+    run_transient();
+    {
+      detail::ScopedTimer timer(times_.postprocess);
+      normalize_pressure();
+      postprocess(result);
+    }
+    if (!out.empty()) {
+      detail::ScopedTimer timer(times_.output);
+      output_fields(out, result);
+    }
+    result.times = times_;
+    return result;
   }
   double previous_nusselt = 0;
   for (level_ = 0; level_ <= prm_.refinements; ++level_) {
@@ -392,7 +438,7 @@ template <int dim> double LowMachProblem<dim>::assemble(bool with_jacobian, doub
   std::vector<dealii::types::global_dof_index> dofs(n);
   for (const auto& cell : dof_handler_.active_cell_iterators()) {
     kernel.assemble(cell, evaluation_point_, P_, with_jacobian, gravity_factor, cell_matrix,
-                    cell_rhs, cell_dR_dP, cell_dn_dT, dn_dP_total_);
+                    cell_rhs, cell_dR_dP, cell_dn_dT, dn_dP_total_, time_terms_);
     cell->get_dof_indices(dofs);
     if (with_jacobian) {
       zero_constraints_.distribute_local_to_global(cell_matrix, cell_rhs, dofs, jacobian_,
@@ -507,6 +553,54 @@ template <int dim> void LowMachProblem<dim>::solve_with_continuation() {
       factors.insert(factors.begin() + k, std::sqrt(from * factors[k]));
     }
   }
+}
+
+template <int dim> void LowMachProblem<dim>::run_transient() {
+  const auto start = std::chrono::steady_clock::now();
+  {
+    detail::ScopedTimer timer(times_.setup);
+    triangulation_.refine_global(prm_.refinements);
+  }
+  setup_dofs();
+  // At rest and at T_ref, the walls at their temperatures from t = 0 on (Le Quere 2005's
+  // initial state: uniform T0 and p0).
+  solution_ = 0;
+  const dealii::FEValuesExtractors::Scalar temperature(dim + 1);
+  for (const auto i : dealii::DoFTools::extract_dofs(dof_handler_, fe_.component_mask(temperature)))
+    solution_[i] = prm_.reference_temperature;
+  nonzero_constraints_.distribute(solution_);
+  update_thermodynamic_pressure(solution_);
+  const double dt_max = prm_.time_step;
+  int report = 0;
+  while (time_ < prm_.end_time * (1 - 1e-12)) {
+    const double dt = std::min(dt_max, prm_.end_time - time_);
+    old_solution_ = solution_;
+    time_terms_ = {&old_solution_, P_, 1.0 / dt};
+    int iterations = 0;
+    if (!newton(1.0, iterations))
+      throw std::runtime_error("low-Mach Newton did not converge in the time step to t = " +
+                               std::to_string(time_ + dt));
+    time_ += dt;
+    ++time_steps_;
+    update_thermodynamic_pressure(solution_);
+    if (time_ >= (report + 1) * 0.1 * prm_.end_time * (1 - 1e-12)) {
+      report = static_cast<int>(time_ / (0.1 * prm_.end_time) + 1e-9);
+      std::cout << "continuum: t = " << time_ << ", Nu (volume) = " << volume_nusselt()
+                << ", P/p0 = " << P_ / reference_pressure_ << ", " << iterations
+                << " Newton iterations" << std::endl;
+    }
+  }
+  time_terms_ = {}; // postprocessing sees the steady operator
+  MeshLevel m;
+  m.level = prm_.refinements;
+  m.cells = detail::current_cells(triangulation_, prm_);
+  m.dofs = dof_handler_.n_dofs();
+  m.nusselt = volume_nusselt();
+  m.newton_iterations = newton_iterations_;
+  m.wall_time = detail::seconds_since(start);
+  std::cout << "continuum: " << time_steps_ << " time steps, " << m.dofs << " DoFs, "
+            << m.newton_iterations << " Newton iterations, " << m.wall_time << " s" << std::endl;
+  mesh_study_transient_ = m;
 }
 
 template <int dim> void LowMachProblem<dim>::normalize_pressure() {
@@ -687,7 +781,10 @@ template <int dim> void LowMachProblem<dim>::postprocess(ContinuumResult& result
   result.cells = detail::current_cells(triangulation_, prm_);
   result.newton_iterations = newton_iterations_;
   result.continuation_rayleigh = continuation_rayleigh_;
+  if (prm_.end_time > 0) result.mesh_study = {mesh_study_transient_};
   result.nusselt = result.mesh_study.back().nusselt;
+  result.time = time_;
+  result.time_steps = time_steps_;
   result.thermodynamic_pressure = P_;
   result.pressure_ratio = P_ / reference_pressure_;
   wall_nusselt(result);

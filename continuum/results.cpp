@@ -74,7 +74,7 @@ io::Json to_json(const ContinuumParameters& p) {
   j["refinements"] = p.refinements;
   j["newton_tolerance"] = p.newton_tolerance;
   j["continuation_start_rayleigh"] = p.continuation_start_rayleigh;
-  if (p.model == Model::HeatConduction) {
+  if (p.model == Model::HeatConduction || (p.model == Model::LowMach && p.end_time > 0)) {
     j["end_time"] = p.end_time;
     j["time_step"] = p.time_step;
     j["theta"] = p.theta;
@@ -115,6 +115,10 @@ io::Json to_json(const ContinuumResult& r) {
       results["number_density_min"] = r.density_min;
       results["number_density_max"] = r.density_max;
       results["wall_nusselt_consistent_flux"] = r.consistent_wall_nusselt;
+      if (r.time_steps > 0) {
+        results["time"] = r.time;
+        results["time_steps"] = r.time_steps;
+      }
     }
     io::Json walls = io::Json::array();
     for (const auto& w : r.walls) {

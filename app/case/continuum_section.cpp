@@ -116,7 +116,9 @@ void declare_continuum(Registry& r) {
 
   const std::string t = s + "Time/";
   r.declare(t + "End time", "0", Double(0),
-            "Heat conduction: simulated time (tau); 0 solves for the steady state.");
+            "Heat conduction and low-Mach: simulated time (tau); 0 solves for the steady state. "
+            "Low-Mach starts at rest at the reference temperature and steps by implicit Euler "
+            "(Theta is not used) on the finest mesh.");
   r.declare(t + "Time step", "0.01", Double(), "Time step (tau), > 0.", kPositive);
   r.declare(t + "Theta", "0.5", Double(0.5, 1),
             "Theta scheme: 0.5 Crank-Nicolson, 1 implicit Euler.");

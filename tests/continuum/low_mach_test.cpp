@@ -151,3 +151,20 @@ TEST(LowMach, ThinPeriodicBox3DMatches2D) {
   EXPECT_NEAR(r3.nusselt, r2.nusselt, 1e-8 * r2.nusselt);
   EXPECT_NEAR(r3.pressure_ratio, r2.pressure_ratio, 1e-10);
 }
+
+TEST(LowMach, TransientReachesTheSteadyState) {
+  // Implicit Euler from rest at T0 (Le Quere 2005 (2.1)-(2.3) with d/dt, dP/dt in the energy
+  // equation) to t = 3 H^2/chi: the transient has decayed (Nu constant to 6 digits from
+  // t = 1.2 with dt = 0.1), so Nu and P/p0 equal the steady solve on the same 16x16 mesh; the
+  // mass stays exactly that of the box.
+  ContinuumParameters p = test_cases::low_mach_cavity(1e3, 0.6, false, 8, 1);
+  const ContinuumResult steady = solve_and_print(p, "steady");
+  p.end_time = 3.0;
+  p.time_step = 0.15;
+  const ContinuumResult r = solve_and_print(p, "transient");
+  EXPECT_EQ(r.time_steps, 20);
+  EXPECT_NEAR(r.time, 3.0, 1e-12);
+  EXPECT_NEAR(r.nusselt, steady.nusselt, 1e-5 * steady.nusselt);
+  EXPECT_NEAR(r.pressure_ratio, steady.pressure_ratio, 1e-6);
+  EXPECT_LT(std::abs(r.mass_error), 1e-12);
+}

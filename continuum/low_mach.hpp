@@ -25,7 +25,7 @@
 namespace twinflow::continuum {
 
 namespace detail {
-// Implicit Euler terms of the transient mode (Le Quere 2005 (2.1)-(2.3) with d/dt): the previous
+// Implicit Euler terms of the transient mode (Le Quere et al. 2005, with d/dt): the previous
 // state and 1/dt; inverse_time_step = 0: steady.
 struct LowMachTimeTerms {
   const dealii::Vector<double>* old_solution = nullptr;

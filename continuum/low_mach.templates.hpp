@@ -1,9 +1,9 @@
 #pragma once
 // LowMachProblem<dim>: included by low_mach_2d.cpp and low_mach_3d.cpp only.
 //
-// Steady low-Mach-number equations (Le Quere et al. 2005, ESAIM: M2AN 39(3) 609, eqs. (2.1)-(2.4),
-// steady; Paolucci 1982 for the split of the pressure) in the particle units (k = 1), unknowns
-// (u, p, T), p the hydrodynamic pressure; P the thermodynamic pressure, uniform:
+// Low-Mach-number equations (Le Quere et al. 2005, ESAIM: M2AN 39(3) 609, the benchmark's model;
+// Paolucci 1982, SAND82-8257, for the split into P and p), here steady in the particle units (k =
+// 1), unknowns (u, p, T), p the hydrodynamic pressure; P the thermodynamic pressure, uniform:
 //   n = n(P, T)                 (equation of state, low_mach_eos.hpp; ideal gas n = P/(k T))
 //   div(n u) = 0                (mass; steady form of div u = -(1/rho) D rho/Dt)
 //   m n (u . grad) u + grad p - div(2 eta S(u) - 2/3 eta div u I) = m (n - n_mean) g
@@ -123,7 +123,7 @@ public:
       if (with_jacobian) dn_dP_integral += s.n_P * JxW;
       for (unsigned i = 0; i < n_; ++i) {
         // Weak residual (equations at the top of this file); viscous stress
-        // 2 eta S(u) - 2/3 eta div u I (Le Quere 2005 (2.2)) against grad v.
+        // 2 eta S(u) - 2/3 eta div u I (Le Quere et al. 2005) against grad v.
         const double viscous_i =
             2 * eta * (eps_u * eps_phi_u_[i]) - 2.0 / 3.0 * eta * div_u * div_phi_u_[i];
         const double residual = m * s.n * (advection * phi_u_[i]) + viscous_i -
@@ -131,8 +131,8 @@ public:
                                 phi_p_[i] * (s.n * div_u + s.n_T * u_grad_T) +
                                 cp * s.n * u_grad_T * phi_T_[i] +
                                 kappa * (grad_T_[q] * grad_phi_T_[i]) - source * phi_T_[i];
-        // Implicit Euler: m n du/dt . v - q dn/dt + (n c_p dT/dt - dP/dt) w (Le Quere 2005
-        // (2.1)-(2.3); the dP/dt of the energy equation vanishes in a steady state).
+        // Implicit Euler: m n du/dt . v - q dn/dt + (n c_p dT/dt - dP/dt) w (Le Quere et al.
+        // 2005; the dP/dt of the energy equation vanishes in a steady state).
         const double transient =
             inv_dt > 0 ? inv_dt * (m * s.n * (du * phi_u_[i]) - phi_p_[i] * (s.n - n_old) +
                                    (cp * s.n * dT - dP) * phi_T_[i])
@@ -395,7 +395,8 @@ template <int dim> void LowMachProblem<dim>::initial_guess() {
 
 template <int dim>
 void LowMachProblem<dim>::update_thermodynamic_pressure(const dealii::Vector<double>& x) {
-  // Closed box: int n(P, T) dV = N (Le Quere 2005 (2.5): P = M R / int dV/T for the ideal gas).
+  // Closed box: int n(P, T) dV = N (Le Quere et al. 2005: P = M R / int dV/T for the
+  // ideal gas).
   const dealii::QGauss<dim> quadrature(3);
   dealii::FEValues<dim> fe_values(fe_, quadrature,
                                   dealii::update_values | dealii::update_JxW_values);
@@ -706,8 +707,9 @@ template <int dim>
 void LowMachProblem<dim>::consistent_wall_nusselt(ContinuumResult& result) const {
   // Heat into the fluid through a fixed-temperature wall, int_wall kappa dT/dn (n outward), from
   // the weak energy equation tested with w = 1 on that wall's T nodes, 0 elsewhere:
-  // Q = int (n c_p u.grad T w + kappa grad T.grad w - source w) (the consistent flux: Hughes,
-  // The Finite Element Method, 2000, sec. 4.16; superconvergent, unlike the wall gradient).
+  // Q = int (n c_p u.grad T w + kappa grad T.grad w - source w) (the consistent flux: Gresho,
+  // Lee, Sani et al., Int. J. Numer. Meth. Fluids 7 (1987) 371; converges faster than the wall
+  // gradient).
   const int d = numbers_.heated_direction;
   if (d < 0) return;
   const dealii::FEValuesExtractors::Vector velocities(0);

@@ -38,7 +38,7 @@ DimensionlessNumbers dimensionless_numbers(const ContinuumParameters& p) {
     const auto& b = p.boundary[n.heated_direction];
     const double k0 = p.conductivity.value_at_reference, e = p.conductivity.exponent;
     const double tl = b.temperature[0] / T_ref, tu = b.temperature[1] / T_ref;
-    // epsilon = (T_h - T_c) / (T_h + T_c) (Le Quere et al. 2005, sec. 2)
+    // epsilon = (T_h - T_c) / (T_h + T_c) (Le Quere et al. 2005)
     n.epsilon =
         std::abs(b.temperature[0] - b.temperature[1]) / (b.temperature[0] + b.temperature[1]);
     if (p.conductivity.sutherland_temperature > 0.0) {

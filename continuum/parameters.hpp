@@ -21,7 +21,7 @@ enum class LinearSolver { Automatic, Direct, Iterative };
 // coefficient(T) = value_at_reference * (T / reference_temperature)^exponent; exponent 0: constant.
 // (seed 000 uses kappa = kappa_0 (T/T_0)^-2.) With sutherland_temperature S > 0 Sutherland's law
 // instead: value_at_reference * (T/T_ref)^(3/2) (T_ref + S) / (T + S) (Sutherland 1893; the form
-// of Le Quere et al. 2005, sec. 2, anchored at T_ref instead of T* = 273 K: the same law).
+// of Le Quere et al. 2005, anchored at T_ref instead of T* = 273 K: the same law).
 struct PowerLaw {
   double value_at_reference = 1.0;
   double exponent = 0.0;

@@ -3,13 +3,14 @@
 // for the low-Mach model: perfect gas, hot wall x = 0 at T0 (1 + epsilon), cold wall x = 1 at
 // T0 (1 - epsilon), adiabatic no-slip y walls, gravity -y, T0 = T_ref = 1, n = m = c_p = 1,
 // kappa(T0) = 1 (chi = 1), eta(T0) = Pr; Ra = Pr g rho0^2 dT H^3 / (T0 mu0^2) (Le Quere 2005
-// sec. 2), i.e. g = Ra Pr T0 / (2 epsilon) here. Sutherland: S = 110.5 K / 600 K in units of T0.
+// the benchmark's definition), i.e. g = Ra Pr T0 / (2 epsilon) here. Sutherland: S = 110.5 K / 600
+// K in units of T0.
 
 #include "cavity.hpp"
 
 namespace twinflow::continuum::test_cases {
 
-constexpr double kLeQuereSutherland = 110.5 / 600.0; // S / T0 (Le Quere 2005 sec. 2)
+constexpr double kLeQuereSutherland = 110.5 / 600.0; // S / T0 (Le Quere et al. 2005)
 
 inline ContinuumParameters low_mach_cavity(double rayleigh, double epsilon, bool sutherland,
                                            unsigned coarse_cells, int refinements,

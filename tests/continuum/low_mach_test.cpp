@@ -40,7 +40,8 @@ ContinuumResult solve_and_print(const ContinuumParameters& p, const char* what) 
 
 TEST(LowMach, PureConductionPressureRatio) {
   // g = 0: u = 0, T linear, so P/p0 = 1 / (T0 <1/T>) = 2 epsilon / ln((1 + eps)/(1 - eps))
-  // (Le Quere 2005 (2.5) with the conduction profile) = 0.865617 for epsilon = 0.6; Nu = 1.
+  // (Le Quere et al. 2005's mass constraint with the conduction profile) = 0.865617 for epsilon =
+  // 0.6; Nu = 1.
   ContinuumParameters p = test_cases::low_mach_cavity(1e3, 0.6, false, 8, 1);
   p.gravity = {{0, 0, 0}};
   const ContinuumResult r = solve_and_print(p, "conduction");
@@ -153,7 +154,7 @@ TEST(LowMach, ThinPeriodicBox3DMatches2D) {
 }
 
 TEST(LowMach, TransientReachesTheSteadyState) {
-  // Implicit Euler from rest at T0 (Le Quere 2005 (2.1)-(2.3) with d/dt, dP/dt in the energy
+  // Implicit Euler from rest at T0 (Le Quere et al. 2005's equations with d/dt, dP/dt in the energy
   // equation) to t = 3 H^2/chi: the transient has decayed (Nu constant to 6 digits from
   // t = 1.2 with dt = 0.1), so Nu and P/p0 equal the steady solve on the same 16x16 mesh; the
   // mass stays exactly that of the box.

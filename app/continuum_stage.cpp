@@ -34,10 +34,11 @@ int continuum_stage(const CommandLine& cl) {
   if (root)
     std::cout << "continuum: "
               << (p.model == continuum::Model::Boussinesq ? "Boussinesq"
-                                                          : "heat "
-                                                            "conduction")
+                  : p.model == continuum::Model::LowMach  ? "low-Mach"
+                                                          : "heat conduction")
               << (p.transient() ? " in time" : ", steady") << ", " << p.dim
-              << "D, Ra = " << numbers.rayleigh << ", Pr = " << numbers.prandtl << std::endl;
+              << "D, Ra = " << numbers.rayleigh << ", Pr = " << numbers.prandtl
+              << ", epsilon = " << numbers.epsilon << std::endl;
 
   if (root) stage.create();
   MPI_Barrier(MPI_COMM_WORLD);
@@ -71,10 +72,11 @@ int continuum_stage(const CommandLine& cl) {
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   io::write_file_atomically(stage.file("summary.json"), summary.dump());
 
-  if (result.model == "boussinesq") {
+  if (result.model == "boussinesq" || result.model == "low-mach") {
     std::cout << "continuum: ";
     if (p.transient()) std::cout << "at t = " << result.time << ", ";
     std::cout << "Nu = " << result.nusselt;
+    if (result.model == "low-mach") std::cout << ", P/p0 = " << result.pressure_ratio;
     if (result.has_midline_maxima)
       std::cout << ", u_max(x = Lx/2) = " << result.u_max_vertical_midline.value
                 << ", v_max(y = Ly/2) = " << result.v_max_horizontal_midline.value << " (chi/H)";

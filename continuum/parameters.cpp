@@ -26,8 +26,10 @@ DimensionlessNumbers dimensionless_numbers(const ContinuumParameters& p) {
   for (int d = 0; d < p.dim; ++d) g += p.gravity[d] * p.gravity[d];
   g = std::sqrt(g);
   const double H = n.height;
-  // Ra = g alpha dT H^3 / (nu chi) (de Vahl Davis 1983, eq. 5)
-  n.rayleigh = g * p.thermal_expansion * std::abs(n.temperature_difference) * H * H * H /
+  // Ra = g alpha dT H^3 / (nu chi) (de Vahl Davis 1983, eq. 5); the low-Mach ideal gas has
+  // alpha = 1/T_ref (physics.md), which makes this Le Quere et al. 2005's Ra at T0 = T_ref.
+  const double alpha = p.model == Model::LowMach ? 1.0 / T_ref : p.thermal_expansion;
+  n.rayleigh = g * alpha * std::abs(n.temperature_difference) * H * H * H /
                (n.kinematic_viscosity * n.thermal_diffusivity);
   n.velocity_scale = n.thermal_diffusivity / H; // chi / H (de Vahl Davis 1983)
   if (n.heated_direction >= 0) {
@@ -36,7 +38,19 @@ DimensionlessNumbers dimensionless_numbers(const ContinuumParameters& p) {
     const auto& b = p.boundary[n.heated_direction];
     const double k0 = p.conductivity.value_at_reference, e = p.conductivity.exponent;
     const double tl = b.temperature[0] / T_ref, tu = b.temperature[1] / T_ref;
-    if (e == 0.0)
+    // epsilon = (T_h - T_c) / (T_h + T_c) (Le Quere et al. 2005)
+    n.epsilon =
+        std::abs(b.temperature[0] - b.temperature[1]) / (b.temperature[0] + b.temperature[1]);
+    if (p.conductivity.sutherland_temperature > 0.0) {
+      // Sutherland: the same Kirchhoff integral by composite Simpson (smooth integrand).
+      const int m = 2000;
+      const double h = (b.temperature[0] - b.temperature[1]) / m;
+      double sum = 0;
+      for (int i = 0; i <= m; ++i)
+        sum += (i == 0 || i == m ? 1 : (i % 2 ? 4 : 2)) *
+               p.conductivity.at(b.temperature[1] + i * h, T_ref);
+      n.conduction_flux = sum * h / 3 / H;
+    } else if (e == 0.0)
       n.conduction_flux = k0 * n.temperature_difference / H;
     else if (e == -1.0)
       n.conduction_flux = k0 * T_ref * std::log(tl / tu) / H;
@@ -97,6 +111,8 @@ void check(const ContinuumParameters& p) {
           "n, m and c_p must be > 0");
   require(p.viscosity.value_at_reference > 0 && p.conductivity.value_at_reference > 0,
           "eta and kappa must be > 0");
+  require(p.viscosity.sutherland_temperature >= 0 && p.conductivity.sutherland_temperature >= 0,
+          "Sutherland temperatures must be >= 0");
   require(p.reference_temperature > 0, "reference temperature must be > 0");
   require(p.refinements >= 0 && p.refinements <= 12, "refinements in [0, 12]");
   require(p.newton_tolerance > 0 && p.max_newton_iterations >= 1, "Newton tolerance > 0");

@@ -10,29 +10,41 @@
 
 namespace twinflow::continuum {
 
-enum class Model { Boussinesq, HeatConduction };
+enum class Model { Boussinesq, HeatConduction, LowMach };
 // Steady: the stationary equations (Newton). Transient: march in time from the initial state to
-// end_time (Boussinesq: BDF2, heat conduction: theta scheme).
+// end_time (Boussinesq: BDF2, low-Mach: implicit Euler, heat conduction: theta scheme).
 enum class Mode { Steady, Transient };
+// Equation of state of the low-Mach model (continuum/low_mach_eos.hpp): the ideal gas
+// p = n k T; the measured p(n, T) of the particle fluid plugs in there.
+enum class EquationOfState { IdealGas };
 // Boussinesq linear solver: direct (serial UMFPACK) or iterative (p4est + Trilinos FGMRES, 3D);
 // automatic: direct in 2D, iterative in 3D.
 enum class LinearSolver { Automatic, Direct, Iterative };
 
 // coefficient(T) = value_at_reference * (T / reference_temperature)^exponent; exponent 0: constant.
-// (seed 000 uses kappa = kappa_0 (T/T_0)^-2.)
+// (seed 000 uses kappa = kappa_0 (T/T_0)^-2.) With sutherland_temperature S > 0 Sutherland's law
+// instead: value_at_reference * (T/T_ref)^(3/2) (T_ref + S) / (T + S) (Sutherland 1893; the form
+// of Le Quere et al. 2005, anchored at T_ref instead of T* = 273 K: the same law).
 struct PowerLaw {
   double value_at_reference = 1.0;
   double exponent = 0.0;
+  double sutherland_temperature = 0.0; // S in units of T0; 0: the power law above
 
   double at(double T, double T_ref) const {
+    if (sutherland_temperature > 0.0) {
+      const double S = sutherland_temperature;
+      return value_at_reference * std::pow(T / T_ref, 1.5) * (T_ref + S) / (T + S);
+    }
     return exponent == 0.0 ? value_at_reference
                            : value_at_reference * std::pow(T / T_ref, exponent);
   }
   // d coefficient / dT, for the exact Newton Jacobian.
   double derivative(double T, double T_ref) const {
+    if (sutherland_temperature > 0.0)
+      return at(T, T_ref) * (1.5 / T - 1.0 / (T + sutherland_temperature));
     return exponent == 0.0 ? 0.0 : exponent * at(T, T_ref) / T;
   }
-  bool is_constant() const { return exponent == 0.0; }
+  bool is_constant() const { return exponent == 0.0 && sutherland_temperature <= 0.0; }
 };
 
 // Boundaries of one box direction: walls at x_d = 0 (side 0) and x_d = L_d (side 1), or periodic.
@@ -61,14 +73,16 @@ struct ContinuumParameters {
   std::array<double, 3> gravity{{0, 0, 0}};
 
   // Material, particle units
-  double number_density = 1.0;        // n
+  double number_density = 1.0;        // n; low-Mach: the mean N/V of the closed box (its mass)
   double particle_mass = 1.0;         // m
   double heat_capacity = 1.0;         // c_p per particle (units of k)
-  double thermal_expansion = 0.0;     // alpha (1/T0)
+  double thermal_expansion = 0.0;     // alpha (1/T0); low-Mach: 1/T_ref (ideal gas)
   double reference_temperature = 1.0; // T_ref of Boussinesq and of the power laws
   PowerLaw viscosity{1.0, 0.0};       // eta(T)
   PowerLaw conductivity{1.0, 0.0};    // kappa(T)
   std::vector<HeatSlab> heat_slabs;
+  // Low-Mach model only: n(P, T) (continuum/low_mach_eos.hpp).
+  EquationOfState equation_of_state = EquationOfState::IdealGas;
 
   // Mesh: `cells` coarse cells per direction, then `refinements` global refinements.
   std::array<unsigned, 3> cells{{8, 8, 8}};
@@ -122,6 +136,7 @@ struct DimensionlessNumbers {
   double temperature_difference = 0; // dT = T_lower_wall - T_upper_wall of that direction
   double velocity_scale = 0;         // chi / H (de Vahl Davis 1983 scaling)
   double conduction_flux = 0;        // pure-conduction heat flux per area across H
+  double epsilon = 0; // (T_hot - T_cold) / (T_hot + T_cold) of the heated direction (Le Quere 2005)
 };
 
 DimensionlessNumbers dimensionless_numbers(const ContinuumParameters&);

@@ -18,13 +18,16 @@ io::Json power_law(const PowerLaw& law) {
   io::Json j = io::Json::object();
   j["value_at_reference"] = law.value_at_reference;
   j["exponent"] = law.exponent;
+  if (law.sutherland_temperature > 0) j["sutherland_temperature"] = law.sutherland_temperature;
   return j;
 }
 } // namespace
 
 io::Json to_json(const ContinuumParameters& p) {
   io::Json j = io::Json::object();
-  j["model"] = p.model == Model::Boussinesq ? "boussinesq" : "heat-conduction";
+  j["model"] = p.model == Model::Boussinesq ? "boussinesq"
+               : p.model == Model::LowMach  ? "low-mach"
+                                            : "heat-conduction";
   j["dim"] = p.dim;
   j["box"] = triple(p.box, p.dim);
   io::Json walls = io::Json::array();
@@ -55,6 +58,7 @@ io::Json to_json(const ContinuumParameters& p) {
   j["thermal_expansion"] = p.thermal_expansion;
   j["reference_temperature"] = p.reference_temperature;
   j["viscosity"] = power_law(p.viscosity);
+  if (p.model == Model::LowMach) j["equation_of_state"] = "ideal-gas";
   j["conductivity"] = power_law(p.conductivity);
   io::Json slabs = io::Json::array();
   for (const auto& s : p.heat_slabs) {
@@ -100,6 +104,7 @@ io::Json to_json(const ContinuumResult& r) {
   numbers["temperature_difference"] = n.temperature_difference;
   numbers["velocity_scale_chi_over_H"] = n.velocity_scale;
   numbers["conduction_flux"] = n.conduction_flux;
+  numbers["epsilon"] = n.epsilon;
   j["dimensionless"] = numbers;
 
   io::Json mesh = io::Json::object();
@@ -108,8 +113,20 @@ io::Json to_json(const ContinuumResult& r) {
   j["mesh"] = mesh;
 
   io::Json results = io::Json::object();
-  if (r.model == "boussinesq") {
+  if (r.model == "boussinesq" || r.model == "low-mach") {
     results["nusselt_volume_average"] = r.nusselt;
+    if (r.model == "low-mach") {
+      results["thermodynamic_pressure"] = r.thermodynamic_pressure;
+      results["pressure_ratio_P_over_p0"] = r.pressure_ratio;
+      results["relative_mass_error"] = r.mass_error;
+      results["number_density_min"] = r.density_min;
+      results["number_density_max"] = r.density_max;
+      results["wall_nusselt_consistent_flux"] = r.consistent_wall_nusselt;
+      if (r.time_steps > 0) {
+        results["time"] = r.time;
+        results["time_steps"] = r.time_steps;
+      }
+    }
     io::Json walls = io::Json::array();
     for (const auto& w : r.walls) {
       io::Json o = io::Json::object();

@@ -80,7 +80,17 @@ struct ContinuumResult {
   std::vector<TimeSample> time_series; // Boussinesq in time: BDF2 (first step BDF1)
   double time_step = 0;                // in time: the step used
 
-  // In time (both models)
+  // Low-Mach (continuum/low_mach.hpp); its Nu is normalised by kappa(T_ref) dT / H (Le Quere 2005)
+  double thermodynamic_pressure = 0; // P of the closed box, from its mass
+  double pressure_ratio = 0;         // P / p0, p0 = n k T_ref (the box at rest at T_ref)
+  double mass_error = 0;             // int n dV / N - 1 at the end
+  double density_min = 0;            // number density n = P / (k T) at the nodes
+  double density_max = 0;
+  // Per wall as `walls`: Nu from the consistent (residual) flux, converges faster than the
+  // wall gradient.
+  std::vector<double> consistent_wall_nusselt;
+
+  // In time (all models)
   double time = 0;
   int time_steps = 0;
   double heat_flux_lower = 0, heat_flux_upper = 0; // into the domain through the walls of the

@@ -5,6 +5,7 @@
 #include "continuum/boussinesq.hpp"
 #include "continuum/boussinesq_distributed.hpp"
 #include "continuum/heat_conduction.hpp"
+#include "continuum/low_mach.hpp"
 
 namespace twinflow::continuum {
 
@@ -19,6 +20,10 @@ ContinuumResult run(const ContinuumParameters& p, const std::filesystem::path& o
     default:
       return HeatConductionProblem<3>(p).run(output_dir);
     }
+  }
+  if (p.model == Model::LowMach) {
+    if (p.dim == 2) return LowMachProblem<2>(p).run(output_dir);
+    return LowMachProblem<3>(p).run(output_dir);
   }
   if (p.uses_iterative_solver()) return DistributedBoussinesqProblem<3>(p).run(output_dir);
   if (p.dim == 2) return BoussinesqProblem<2>(p).run(output_dir);

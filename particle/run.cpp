@@ -206,8 +206,9 @@ io::Json slab_fit(const ParticleParameters& p, const BinnedFields& f) {
 
 // Seed 004's relaxation method: the heat mode's amplitude decays as exp(-chi k^2 t). A
 // least-squares line through ln a(t) while a has fallen to between 80% and 10% of its first
-// sample (after the fastest transients, before the noise floor). The slope's error is the residuals' standard error,
-// widened for their correlation in time by sqrt((1 + r1)/(1 - r1)) (r1: lag-1 autocorrelation).
+// sample (after the fastest transients, before the noise floor). The slope's error is the
+// residuals' standard error, widened for their correlation in time by sqrt((1 + r1)/(1 - r1)) (r1:
+// lag-1 autocorrelation).
 io::Json relaxation_fit(const ParticleParameters& p, const std::vector<double>& t,
                         const std::vector<double>& a) {
   const double a0 = a.front();

@@ -59,15 +59,19 @@ std::vector<std::array<double, 3>> points(const Registry& r, const std::string& 
 
 void declare_continuum(Registry& r) {
   using namespace dealii::Patterns;
-  r.declare(s + "Model", "boussinesq", Selection("boussinesq|heat-conduction"),
+  r.declare(s + "Model", "boussinesq", Selection("boussinesq|low-mach|heat-conduction"),
             "Equations of the continuum twin: Boussinesq natural convection (Taylor-Hood Q2/Q1 + "
-            "Q2 temperature, Newton), or heat conduction without flow.");
+            "Q2 temperature, Newton); low-Mach-number convection of a variable-density ideal gas "
+            "in the closed box (n = P/(k T), P from the box's mass N = Scene density x volume, "
+            "for large temperature differences; Thermal expansion is then 1/T_ref and the key is "
+            "ignored); or heat conduction without flow.");
   r.declare(s + "Mode", "steady", Selection("steady|transient"),
             "steady: the stationary state (Newton, with continuation in Ra and the mesh study "
             "over the refinement levels); transient: march in time from the initial state to "
             "Time/End time on the finest mesh (Boussinesq: BDF2 with a BDF1 first step, inertia "
-            "included, one Newton solve per step; heat conduction: the theta scheme). Boussinesq "
-            "in time writes time_series.csv (Nu, kinetic energy, max speed) and field snapshots "
+            "included, one Newton solve per step; low-Mach: implicit Euler from rest at the "
+            "reference temperature; heat conduction: the theta scheme). Boussinesq in time "
+            "writes time_series.csv (Nu, kinetic energy, max speed) and field snapshots "
             "(fields.xdmf, a ParaView time series).");
 
   const std::string c = s + "Coefficients/";
@@ -76,11 +80,18 @@ void declare_continuum(Registry& r) {
             kPositive);
   r.declare(c + "Viscosity exponent", "0", Double(),
             "eta = eta_0 (T/T_ref)^exponent; 0: constant.");
+  r.declare(c + "Viscosity Sutherland temperature", "0", Double(0),
+            "S > 0: Sutherland's law eta = eta_0 (T/T_ref)^(3/2) (T_ref + S)/(T + S) instead of "
+            "the power law (units of T0; Le Quere et al. 2005: S = 110.5 K / T0); 0: off.",
+            "a number >= 0 (0: off)");
   r.declare(c + "Conductivity", "1", Double(),
             "Thermal conductivity kappa at the reference temperature (k/(rc tau)), > 0.",
             kPositive);
   r.declare(c + "Conductivity exponent", "0", Double(),
             "kappa = kappa_0 (T/T_ref)^exponent (seed 000: -2); 0: constant.");
+  r.declare(c + "Conductivity Sutherland temperature", "0", Double(0),
+            "S > 0: Sutherland's law for kappa as for the viscosity (constant Pr); 0: off.",
+            "a number >= 0 (0: off)");
   r.declare(c + "Heat capacity", "1", Double(),
             "Heat capacity at constant pressure per particle c_p (units of k); n c_p per volume, "
             "> 0.",
@@ -148,8 +159,10 @@ continuum::ContinuumParameters resolve_continuum(const Registry& r, const SceneP
   continuum::ContinuumParameters c;
   c.dim = scene.dim;
   c.box = scene.box;
-  c.model = r.get(s + "Model") == "heat-conduction" ? continuum::Model::HeatConduction
-                                                    : continuum::Model::Boussinesq;
+  const std::string model = r.get(s + "Model");
+  c.model = model == "heat-conduction" ? continuum::Model::HeatConduction
+            : model == "low-mach"      ? continuum::Model::LowMach
+                                       : continuum::Model::Boussinesq;
   c.gravity = scene.gravity;
   for (int d = 0; d < 3; ++d) {
     const auto& from = scene.boundary[d];
@@ -165,9 +178,11 @@ continuum::ContinuumParameters resolve_continuum(const Registry& r, const SceneP
   c.number_density = scene.density;
   c.particle_mass = r.get_double("Particle/Mass");
   const std::string k = s + "Coefficients/";
-  c.viscosity = {r.get_double(k + "Viscosity"), r.get_double(k + "Viscosity exponent")};
+  c.viscosity = {r.get_double(k + "Viscosity"), r.get_double(k + "Viscosity exponent"),
+                 r.get_double(k + "Viscosity Sutherland temperature")};
   r.require(c.viscosity.value_at_reference > 0, k + "Viscosity", kPositive);
-  c.conductivity = {r.get_double(k + "Conductivity"), r.get_double(k + "Conductivity exponent")};
+  c.conductivity = {r.get_double(k + "Conductivity"), r.get_double(k + "Conductivity exponent"),
+                    r.get_double(k + "Conductivity Sutherland temperature")};
   r.require(c.conductivity.value_at_reference > 0, k + "Conductivity", kPositive);
   c.heat_capacity = r.get_double(k + "Heat capacity");
   r.require(c.heat_capacity > 0, k + "Heat capacity", kPositive);
@@ -205,8 +220,10 @@ continuum::ContinuumParameters resolve_continuum(const Registry& r, const SceneP
   c.snapshot_every = static_cast<int>(r.get_integer(s + "Time/Snapshot every"));
   c.series_every = static_cast<int>(r.get_integer(s + "Time/Series every"));
   c.initial_temperature = r.get(s + "Initial temperature");
-  r.require(c.transient() || c.initial_temperature.empty(), s + "Initial temperature",
-            "empty with Mode = steady");
+  r.require(
+      (c.transient() && c.model != continuum::Model::LowMach) || c.initial_temperature.empty(),
+      s + "Initial temperature",
+      "empty with Mode = steady and for low-Mach (which starts at the reference temperature)");
 
   for (const auto& slab : scene.heat_slabs)
     c.heat_slabs.push_back({slab.direction, slab.lower, slab.upper, slab.power});

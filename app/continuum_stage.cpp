@@ -1,6 +1,8 @@
 // twinflow continuum CASE: the deal.II twin of a case, results in RUNDIR/continuum.
 
 #include <chrono>
+#include <cmath>
+#include <filesystem>
 #include <iostream>
 
 #include <deal.II/base/mpi.h>
@@ -12,6 +14,36 @@
 
 namespace twinflow::app {
 
+namespace {
+// The transport stage's coefficients at the reference temperature feed the twin: measured ones
+// where asked for and present, else the estimate with the measured g(r).
+void coefficients_from_transport(const std::filesystem::path& run_dir, const std::string& source,
+                                 continuum::ContinuumParameters& p) {
+  const auto file = run_dir / "transport" / "summary.json";
+  if (!std::filesystem::exists(file))
+    throw io::InputError(file.string() +
+                         ": missing; Continuum/Coefficients/Source = transport "
+                         "needs `twinflow transport CASE --out " +
+                         run_dir.string() + "` first");
+  const io::Json summary = io::Json::parse(io::read_file(file));
+  const io::Json& results = *summary.find("results");
+  const io::Json& estimate = *results.find("estimated_measured_g");
+  const io::Json* measured = results.find("measured");
+  auto pick = [&](const char* estimate_key, const char* measured_key, const char* what) {
+    const io::Json* m = measured ? measured->find(measured_key) : nullptr;
+    const bool use = source == "measured" && m && m->is_number() && std::isfinite(m->number());
+    const double v = use ? m->number() : estimate.find(estimate_key)->number();
+    std::cout << "continuum: " << what << " = " << v << " (" << (use ? "measured" : "estimated")
+              << ", from " << file.string() << ")\n";
+    return v;
+  };
+  p.viscosity.value_at_reference = pick("viscosity", "viscosity_poiseuille", "eta");
+  p.conductivity.value_at_reference = pick("conductivity", "conductivity_relaxation", "kappa");
+  p.heat_capacity = pick("heat_capacity_p_per_particle", "", "c_p");
+  p.thermal_expansion = pick("thermal_expansion", "thermal_expansion", "alpha");
+}
+} // namespace
+
 int continuum_stage(const CommandLine& cl) {
   const auto start = std::chrono::steady_clock::now();
   // Everything is validated (case file, run directory) before anything is written.
@@ -21,7 +53,9 @@ int continuum_stage(const CommandLine& cl) {
       cl.out.empty() ? std::filesystem::path("twinflow-runs") / parameters.name
                      : std::filesystem::path(cl.out);
   const io::StageDirectory stage(run_dir, "continuum", cl.force);
-  const continuum::ContinuumParameters& p = parameters.continuum;
+  continuum::ContinuumParameters p = parameters.continuum;
+  if (c.registry().get("Continuum/Coefficients/Source") == "transport")
+    coefficients_from_transport(run_dir, parameters.transport.source, p);
   // Under mpirun only the distributed (iterative) path shares the work; rank 0 writes the
   // summary and tables, the HDF5 fields are written collectively.
   const unsigned n_processes = dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD);

@@ -768,12 +768,20 @@ template <int dim> void LowMachProblem<dim>::midline_maxima(ContinuumResult& res
     return field.value(point, component) / scale;
   };
   const double Lx = prm_.box[0], Ly = prm_.box[1];
+  // line_maximum evaluates a list of positions per call.
+  auto on_line = [&](auto&& f) {
+    return [f](const std::vector<double>& positions) {
+      std::vector<double> values(positions.size());
+      for (std::size_t i = 0; i < positions.size(); ++i) values[i] = f(positions[i]);
+      return values;
+    };
+  };
   result.has_midline_maxima = true;
   result.u_max_vertical_midline = detail::line_maximum(
-      [&](double y) { return velocity(0.5 * Lx, y, 0); }, 0.0, Ly, prm_.profile_samples);
+      on_line([&](double y) { return velocity(0.5 * Lx, y, 0); }), 0.0, Ly, prm_.profile_samples);
   result.u_max_vertical_midline.position /= Ly;
   result.v_max_horizontal_midline = detail::line_maximum(
-      [&](double x) { return velocity(x, 0.5 * Ly, 1); }, 0.0, Lx, prm_.profile_samples);
+      on_line([&](double x) { return velocity(x, 0.5 * Ly, 1); }), 0.0, Lx, prm_.profile_samples);
   result.v_max_horizontal_midline.position /= Lx;
 }
 

@@ -96,4 +96,41 @@ io::Json Measured::json() const {
   return j;
 }
 
+particle::Estimate measure_conductivity_relaxation(particle::ParticleParameters p,
+                                                   const Estimates& estimate, double cp) {
+  p.box[0] *= 2;
+  p.temperature_perturbation = 0.2;
+  p.heat_slabs.clear();
+  const double k = 2 * M_PI / p.box[0];
+  const double chi = estimate.conductivity / (p.density * estimate.heat_capacity_p);
+  p.equilibration_steps = 0;
+  p.steps = static_cast<long>(std::ceil(3 / (chi * k * k) / p.dt)); // three decay times
+  p.sample_interval = std::max(1L, p.steps / 1000);
+  p.bins = {{1, 1, 1}};
+  const auto out = particle::run_particles(p);
+  const io::Json* r = out.summary.find("relaxation");
+  if (!r || !r->find("chi")) return {std::nan(""), std::nan("")};
+  const double scale = p.density * cp; // kappa = rho c_p chi
+  return {scale * r->find("chi")->number(), scale * r->find("chi_stderr")->number()};
+}
+
+particle::Estimate measure_viscosity_poiseuille(particle::ParticleParameters p,
+                                                const Estimates& estimate) {
+  p.box[1] *= 2;
+  const double half = 0.5 * p.box[1], nu = estimate.kinematic_viscosity;
+  // Peak speed n F half^2 / (8 eta) = 0.1 sqrt(k T / m).
+  p.poiseuille_force =
+      0.8 * estimate.viscosity * std::sqrt(p.temperature / p.mass) / (p.density * half * half);
+  // The slowest start-up mode decays in half^2 / (pi^2 nu): five of those to steady state.
+  const double settle = 5 * half * half / (M_PI * M_PI * nu);
+  p.equilibration_steps = static_cast<long>(std::ceil(settle / p.dt));
+  p.steps = p.equilibration_steps;
+  p.sample_interval = std::max(1L, p.steps / 2000);
+  p.bins = {{1, 40, 1}};
+  const auto out = particle::run_particles(p);
+  const io::Json* r = out.summary.find("poiseuille");
+  if (!r || !r->find("viscosity")) return {std::nan(""), std::nan("")};
+  return {r->find("viscosity")->number(), r->find("viscosity_stderr")->number()};
+}
+
 } // namespace twinflow::transport

@@ -30,6 +30,7 @@ CaseParameters Case::load(const std::string& filename, const std::vector<std::st
   c.scene = resolve_scene(registry_);
   c.particle = resolve_particle(registry_, c.scene);
   c.transport.source = registry_.get("Transport/Source");
+  c.transport.measure_flows = registry_.get_bool("Transport/Measure kappa and eta");
   c.compare.wall_layer = registry_.get_double("Compare/Wall layer");
   c.continuum = resolve_continuum(registry_, c.scene);
   return c;
@@ -40,6 +41,9 @@ void declare_transport_and_compare(Registry& r) {
   r.declare("Transport/Source", "estimated", Selection("estimated|measured"),
             "Which coefficients feed the continuum twin: theory estimates or measured by short "
             "particle runs.");
+  r.declare("Transport/Measure kappa and eta", "false", Bool(),
+            "Also measure kappa by thermal relaxation and eta by reverse Poiseuille flow (two "
+            "particle runs of several relaxation times each: minutes at seed 002's state point).");
   r.declare("Compare/Wall layer", "1", Double(0),
             "Thickness (length units) of the layer next to each wall left out of field errors.");
 }

@@ -42,6 +42,7 @@ struct SceneParameters {
 
 struct TransportParameters {
   std::string source = "estimated"; // estimated | measured
+  bool measure_flows = false;       // also kappa by relaxation and eta by reverse Poiseuille
 };
 
 struct CompareParameters {

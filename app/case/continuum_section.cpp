@@ -75,6 +75,11 @@ void declare_continuum(Registry& r) {
             "(fields.xdmf, a ParaView time series).");
 
   const std::string c = s + "Coefficients/";
+  r.declare(c + "Source", "case", Selection("case|transport"),
+            "case: the values below; transport: eta, kappa, c_p and alpha at the reference "
+            "temperature from RUNDIR/transport/summary.json (run `twinflow transport` first): "
+            "measured where Transport/Source = measured and available, else the estimate with "
+            "the measured g(r). The exponents below still apply.");
   r.declare(c + "Viscosity", "1", Double(),
             "Shear viscosity eta at the reference temperature (particle units m/(rc tau)), > 0.",
             kPositive);

@@ -22,7 +22,8 @@ TEST(LowMachStage, CaseFileEndToEnd) {
   const Result r = run_twinflow("continuum " + case_file + " --out " + out.string() +
                                 " --set 'Continuum/Mesh/Refinements=1'");
   ASSERT_EQ(r.code, 0) << r.output;
-  EXPECT_NE(r.output.find("low-Mach, 2D, Ra = 100000, Pr = 0.71, epsilon = 0.6"), std::string::npos)
+  EXPECT_NE(r.output.find("low-Mach, steady, 2D, Ra = 100000, Pr = 0.71, epsilon = 0.6"),
+            std::string::npos)
       << r.output;
   EXPECT_NE(r.output.find("P/p0 = "), std::string::npos) << r.output;
   for (const char* f : {"summary.json", "fields.h5", "fields.xdmf", "bins.csv", "wall_nusselt.csv"})

@@ -28,3 +28,24 @@ TEST(Scenes, ThermalRelaxationFitsADecayRate) {
   EXPECT_GT(se, 0);
   EXPECT_LT(se, 0.2 * chi);
 }
+
+// The continuum twin takes eta, kappa, c_p and alpha from the transport stage's summary when the
+// case says so; without that summary it refuses (exit 2) and names the command to run.
+TEST(Scenes, ContinuumTakesCoefficientsFromTheTransportStage) {
+  const auto dir = fresh_dir("scenes", "coefficients");
+  const std::string c = case_path("heated_cavity_2d");
+  const std::string from = " --set Continuum/Coefficients/Source=transport";
+  const Result missing = run_twinflow("continuum " + c + " --out " + dir.string() + from);
+  EXPECT_EQ(missing.code, 2) << missing.output;
+  EXPECT_NE(missing.output.find("twinflow transport"), std::string::npos) << missing.output;
+  ASSERT_EQ(run_twinflow("transport " + c + " --out " + dir.string() + " --threads 1").code, 0);
+  const Result r = run_twinflow("continuum " + c + " --out " + dir.string() + from);
+  ASSERT_EQ(r.code, 0) << r.output;
+  const auto transport =
+      twinflow::io::Json::parse(twinflow::io::read_file(dir / "transport" / "summary.json"));
+  const double eta =
+      transport.find("results")->find("estimated_measured_g")->find("viscosity")->number();
+  std::ostringstream expected;
+  expected << "eta = " << eta << " (estimated";
+  EXPECT_NE(r.output.find(expected.str()), std::string::npos) << r.output;
+}

@@ -144,14 +144,25 @@ int particle_stage(const CommandLine& cl) {
   return 0;
 }
 
+// The particle scene, the fluid's coefficients, and the continuum twin fed with them. The
+// comparison stage comes with the study issue.
 int run_all(const CommandLine& cl) {
   Case c;
   const CaseParameters p = c.load(cl.target, cl.overrides);
-  const io::StageDirectory stage(run_directory(cl, p), "particle", cl.force);
-  std::cout << "run: the particle stage of '" << p.name
-            << "' (pairing with the transport and continuum stages comes with the study issue; "
-               "run `twinflow transport` and `twinflow continuum` on their own meanwhile)\n";
-  return particle_stage(cl);
+  // Every stage's folder is checked before the first one runs (bad input writes nothing).
+  for (const char* name : {"particle", "transport", "continuum"})
+    io::StageDirectory(run_directory(cl, p), name, cl.force || cl.restart);
+  std::cout << "run: '" << p.name << "': particle, transport, continuum (the comparison stage "
+            << "comes with the study issue)\n";
+  if (const int rc = particle_stage(cl)) return rc;
+  CommandLine later = cl;
+  later.restart = false;
+  later.force = cl.force || cl.restart; // a restarted run's later stages start afresh
+  if (const int rc = transport_stage(later)) return rc;
+  bool chosen = false; // the user's own choice of coefficients wins
+  for (const auto& o : cl.overrides) chosen |= o.find("Continuum/Coefficients/Source") == 0;
+  if (!chosen) later.overrides.push_back("Continuum/Coefficients/Source=transport");
+  return continuum_stage(later);
 }
 
 } // namespace twinflow::app

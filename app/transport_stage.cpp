@@ -32,6 +32,14 @@ int transport_stage(const CommandLine& cl) {
         if (cp.scene.boundary[d].thermal[s])
           wall_mean += cp.scene.boundary[d].temperature[s], ++walls;
   if (walls > 0) p.temperature = wall_mean / walls;
+  // Bulk runs start in equilibrium at the state point, whatever the scene's own start (a case
+  // that starts at rest would otherwise measure at a lower temperature).
+  p.initial_velocities = particle::InitialVelocities::Maxwell;
+  p.temperature_perturbation = 0;
+  p.poiseuille_force = 0;
+  p.gravity = {{0, 0, 0}};
+  for (auto& w : p.walls) w.present = false;
+  p.heat_slabs.clear();
   const double edge = std::max(3 * p.largest_cutoff(), std::pow(4000 / p.density, 1.0 / p.dim));
   p.box = {{edge, edge, edge}};
   stage.create();

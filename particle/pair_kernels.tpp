@@ -237,7 +237,7 @@ template <class M> void Simulation<M>::shardlow_sweep(const PairNoise& noise) {
         th_i = u[i] * inv_cv, th_j = u[j] * inv_cv;
       }
       // Half 2, implicit in v_r: v_r2 (1 + gamma' w_D dt/m) = v_r1 + sigma w_R xi sqrt(dt)/m
-      const double vr2 = (vr1 + kick * inv_m) / (1 + fr.ito_gamma(th_i, th_j) * wd[k] * dt * inv_m);
+      const double vr2 = fr.implicit_half(vr1 + kick * inv_m, th_i, th_j, wd[k] * dt * inv_m);
       const double dp2 = 0.5 * m * (vr2 - vr1);
       if constexpr (M::has_energy) {
         const double dk = dp2 * 0.5 * (vr1 + vr2);

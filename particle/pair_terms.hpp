@@ -195,9 +195,17 @@ struct ConstantSigma {
   double ito_gamma(double th_i, double th_j) const {
     return sigma * sigma * (th_i + th_j) / (4 * th_i * th_j);
   }
+  // Shardlow's implicit half: rhs / (1 + gamma' c), c = w_D dt/m, with the one division.
+  double implicit_half(double rhs, double th_i, double th_j, double c) const {
+    const double p = 4 * th_i * th_j;
+    return rhs * p / (p + sigma * sigma * (th_i + th_j) * c);
+  }
   static double harmonic(double a, double b) { return 2 * a * b / (a + b); } // Theta_ij, 003
 };
 struct ConstantGamma {
+  double implicit_half(double rhs, double th_i, double th_j, double c) const {
+    return rhs / (1 + ito_gamma(th_i, th_j) * c);
+  }
   static constexpr bool isothermal = false;
   double gamma_, cv;
   Weight w;
@@ -212,6 +220,9 @@ struct ConstantGamma {
   static double harmonic(double a, double b) { return 2 * a * b / (a + b); }
 };
 struct IsothermalFriction { // seed 001: fixed T in the FDT, no internal energy
+  double implicit_half(double rhs, double th_i, double th_j, double c) const {
+    return rhs / (1 + ito_gamma(th_i, th_j) * c);
+  }
   static constexpr bool isothermal = true;
   double gamma_, sigma;
   Weight w;

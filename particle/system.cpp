@@ -71,6 +71,7 @@ template <int D> std::size_t CellGrid<D>::pair_count() const {
 
 // The pairs (i, j) of cell c with i in c: j later in c, or in a half-shell neighbour cell.
 // Distances as in visit_cell (minimum image by nearbyint), the test vectorised over candidates.
+// Order: see the end.
 template <int D>
 void CellGrid<D>::build_cell(const State<D>& s, int c, double rc2, PairBuffer& b,
                              SlotRange& range) const {
@@ -115,7 +116,9 @@ void CellGrid<D>::build_cell(const State<D>& s, int c, double rc2, PairBuffer& b
   std::uint32_t* out_j = b.j.data();
   std::size_t m = b.used;
   double* r2 = b.r2.data();
+  b.count.assign(ni + 1, 0);
   for (std::size_t p = 0; p < ni; ++p) {
+    b.count[p] = m;
     for (std::size_t k = p + 1; k < nc; ++k) r2[k] = 0;
     for (int d = 0; d < D; ++d) {
       const double xi = b.cx[d][p], box = box_[d], inv_box = inv_box_[d];
@@ -133,7 +136,22 @@ void CellGrid<D>::build_cell(const State<D>& s, int c, double rc2, PairBuffer& b
       m += r2[k] < rc2;
     }
   }
-  range.count = static_cast<std::uint32_t>(m - b.used);
+  b.count[ni] = m;
+  // Round-robin over the cell's particles (the k-th pair of every i, then the (k+1)-th, ...):
+  // consecutive pairs rarely share a particle, so the sequential pair updates of the Shardlow
+  // sweep overlap in the processor instead of waiting on each other.
+  const std::size_t total = m - b.used;
+  b.tmp_i.resize(total), b.tmp_j.resize(total);
+  std::size_t o = 0;
+  for (std::size_t round = 0; o < total; ++round)
+    for (std::size_t p = 0; p < ni; ++p)
+      if (b.count[p] + round < b.count[p + 1]) {
+        b.tmp_i[o] = out_i[b.count[p] + round];
+        b.tmp_j[o++] = out_j[b.count[p] + round];
+      }
+  std::copy(b.tmp_i.begin(), b.tmp_i.end(), out_i + b.used);
+  std::copy(b.tmp_j.begin(), b.tmp_j.end(), out_j + b.used);
+  range.count = static_cast<std::uint32_t>(total);
   b.used = m;
 }
 

@@ -113,9 +113,9 @@ public:
     return pairs_valid_;
   }
   std::size_t pair_count() const;
-  // Calls fn(i, j, count) with one cell's pairs (storage indices, i ascending, each i's j in
-  // candidate order). Colours in turn, cells of one colour in parallel, as in for_each_pair: a
-  // particle sees its pairs in one fixed order whatever the thread count.
+  // Calls fn(i, j, count) with one cell's pairs (storage indices, in a fixed order: round-robin
+  // over the cell's particles, see build_cell). Colours in turn, cells of one colour in parallel,
+  // as in for_each_pair: a particle sees its pairs in one fixed order whatever the thread count.
   template <class BlockFn> void for_each_pair_block(BlockFn&& fn) const {
     const int colours = static_cast<int>(colour_begin_.size()) - 1;
     const long nx = n_[0];
@@ -187,6 +187,8 @@ private:
     std::size_t used = 0;
     std::vector<std::uint32_t> cand; // scratch: candidate indices of one cell
     std::vector<double> cx[D], r2;   // scratch: their positions and distances
+    std::vector<std::size_t> count;  // scratch: first pair of each particle of the cell
+    std::vector<std::uint32_t> tmp_i, tmp_j;
   };
   struct SlotRange {
     std::uint32_t buffer = 0, count = 0;

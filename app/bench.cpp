@@ -3,6 +3,7 @@
 //
 // Without --set 'Bench/...' keys it runs the whole matrix below. Keys (comma-separated lists):
 //   Bench/N=6000,48000        3D sizes; the box is 2L x L x L with L = (N / (2 rho))^(1/3)
+//   Bench/N2D=48000           2D sizes; the box is 2L x L with L = (N / (2 rho))^(1/2)
 //   Bench/Scenes=a0=15+heat   ideal | ideal+heat | a0=15 | a0=15+heat
 //   Bench/Integrators=shardlow,ec-verlet
 //   Bench/Threads=1,2         OpenMP thread counts
@@ -86,6 +87,7 @@ struct Options {
   std::vector<Integrator> integrators{Integrator::Shardlow, Integrator::EcVerlet,
                                       Integrator::Euler};
   std::vector<int> threads;
+  bool sizes_given = false;
   long steps = 0;  // 0: max(5, 3e6 / N)
   long thermo = 0; // > 0: thermodynamics instead of timing
 };
@@ -102,11 +104,18 @@ Options parse(const CommandLine& cl) {
     };
     if (eq == std::string::npos) throw bad("Bench/KEY=VALUE");
     try {
-      if (key == "Bench/N") {
-        o.sizes.clear();
+      if (key == "Bench/N" || key == "Bench/N2D") {
+        if (!o.sizes_given) o.sizes.clear(); // the default matrix
+        o.sizes_given = true;
         for (const auto& n : split(value)) {
+          if (key == "Bench/N2D") { // rho = 3, box 2L x L
+            const double l = std::sqrt(std::stod(n) / (2 * 3.0));
+            if (!(l >= 4)) throw bad("N >= 96");
+            o.sizes.push_back({2, {{2 * l, l, 1}}});
+            continue;
+          }
           const double l = std::cbrt(std::stod(n) / (2 * 3.0)); // rho = 3, box 2L x L x L
-          if (!(l >= 3)) throw bad("N >= 162");
+          if (!(l >= 4)) throw bad("N >= 384");
           o.sizes.push_back({3, {{2 * l, l, l}}});
         }
       } else if (key == "Bench/Scenes") {
@@ -143,8 +152,9 @@ Options parse(const CommandLine& cl) {
         o.thermo = std::stol(value);
         if (o.thermo < 10) throw bad("steps >= 10");
       } else {
-        throw bad("Bench/N, Bench/Scenes, Bench/Integrators, Bench/Threads, Bench/Steps, "
-                  "Bench/Thermo");
+        throw bad(
+            "Bench/N, Bench/N2D, Bench/Scenes, Bench/Integrators, Bench/Threads, Bench/Steps, "
+            "Bench/Thermo");
       }
     } catch (const std::logic_error&) { // stoi/stod
       throw bad("numbers");

@@ -297,6 +297,7 @@ template <class M> void Simulation<M>::step_ec_verlet() {
   const std::size_t n = state_.size();
   const double half = 0.5 * dt_ / model_.mass, m2 = 0.5 * model_.mass;
   auto& v = state_.v;
+#pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
     double k_old = 0, k_half = 0;
     for (int d = 0; d < D; ++d) {
@@ -310,6 +311,7 @@ template <class M> void Simulation<M>::step_ec_verlet() {
   }
   grid_.sort(state_, carried_);
   conservative_pass(true); // F, q, P at t + dt from r(t+dt), v(t+dt/2), u(t+dt/2)
+#pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
     double k_half = 0, k_new = 0;
     for (int d = 0; d < D; ++d) {
@@ -402,6 +404,7 @@ template <class M> void Simulation<M>::step_shardlow() {
   const bool kicks = M::Conservative::active || has_external_;
   const bool offset = M::has_energy && p_.energy_offset && kicks;
   const double half = 0.5 * dt_ / model_.mass, m2 = 0.5 * model_.mass;
+#pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
     double k_old = 0, k_half = 0;
     for (int d = 0; d < D; ++d) {
@@ -417,6 +420,7 @@ template <class M> void Simulation<M>::step_shardlow() {
   grid_.sort(state_, carried_);
   if (kicks) {
     conservative_pass(false);
+#pragma omp parallel for schedule(static)
     for (std::size_t i = 0; i < n; ++i) {
       double k_half = 0, k_new = 0;
       for (int d = 0; d < D; ++d) {
@@ -453,6 +457,7 @@ template <class M> double Simulation<M>::potential_energy() const {
 template <class M> void Simulation<M>::check_energies(const char* where) const {
   const std::size_t n = state_.size();
   bool bad = false;
+#pragma omp parallel for schedule(static) reduction(|| : bad)
   for (std::size_t i = 0; i < n; ++i) {
     double s = 0;
     for (int d = 0; d < D; ++d) s += state_.v[d][i];

@@ -160,7 +160,9 @@ template <int D> void CellGrid<D>::sort(State<D>& s, Carried<D>& carried) {
   pairs_valid_ = false;
   cell_.resize(n);
   std::fill(start_.begin(), start_.end(), 0);
-  for (std::size_t i = 0; i < n; ++i) {
+  const long count = static_cast<long>(n);
+#pragma omp parallel for schedule(static)
+  for (long i = 0; i < count; ++i) {
     double pos[D];
     for (int d = 0; d < D; ++d) {
       double& xd = s.x[d][i];
@@ -169,23 +171,25 @@ template <int D> void CellGrid<D>::sort(State<D>& s, Carried<D>& carried) {
       pos[d] = xd;
     }
     cell_[i] = cell_of(pos);
-    ++start_[cell_[i] + 1];
   }
+  for (std::size_t i = 0; i < n; ++i) ++start_[cell_[i] + 1];
   std::partial_sum(start_.begin(), start_.end(), start_.begin());
   // Counting sort by cell, then by id inside each cell (lists are short and nearly sorted).
   order_.resize(n);
   std::vector<std::size_t> fill(start_.begin(), start_.end() - 1);
   for (std::size_t i = 0; i < n; ++i) order_[fill[cell_[i]]++] = static_cast<int>(i);
+#pragma omp parallel for schedule(static)
   for (int c = 0; c < total_; ++c) {
     const auto b = order_.begin() + start_[c], e = order_.begin() + start_[c + 1];
     for (auto it = b + (b != e); it < e; ++it) // insertion sort by id
       for (auto k = it; k > b && s.id[*(k - 1)] > s.id[*k]; --k) std::iter_swap(k - 1, k);
   }
-  auto permute = [&](auto& a) {
+  auto permute = [&](auto& a) { // through a kept buffer: no allocation per step
     if (a.empty()) return;
-    using T = typename std::decay_t<decltype(a)>::value_type;
-    std::vector<T> tmp(n);
-    for (std::size_t k = 0; k < n; ++k) tmp[k] = a[order_[k]];
+    auto& tmp = scratch_for(a);
+    tmp.resize(n);
+#pragma omp parallel for schedule(static)
+    for (long k = 0; k < count; ++k) tmp[k] = a[order_[k]];
     a.swap(tmp);
   };
   for (int d = 0; d < D; ++d) {

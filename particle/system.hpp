@@ -210,6 +210,13 @@ private:
   bool pairs_valid_ = false;
   std::vector<int> cell_, order_;
   std::vector<double> scratch_;
+  std::vector<std::uint32_t> scratch_id_;
+  std::vector<double>& scratch_for(std::vector<double>&) {
+    return scratch_;
+  }
+  std::vector<std::uint32_t>& scratch_for(std::vector<std::uint32_t>&) {
+    return scratch_id_;
+  }
 };
 
 } // namespace twinflow::particle

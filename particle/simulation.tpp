@@ -457,7 +457,6 @@ template <class M> double Simulation<M>::potential_energy() const {
 template <class M> void Simulation<M>::check_energies(const char* where) const {
   const std::size_t n = state_.size();
   bool bad = false;
-#pragma omp parallel for schedule(static) reduction(|| : bad)
   for (std::size_t i = 0; i < n; ++i) {
     double s = 0;
     for (int d = 0; d < D; ++d) s += state_.v[d][i];

@@ -161,7 +161,6 @@ template <int D> void CellGrid<D>::sort(State<D>& s, Carried<D>& carried) {
   cell_.resize(n);
   std::fill(start_.begin(), start_.end(), 0);
   const long count = static_cast<long>(n);
-#pragma omp parallel for schedule(static)
   for (long i = 0; i < count; ++i) {
     double pos[D];
     for (int d = 0; d < D; ++d) {
@@ -178,17 +177,16 @@ template <int D> void CellGrid<D>::sort(State<D>& s, Carried<D>& carried) {
   order_.resize(n);
   std::vector<std::size_t> fill(start_.begin(), start_.end() - 1);
   for (std::size_t i = 0; i < n; ++i) order_[fill[cell_[i]]++] = static_cast<int>(i);
-#pragma omp parallel for schedule(static)
   for (int c = 0; c < total_; ++c) {
     const auto b = order_.begin() + start_[c], e = order_.begin() + start_[c + 1];
     for (auto it = b + (b != e); it < e; ++it) // insertion sort by id
       for (auto k = it; k > b && s.id[*(k - 1)] > s.id[*k]; --k) std::iter_swap(k - 1, k);
   }
+  // Serial on purpose: on a shared machine every extra barrier can cost a scheduler time slice.
   auto permute = [&](auto& a) { // through a kept buffer: no allocation per step
     if (a.empty()) return;
     auto& tmp = scratch_for(a);
     tmp.resize(n);
-#pragma omp parallel for schedule(static)
     for (long k = 0; k < count; ++k) tmp[k] = a[order_[k]];
     a.swap(tmp);
   };

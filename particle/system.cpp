@@ -49,11 +49,19 @@ template <int D> void CellGrid<D>::build_pairs(const State<D>& s, double rc) {
   const std::size_t threads = static_cast<std::size_t>(std::max(1, omp_get_max_threads()));
   if (buffers_.size() < threads) buffers_.resize(threads);
   const long slots = static_cast<long>(slot_cell_.size());
+  // First guess of the pairs per thread, 10% above the uniform density's N rho V_D(rc) / 2, so
+  // that a buffer is allocated once instead of grown through copies (peak memory).
+  double volume = 1;
+  for (int d = 0; d < D; ++d) volume *= box_[d];
+  const double ball = D == 3 ? 4.18879020478639 * rc2 * rc : 3.141592653589793 * rc2;
+  const double n = static_cast<double>(s.size());
+  const auto guess = static_cast<std::size_t>(1.1 * 0.5 * n * n / volume * ball / threads) + 4096;
 #pragma omp parallel
   {
     const std::size_t t = static_cast<std::size_t>(omp_get_thread_num());
     PairBuffer& b = buffers_[t];
     b.used = 0;
+    if (b.i.size() < guess) b.i.resize(guess), b.j.resize(guess);
 #pragma omp for schedule(static)
     for (long slot = 0; slot < slots; ++slot) {
       slot_range_[slot].buffer = static_cast<std::uint32_t>(t);

@@ -1,7 +1,20 @@
-// twinflow bench: particle-steps/s of the particle core per integrator, scene, size and threads.
+// twinflow bench: particle-steps/s of the particle core per integrator, scene, size and threads,
+// and (Bench/Thermo) the energy drift, temperatures and pressure of the same system.
+//
+// Without --set 'Bench/...' keys it runs the whole matrix below. Keys (comma-separated lists):
+//   Bench/N=6000,48000        3D sizes; the box is 2L x L x L with L = (N / (2 rho))^(1/3)
+//   Bench/N2D=48000           2D sizes; the box is 2L x L with L = (N / (2 rho))^(1/2)
+//   Bench/Scenes=a0=15+heat   ideal | ideal+heat | a0=15 | a0=15+heat
+//   Bench/Integrators=shardlow,ec-verlet
+//   Bench/Threads=1,2         OpenMP thread counts
+//   Bench/Steps=200           timed steps (default max(5, 3e6 / N))
+//   Bench/Thermo=1000         instead of timing: equilibrate 1000 steps, then sample as many,
+//                             printing energy drift, T_kinetic, T_internal and pressure
 
 #include <omp.h>
+#include <sys/resource.h>
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -21,8 +34,14 @@ struct Scene {
   bool repulsion, heat;
 };
 
-// LAMMPS's DPDE system (shared/peers/lammps): rho = 3, rc = 1, sigma = 3, c_v = 200,
-// w_D = w_H = (1 - r)^2 (LAMMPS's single weight w = 1 - r), inverse heat law, dt = 0.005.
+const Scene all_scenes[] = {{"ideal", false, false},
+                            {"ideal+heat", false, true},
+                            {"a0=15", true, false},
+                            {"a0=15+heat", true, true}};
+
+// LAMMPS's DPDE system (shared/peers/lammps): rho = 3, rc = 1, sigma = 3, c_v = 200, kappa = 40,
+// w_C = w_R = 1 - r, w_D = w_H = (1 - r)^2 (LAMMPS's single weight w = 1 - r), inverse heat law
+// with constant kappa, dt = 0.005.
 ParticleParameters bench_case(int dim, std::array<double, 3> box, const Scene& s, Integrator i) {
   ParticleParameters p;
   p.dim = dim;
@@ -41,52 +60,165 @@ ParticleParameters bench_case(int dim, std::array<double, 3> box, const Scene& s
   p.kappa0 = 40;
   return p;
 }
+
+struct Size {
+  int dim;
+  std::array<double, 3> box;
+};
+
+std::vector<std::string> split(const std::string& s) {
+  std::vector<std::string> out;
+  std::stringstream in(s);
+  for (std::string item; std::getline(in, item, ',');)
+    if (!item.empty()) out.push_back(item);
+  return out;
+}
+
+long peak_rss_kb() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return u.ru_maxrss;
+}
+
+struct Options {
+  std::vector<Size> sizes{
+      {3, {{20, 10, 10}}}, {3, {{40, 20, 20}}}, {3, {{80, 40, 40}}}, {2, {{160, 100, 1}}}};
+  std::vector<const Scene*> scenes{&all_scenes[0], &all_scenes[1], &all_scenes[2], &all_scenes[3]};
+  std::vector<Integrator> integrators{Integrator::Shardlow, Integrator::EcVerlet,
+                                      Integrator::Euler};
+  std::vector<int> threads;
+  bool sizes_given = false;
+  long steps = 0;  // 0: max(5, 3e6 / N)
+  long thermo = 0; // > 0: thermodynamics instead of timing
+};
+
+Options parse(const CommandLine& cl) {
+  Options o;
+  const int max_threads = cl.threads > 0 ? cl.threads : omp_get_num_procs();
+  for (int t = 1; t <= std::min(2, max_threads); ++t) o.threads.push_back(t);
+  for (const auto& setting : cl.overrides) {
+    const auto eq = setting.find('=');
+    const std::string key = setting.substr(0, eq), value = setting.substr(eq + 1);
+    const auto bad = [&](const std::string& allowed) {
+      return io::InputError("--set '" + setting + "': allowed: " + allowed);
+    };
+    if (eq == std::string::npos) throw bad("Bench/KEY=VALUE");
+    try {
+      if (key == "Bench/N" || key == "Bench/N2D") {
+        if (!o.sizes_given) o.sizes.clear(); // the default matrix
+        o.sizes_given = true;
+        for (const auto& n : split(value)) {
+          if (key == "Bench/N2D") { // rho = 3, box 2L x L
+            const double l = std::sqrt(std::stod(n) / (2 * 3.0));
+            if (!(l >= 4)) throw bad("N >= 96");
+            o.sizes.push_back({2, {{2 * l, l, 1}}});
+            continue;
+          }
+          const double l = std::cbrt(std::stod(n) / (2 * 3.0)); // rho = 3, box 2L x L x L
+          if (!(l >= 4)) throw bad("N >= 384");
+          o.sizes.push_back({3, {{2 * l, l, l}}});
+        }
+      } else if (key == "Bench/Scenes") {
+        o.scenes.clear();
+        for (const auto& name : split(value)) {
+          const Scene* found = nullptr;
+          for (const auto& s : all_scenes)
+            if (name == s.name) found = &s;
+          if (!found) throw bad("ideal, ideal+heat, a0=15, a0=15+heat");
+          o.scenes.push_back(found);
+        }
+      } else if (key == "Bench/Integrators") {
+        o.integrators.clear();
+        for (const auto& name : split(value)) {
+          if (name == "shardlow")
+            o.integrators.push_back(Integrator::Shardlow);
+          else if (name == "ec-verlet")
+            o.integrators.push_back(Integrator::EcVerlet);
+          else if (name == "euler")
+            o.integrators.push_back(Integrator::Euler);
+          else
+            throw bad("shardlow, ec-verlet, euler");
+        }
+      } else if (key == "Bench/Threads") {
+        o.threads.clear();
+        for (const auto& t : split(value)) {
+          o.threads.push_back(std::stoi(t));
+          if (o.threads.back() < 1) throw bad("threads >= 1");
+        }
+      } else if (key == "Bench/Steps") {
+        o.steps = std::stol(value);
+        if (o.steps < 1) throw bad("steps >= 1");
+      } else if (key == "Bench/Thermo") {
+        o.thermo = std::stol(value);
+        if (o.thermo < 10) throw bad("steps >= 10");
+      } else {
+        throw bad(
+            "Bench/N, Bench/N2D, Bench/Scenes, Bench/Integrators, Bench/Threads, Bench/Steps, "
+            "Bench/Thermo");
+      }
+    } catch (const std::logic_error&) { // stoi/stod
+      throw bad("numbers");
+    }
+  }
+  return o;
+}
 } // namespace
 
 int bench(const CommandLine& cl) {
   const io::StageDirectory stage(cl.out.empty() ? std::filesystem::path("twinflow-runs/bench")
                                                 : std::filesystem::path(cl.out),
                                  "bench", cl.force);
-  const Scene scenes[] = {{"ideal", false, false},
-                          {"ideal+heat", false, true},
-                          {"a0=15", true, false},
-                          {"a0=15+heat", true, true}};
-  struct Size {
-    int dim;
-    std::array<double, 3> box;
-  };
-  const Size sizes[] = {
-      {3, {{20, 10, 10}}}, {3, {{40, 20, 20}}}, {3, {{80, 40, 40}}}, {2, {{160, 100, 1}}}};
-  const int max_threads = cl.threads > 0 ? cl.threads : omp_get_num_procs();
+  const Options o = parse(cl);
   std::ostringstream table;
-  table << "| dim | N | scene | integrator | threads | particle-steps/s | bytes/particle |\n"
-           "|---|---|---|---|---|---|---|\n";
+  if (o.thermo > 0)
+    table << "| dim | N | scene | integrator | threads | steps | max dE/E0 | T_kinetic | "
+             "T_internal | pressure |\n|---|---|---|---|---|---|---|---|---|---|\n";
+  else
+    table << "| dim | N | scene | integrator | threads | particle-steps/s | peak RSS kB |\n"
+             "|---|---|---|---|---|---|---|\n";
   std::cout << table.str() << std::flush;
   io::Json rows = io::Json::array();
-  for (const auto& size : sizes)
-    for (const auto& scene : scenes)
-      for (const auto integrator : {Integrator::Shardlow, Integrator::EcVerlet, Integrator::Euler})
-        for (int threads = 1; threads <= std::min(2, max_threads); ++threads) {
+  for (const auto& size : o.sizes)
+    for (const Scene* scene : o.scenes)
+      for (const auto integrator : o.integrators)
+        for (const int threads : o.threads) {
           omp_set_num_threads(threads);
-          const auto p = bench_case(size.dim, size.box, scene, integrator);
-          const long steps = std::max(5L, 3000000L / p.particle_count());
-          const BenchResult r = bench_particles(p, steps);
-          char line[256];
-          std::snprintf(line, sizeof line, "| %d | %ld | %s | %s | %d | %.3g | %.0f |\n", size.dim,
-                        r.particles, scene.name, to_string(integrator), threads,
-                        r.particle_steps_per_second, r.bytes_per_particle);
+          auto p = bench_case(size.dim, size.box, *scene, integrator);
+          io::Json row = io::Json::object();
+          char line[512];
+          if (o.thermo > 0) {
+            p.equilibration_steps = o.thermo;
+            p.steps = o.thermo;
+            p.sample_interval = std::max(1L, o.thermo / 200);
+            const io::Json s = run_particles(p).summary;
+            auto num = [&](const char* k) { return s.find(k)->number(); };
+            const double drift = num("energy_relative_drift_max");
+            std::snprintf(line, sizeof line,
+                          "| %d | %ld | %s | %s | %d | %ld | %.2e | %.5f +- %.5f | %.5f +- %.5f "
+                          "| %.4f +- %.4f |\n",
+                          size.dim, p.particle_count(), scene->name, to_string(integrator), threads,
+                          2 * o.thermo, drift, num("T_kinetic"), num("T_kinetic_stderr"),
+                          num("T_internal"), num("T_internal_stderr"), num("pressure"),
+                          num("pressure_stderr"));
+            row = s;
+          } else {
+            const long steps = o.steps > 0 ? o.steps : std::max(5L, 3000000L / p.particle_count());
+            const BenchResult r = bench_particles(p, steps);
+            std::snprintf(line, sizeof line, "| %d | %ld | %s | %s | %d | %.3g | %ld |\n", size.dim,
+                          r.particles, scene->name, to_string(integrator), threads,
+                          r.particle_steps_per_second, peak_rss_kb());
+            row["N"] = r.particles;
+            row["steps"] = steps;
+            row["seconds"] = r.seconds;
+            row["particle_steps_per_second"] = r.particle_steps_per_second;
+            row["peak_rss_kb"] = peak_rss_kb();
+          }
           std::cout << line << std::flush;
           table << line;
-          io::Json row = io::Json::object();
           row["dim"] = size.dim;
-          row["N"] = r.particles;
-          row["scene"] = scene.name;
+          row["scene"] = scene->name;
           row["integrator"] = to_string(integrator);
           row["threads"] = threads;
-          row["steps"] = steps;
-          row["seconds"] = r.seconds;
-          row["particle_steps_per_second"] = r.particle_steps_per_second;
-          row["bytes_per_particle"] = r.bytes_per_particle;
           rows.push_back(row);
         }
   stage.create();

@@ -3,10 +3,10 @@
 // An absent term is an empty type with `active = false`; `if constexpr` removes it from the loop.
 // Notation and equations: shared/docs/physics.md; k = 1.
 
-#include <Random123/philox.h>
-
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 
 namespace twinflow::particle {
 
@@ -35,7 +35,90 @@ struct Weight {
       w = std::pow(x, n), sqrt_w = std::pow(x, 0.5 * n);
     }
   }
+  // The same for a block of distances, 0 at r >= rc; the loops vectorise for the common exponents.
+  void eval(std::size_t count, const double* r, double* w, double* sqrt_w) const {
+    auto x = [&](std::size_t k) { return std::max(1 - r[k] * inv_rc, 0.0); };
+    switch (kind) {
+    case 1:
+      for (std::size_t k = 0; k < count; ++k)
+        sqrt_w[k] = std::sqrt(std::sqrt(x(k))), w[k] = sqrt_w[k] * sqrt_w[k];
+      break;
+    case 2:
+      for (std::size_t k = 0; k < count; ++k) sqrt_w[k] = std::sqrt(x(k)), w[k] = x(k);
+      break;
+    case 3:
+      for (std::size_t k = 0; k < count; ++k) sqrt_w[k] = x(k), w[k] = x(k) * x(k);
+      break;
+    default:
+      for (std::size_t k = 0; k < count; ++k)
+        w[k] = std::pow(x(k), n), sqrt_w[k] = std::pow(x(k), 0.5 * n);
+    }
+  }
 };
+
+// Philox4x32-10 (Salmon et al., SC'11; the constants of Random123's philox.h), written out on
+// plain 32/64-bit integers so that a loop over pairs vectorises. Returns output words 0 and 1;
+// bitwise equal to r123::Philox4x32 (tested).
+inline void philox4x32_10(std::uint32_t c0, std::uint32_t c1, std::uint32_t c2, std::uint32_t c3,
+                          std::uint32_t k0, std::uint32_t k1, std::uint32_t& r0,
+                          std::uint32_t& r1) {
+  for (int round = 0; round < 10; ++round) {
+    if (round > 0) k0 += 0x9E3779B9u, k1 += 0xBB67AE85u; // Weyl key schedule
+    const std::uint64_t p0 = std::uint64_t{0xD2511F53u} * c0;
+    const std::uint64_t p1 = std::uint64_t{0xCD9E8D57u} * c2;
+    const auto hi0 = static_cast<std::uint32_t>(p0 >> 32), lo0 = static_cast<std::uint32_t>(p0);
+    const auto hi1 = static_cast<std::uint32_t>(p1 >> 32), lo1 = static_cast<std::uint32_t>(p1);
+    c0 = hi1 ^ c1 ^ k0, c1 = lo1, c2 = hi0 ^ c3 ^ k1, c3 = lo0;
+  }
+  r0 = c0, r1 = c1;
+}
+
+// Box-Muller from two 32-bit words, without libm so that it vectorises: g1, g2 independent
+// standard Gaussians. Radius sqrt(-2 ln u1), u1 = (a + 1/2) 2^-32, with ln from exponent and an
+// atanh series (relative error < 1e-15); angle uniform on [0, 2 pi): 29 bits give phi in
+// [0, pi/4), Taylor sin/cos (error < 2e-14), 3 bits pick the octant by reflection and rotation.
+inline void box_muller(std::uint32_t a, std::uint32_t b, double& g1, double& g2) {
+  double x = a + 0.5;
+  std::uint64_t bits;
+  std::memcpy(&bits, &x, sizeof x);
+  auto e = static_cast<std::int64_t>(bits >> 52) - 1023;
+  bits = (bits & 0xfffffffffffffull) | 0x3ff0000000000000ull;
+  double m;
+  std::memcpy(&m, &bits, sizeof m);
+  const bool big = m > 1.4142135623730951; // m in [sqrt(1/2), sqrt(2)) after the shift
+  m = big ? 0.5 * m : m;
+  e = big ? e + 1 : e;
+  const double s = (m - 1) / (m + 1), s2 = s * s; // ln m = 2 atanh(s) = 2 (s + s^3/3 + ...)
+  const double series =
+      1 + s2 * (1.0 / 3 +
+                s2 * (1.0 / 5 +
+                      s2 * (1.0 / 7 +
+                            s2 * (1.0 / 9 +
+                                  s2 * (1.0 / 11 +
+                                        s2 * (1.0 / 13 + s2 * (1.0 / 15 + s2 * (1.0 / 17))))))));
+  const double ln_u1 =
+      static_cast<double>(e) * 0.6931471805599453 + 2 * s * series - 22.18070977791825; // - 32 ln 2
+  const double radius = std::sqrt(-2 * ln_u1);
+  const double phi = ((b & 0x1fffffffu) + 0.5) * (0.7853981633974483 / 536870912.0);
+  const double p2 = phi * phi;
+  const double sin_phi =
+      phi *
+      (1 + p2 * (-1.0 / 6 +
+                 p2 * (1.0 / 120 +
+                       p2 * (-1.0 / 5040 + p2 * (1.0 / 362880 + p2 * (-1.0 / 39916800 +
+                                                                      p2 * (1.0 / 6227020800)))))));
+  const double cos_phi =
+      1 + p2 * (-0.5 + p2 * (1.0 / 24 +
+                             p2 * (-1.0 / 720 +
+                                   p2 * (1.0 / 40320 + p2 * (-1.0 / 3628800 +
+                                                             p2 * (1.0 / 479001600 +
+                                                                   p2 * (-1.0 / 87178291200)))))));
+  const std::uint32_t octant = b >> 29;
+  const double c1 = (octant & 1) ? sin_phi : cos_phi, s1 = (octant & 1) ? cos_phi : sin_phi;
+  const double c2 = (octant & 2) ? -s1 : c1, s2q = (octant & 2) ? c1 : s1; // + pi/2
+  const double r = (octant & 4) ? -radius : radius;                        // + pi
+  g1 = r * c2, g2 = r * s2q;
+}
 
 // Gaussian pair noise from Philox4x32-10 keyed by (seed, step, stream) with counter
 // (min id, max id): xi_ij = xi_ji and zeta_ij = -zeta_ji whoever computes the pair.
@@ -43,39 +126,35 @@ class PairNoise {
 public:
   enum Stream : std::uint32_t { Pair = 0, Initial = 1, Wall = 2 };
   PairNoise(std::uint64_t seed, std::uint64_t step, Stream stream)
-      : key_{{static_cast<std::uint32_t>(seed), static_cast<std::uint32_t>(seed >> 32)}},
+      : k0_(static_cast<std::uint32_t>(seed)), k1_(static_cast<std::uint32_t>(seed >> 32)),
         step_lo_(static_cast<std::uint32_t>(step)),
         step_hi_(static_cast<std::uint32_t>((step >> 32) & 0xffff) | (stream << 16)) {}
 
   // xi (symmetric) and zeta (antisymmetric, sign taken from i's side).
   void gaussians(std::uint32_t id_i, std::uint32_t id_j, double& xi, double& zeta) const {
     const bool i_first = id_i < id_j;
-    r123::Philox4x32::ctr_type c = {
-        {i_first ? id_i : id_j, i_first ? id_j : id_i, step_lo_, step_hi_}};
-    const auto r = r123::Philox4x32()(c, key_);
-    box_muller(r[0], r[1], xi, zeta);
-    if (!i_first) zeta = -zeta;
+    std::uint32_t r0, r1;
+    philox4x32_10(i_first ? id_i : id_j, i_first ? id_j : id_i, step_lo_, step_hi_, k0_, k1_, r0,
+                  r1);
+    box_muller(r0, r1, xi, zeta);
+    zeta = i_first ? zeta : -zeta;
+  }
+
+  // The same for a block of pairs (i[k], j[k]) of storage indices with ids `id`: vectorises.
+  void gaussians(std::size_t n, const std::uint32_t* i, const std::uint32_t* j,
+                 const std::uint32_t* id, double* xi, double* zeta) const {
+    for (std::size_t k = 0; k < n; ++k) gaussians(id[i[k]], id[j[k]], xi[k], zeta[k]);
   }
 
   // Two independent standard Gaussians for particle `id` (initial velocities and the like).
   void particle_gaussians(std::uint32_t id, std::uint32_t index, double& g1, double& g2) const {
-    r123::Philox4x32::ctr_type c = {{id, index, step_lo_, step_hi_}};
-    const auto r = r123::Philox4x32()(c, key_);
-    box_muller(r[0], r[1], g1, g2);
+    std::uint32_t r0, r1;
+    philox4x32_10(id, index, step_lo_, step_hi_, k0_, k1_, r0, r1);
+    box_muller(r0, r1, g1, g2);
   }
 
 private:
-  static void box_muller(std::uint32_t a, std::uint32_t b, double& g1, double& g2) {
-    constexpr double two_m32 = 2.3283064365386963e-10; // 2^-32
-    const double u1 = (a + 0.5) * two_m32;             // in (0, 1)
-    const double u2 = b * two_m32;
-    const double radius = std::sqrt(-2 * std::log(u1));
-    const double angle = 6.283185307179586 * u2;
-    g1 = radius * std::cos(angle);
-    g2 = radius * std::sin(angle);
-  }
-  r123::Philox4x32::key_type key_;
-  std::uint32_t step_lo_, step_hi_;
+  std::uint32_t k0_, k1_, step_lo_, step_hi_;
 };
 
 // ---- conservative force F^C = a_ij w_C e_ij, phi = a_ij rc/2 (1 - r/rc)^2 (physics.md)
@@ -112,10 +191,21 @@ struct ConstantSigma {
   double gamma(double theta) const { return sigma * sigma / (2 * theta); } // 000:(2.37)
   double sigma_of(double) const { return sigma; }
   // Friction of the Ito (pre-point) update: sigma does not depend on u, no drift correction.
-  double ito_gamma(double th_i, double th_j) const { return gamma(harmonic(th_i, th_j)); }
+  // gamma(Theta_ij) = sigma^2 (th_i + th_j) / (4 th_i th_j), one division (000:(2.37), 003)
+  double ito_gamma(double th_i, double th_j) const {
+    return sigma * sigma * (th_i + th_j) / (4 * th_i * th_j);
+  }
+  // Shardlow's implicit half: rhs / (1 + gamma' c), c = w_D dt/m, with the one division.
+  double implicit_half(double rhs, double th_i, double th_j, double c) const {
+    const double p = 4 * th_i * th_j;
+    return rhs * p / (p + sigma * sigma * (th_i + th_j) * c);
+  }
   static double harmonic(double a, double b) { return 2 * a * b / (a + b); } // Theta_ij, 003
 };
 struct ConstantGamma {
+  double implicit_half(double rhs, double th_i, double th_j, double c) const {
+    return rhs / (1 + ito_gamma(th_i, th_j) * c);
+  }
   static constexpr bool isothermal = false;
   double gamma_, cv;
   Weight w;
@@ -130,6 +220,9 @@ struct ConstantGamma {
   static double harmonic(double a, double b) { return 2 * a * b / (a + b); }
 };
 struct IsothermalFriction { // seed 001: fixed T in the FDT, no internal energy
+  double implicit_half(double rhs, double th_i, double th_j, double c) const {
+    return rhs / (1 + ito_gamma(th_i, th_j) * c);
+  }
   static constexpr bool isothermal = true;
   double gamma_, sigma;
   Weight w;
@@ -151,7 +244,12 @@ struct InverseConstantHeat {
   void eval(double r, double th_i, double th_j, double& rate, double& amplitude) const {
     double wh, sqrt_wh;
     w.eval(r, wh, sqrt_wh);
-    rate = kappa0 * wh * (1 / th_i - 1 / th_j); // 002:(7)
+    eval_w(wh, sqrt_wh, th_i, th_j, rate, amplitude);
+  }
+  // The same from the weights w_H(r), sqrt(w_H(r)).
+  void eval_w(double wh, double sqrt_wh, double th_i, double th_j, double& rate,
+              double& amplitude) const {
+    rate = kappa0 * wh * (th_j - th_i) / (th_i * th_j); // 002:(7): 1/th_i - 1/th_j
     amplitude = std::sqrt(2 * kappa0) * sqrt_wh;
   }
 };
@@ -162,11 +260,15 @@ struct InverseSeed002Heat {
   void eval(double r, double th_i, double th_j, double& rate, double& amplitude) const {
     double wh, sqrt_wh;
     w.eval(r, wh, sqrt_wh);
+    eval_w(wh, sqrt_wh, th_i, th_j, rate, amplitude);
+  }
+  void eval_w(double wh, double sqrt_wh, double th_i, double th_j, double& rate,
+              double& amplitude) const {
     const double s = th_i + th_j;
     const double kappa =
-        kappa0 * cv * cv * s * s * 0.25;       // kappa^A_ij = kappa0 c_v^2 (T_i+T_j)^2/4k, 002 II.B
-    rate = kappa * wh * (1 / th_i - 1 / th_j); // 002:(7); drift (d_i - d_j) Lambda^2 = 0
-    amplitude = std::sqrt(2 * kappa) * sqrt_wh; // (alpha^A)^2 = 2 k kappa^A, 002 II.B
+        kappa0 * cv * cv * s * s * 0.25; // kappa^A_ij = kappa0 c_v^2 (T_i+T_j)^2/4k, 002 II.B
+    rate = kappa * wh * (th_j - th_i) / (th_i * th_j); // 002:(7); drift (d_i - d_j) Lambda^2 = 0
+    amplitude = std::sqrt(2 * kappa) * sqrt_wh;        // (alpha^A)^2 = 2 k kappa^A, 002 II.B
   }
 };
 struct LinearHeat {
@@ -177,6 +279,10 @@ struct LinearHeat {
   void eval(double r, double th_i, double th_j, double& rate, double& amplitude) const {
     double wh, sqrt_wh;
     w.eval(r, wh, sqrt_wh);
+    eval_w(wh, sqrt_wh, th_i, th_j, rate, amplitude);
+  }
+  void eval_w(double wh, double sqrt_wh, double th_i, double th_j, double& rate,
+              double& amplitude) const {
     const double dt = th_j - th_i;
     // 002:(8) plus the Ito drift 1/2 (d/du_i - d/du_j) Lambda^2 = k kappa w_H (th_j - th_i)/c_v
     rate = kappa * wh * dt * (1 + (noise_factor * 0.5) / cv);

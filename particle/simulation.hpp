@@ -26,6 +26,8 @@ template <int D_, class Conservative_, class Friction_, class Heat_> struct Mode
   double mass = 1, cv = 1, rc = 1; // rc: the largest active cutoff
 };
 
+template <int D> struct PairScratch;
+
 // A non-positive or non-finite internal energy, or a NaN: the run stops with this message.
 struct InstabilityError : std::runtime_error {
   using std::runtime_error::runtime_error;
@@ -87,8 +89,14 @@ private:
   void step_shardlow();
   void conservative_pass(bool with_velocity_terms); // ec-verlet / VV force evaluation
   void potential_pass();
-  void shardlow_pair(const PairNoise& noise, std::size_t i, std::size_t j, const double* dx,
-                     double r2);
+  // Pair passes over the grid's pair list (pair_kernels.tpp).
+  void pair_geometry(const std::uint32_t* i, const std::uint32_t* j, std::size_t n,
+                     PairScratch<D>& s) const;
+  void pair_gather(const std::uint32_t* i, const std::uint32_t* j, std::size_t n, PairScratch<D>& s,
+                   bool velocities) const;
+  void conservative_blocks();
+  void force_blocks(const PairNoise& noise);
+  void shardlow_sweep(const PairNoise& noise);
   double theta(std::size_t i) const { return state_.u[i] / model_.cv; }
   void apply_heat_slabs();
   void external_forces(); // wall repulsion and gravity into carried f and potential
@@ -120,4 +128,5 @@ std::string stability_hint(const ParticleParameters& p);
 
 } // namespace twinflow::particle
 
+#include "particle/pair_kernels.tpp"
 #include "particle/simulation.tpp"

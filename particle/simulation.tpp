@@ -115,40 +115,11 @@ template <class M> void Simulation<M>::conservative_pass(bool with_velocity_term
   std::fill(carried_.potential.begin(), carried_.potential.end(), 0.0);
   (void)n;
   const PairNoise noise(p_.seed, static_cast<std::uint64_t>(step_), PairNoise::Pair);
-  auto& f = carried_.f;
-  auto& q = carried_.q;
-  auto& pot = carried_.potential;
-  if (with_velocity_terms) {
-    grid_.for_each_pair(
-        state_, model_.rc, [&](std::size_t i, std::size_t j, const double* dx, double r2) {
-          const PairForce pf = pair_force(noise, i, j, dx, r2, state_.v);
-          const double scale = (pf.conservative + pf.dissipative_random) / std::sqrt(r2);
-          for (int d = 0; d < D; ++d) {
-            f[d][i] += scale * dx[d];
-            f[d][j] -= scale * dx[d];
-          }
-          pot[i] += 0.5 * pf.phi;
-          pot[j] += 0.5 * pf.phi;
-          q[i] += pf.heat;
-          q[j] -= pf.heat;
-        });
-  } else if constexpr (M::Conservative::active) {
-    const auto& c = model_.conservative;
-    grid_.for_each_pair(state_, c.rc,
-                        [&](std::size_t i, std::size_t j, const double* dx, double r2) {
-                          const double r = std::sqrt(r2);
-                          double th_i = 1, th_j = 1, fc, phi;
-                          if constexpr (M::has_energy) th_i = theta(i), th_j = theta(j);
-                          c.eval(r, th_i, th_j, fc, phi);
-                          const double scale = fc / r;
-                          for (int d = 0; d < D; ++d) {
-                            f[d][i] += scale * dx[d];
-                            f[d][j] -= scale * dx[d];
-                          }
-                          pot[i] += 0.5 * phi;
-                          pot[j] += 0.5 * phi;
-                        });
-  }
+  if (with_velocity_terms || M::Conservative::active) grid_.build_pairs(state_, model_.rc);
+  if (with_velocity_terms)
+    force_blocks(noise);
+  else
+    conservative_blocks();
   if (has_external_) external_forces();
 }
 
@@ -342,6 +313,7 @@ template <class M> void Simulation<M>::step_ec_verlet() {
   const std::size_t n = state_.size();
   const double half = 0.5 * dt_ / model_.mass, m2 = 0.5 * model_.mass;
   auto& v = state_.v;
+#pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
     double k_old = 0, k_half = 0;
     for (int d = 0; d < D; ++d) {
@@ -355,6 +327,7 @@ template <class M> void Simulation<M>::step_ec_verlet() {
   }
   grid_.sort(state_, carried_);
   conservative_pass(true); // F, q, P at t + dt from r(t+dt), v(t+dt/2), u(t+dt/2)
+#pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
     double k_half = 0, k_new = 0;
     for (int d = 0; d < D; ++d) {
@@ -433,74 +406,13 @@ template <class M> void Simulation<M>::step_euler() {
   check_energies("euler step");
 }
 
-// One pair of the Shardlow sweep: heat exchange, then Shardlow's S1 splitting of the pair's
-// dissipative+random update (explicit half, implicit half, same xi), energy conserved per half.
-template <class M>
-void Simulation<M>::shardlow_pair(const PairNoise& noise, std::size_t i, std::size_t j,
-                                  const double* dx, double r2) {
-  const double r = std::sqrt(r2);
-  double xi, zeta;
-  noise.gaussians(state_.id[i], state_.id[j], xi, zeta);
-  auto& u = state_.u;
-  if constexpr (M::Heat::active) {
-    if (r < model_.heat.w.rc) {
-      double rate, amplitude;
-      model_.heat.eval(r, theta(i), theta(j), rate, amplitude);
-      const double dq = rate * dt_ + amplitude * zeta * sqrt_dt_; // q_ij dt
-      u[i] += dq;
-      u[j] -= dq;
-    }
-  }
-  const auto& fr = model_.friction;
-  if (r >= fr.w.rc) return;
-  double wd, wr;
-  fr.w.eval(r, wd, wr);
-  auto& v = state_.v;
-  double e[D], vr = 0;
-  for (int d = 0; d < D; ++d) {
-    e[d] = dx[d] / r;
-    vr += e[d] * (v[d][i] - v[d][j]);
-  }
-  const double m = model_.mass, inv_m = 1 / m;
-  double th_i = 1, th_j = 1;
-  if constexpr (M::has_energy) th_i = theta(i), th_j = theta(j);
-  // The noise amplitude is taken at the pre-point for both halves (Ito), so the friction carries
-  // 003:(18)'s drift correction (a no-op for constant sigma).
-  const double kick = fr.sigma_of(fr.harmonic(th_i, th_j)) * wr * xi * sqrt_dt_;
-  // Half 1, explicit: dp = 1/2 (-gamma w_D v_r dt + sigma w_R xi sqrt(dt))
-  const double dp1 = 0.5 * (-fr.ito_gamma(th_i, th_j) * wd * vr * dt_ + kick);
-  const double vr1 = vr + 2 * dp1 * inv_m;
-  if constexpr (M::has_energy) {
-    const double dk = dp1 * 0.5 * (vr + vr1); // exact kinetic change of the pair
-    u[i] -= 0.5 * dk;
-    u[j] -= 0.5 * dk;
-    th_i = theta(i), th_j = theta(j);
-  }
-  // Half 2, implicit in v_r: v_r2 (1 + gamma' w_D dt/m) = v_r1 + sigma w_R xi sqrt(dt)/m
-  const double vr2 = (vr1 + kick * inv_m) / (1 + fr.ito_gamma(th_i, th_j) * wd * dt_ * inv_m);
-  const double dp2 = 0.5 * m * (vr2 - vr1);
-  if constexpr (M::has_energy) {
-    const double dk = dp2 * 0.5 * (vr1 + vr2);
-    u[i] -= 0.5 * dk;
-    u[j] -= 0.5 * dk;
-  }
-  const double dv = (dp1 + dp2) * inv_m;
-  for (int d = 0; d < D; ++d) {
-    v[d][i] += dv * e[d];
-    v[d][j] -= dv * e[d];
-  }
-}
-
 // Shardlow sweep over all pairs at r(t), then velocity-Verlet for the conservative force
 // (Lisal et al. 2011; LAMMPS fix shardlow + fix nve).
 template <class M> void Simulation<M>::step_shardlow() {
   ++step_;
   const std::size_t n = state_.size();
   const PairNoise noise(p_.seed, static_cast<std::uint64_t>(step_), PairNoise::Pair);
-  grid_.for_each_pair(state_, model_.rc,
-                      [&](std::size_t i, std::size_t j, const double* dx, double r2) {
-                        shardlow_pair(noise, i, j, dx, r2);
-                      });
+  shardlow_sweep(noise); // pair_kernels.tpp
   if (p_.has_walls())
     wall_sweep(PairNoise(p_.seed, static_cast<std::uint64_t>(step_), PairNoise::Wall));
   auto& v = state_.v;
@@ -508,6 +420,7 @@ template <class M> void Simulation<M>::step_shardlow() {
   const bool kicks = M::Conservative::active || has_external_;
   const bool offset = M::has_energy && p_.energy_offset && kicks;
   const double half = 0.5 * dt_ / model_.mass, m2 = 0.5 * model_.mass;
+#pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
     double k_old = 0, k_half = 0;
     for (int d = 0; d < D; ++d) {
@@ -523,6 +436,7 @@ template <class M> void Simulation<M>::step_shardlow() {
   grid_.sort(state_, carried_);
   if (kicks) {
     conservative_pass(false);
+#pragma omp parallel for schedule(static)
     for (std::size_t i = 0; i < n; ++i) {
       double k_half = 0, k_new = 0;
       for (int d = 0; d < D; ++d) {

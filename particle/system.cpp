@@ -1,5 +1,7 @@
 #include "particle/system.hpp"
 
+#include <omp.h>
+
 namespace twinflow::particle {
 
 template <int D> void CellGrid<D>::build_stencil() {
@@ -24,28 +26,150 @@ template <int D> void CellGrid<D>::build_stencil() {
       }
     if (first >= 0) stencil_.push_back(o);
   }
-  // Colours: cell index mod 3 in each direction with >= 3 cells.
-  const int ncolours = D == 2 ? 9 : 27;
-  colour_cells_.assign(ncolours, {});
-  for (int c = 0; c < total_; ++c) {
-    int rem = c, colour = 0, mul = 1;
-    for (int d = 0; d < D; ++d) {
-      colour += ((rem % n_[d]) % 3) * mul;
-      rem /= n_[d];
-      mul *= 3;
-    }
-    colour_cells_[colour].push_back(c);
+  // Colours of the rows of cells along x (constructor): (y mod 3, z mod 2) in 3D, y mod 2 in 2D.
+  const int ncolours = D == 2 ? 2 : 6, rows = total_ / n_[0];
+  std::vector<std::vector<int>> colour_rows(ncolours);
+  for (int row = 0; row < rows; ++row) {
+    const int y = row % n_[1];
+    const int colour = D == 2 ? y % 2 : y % 3 + 3 * ((row / n_[1]) % 2);
+    colour_rows[colour].push_back(row);
   }
-  colour_cells_.erase(std::remove_if(colour_cells_.begin(), colour_cells_.end(),
-                                     [](const auto& l) { return l.empty(); }),
-                      colour_cells_.end());
+  colour_begin_.assign(1, 0);
+  for (const auto& list : colour_rows) {
+    if (list.empty()) continue;
+    for (const int row : list)
+      for (int x = 0; x < n_[0]; ++x) slot_cell_.push_back(row * n_[0] + x);
+    colour_begin_.push_back(colour_begin_.back() + static_cast<long>(list.size()));
+  }
+  slot_range_.assign(slot_cell_.size(), SlotRange{});
+}
+
+template <int D> void CellGrid<D>::build_pairs(const State<D>& s, double rc) {
+  const double rc2 = rc * rc;
+  const std::size_t threads = static_cast<std::size_t>(std::max(1, omp_get_max_threads()));
+  if (buffers_.size() < threads) buffers_.resize(threads);
+  const long slots = static_cast<long>(slot_cell_.size());
+  // First guess of the pairs per thread, 10% above the uniform density's N rho V_D(rc) / 2, so
+  // that a buffer is allocated once instead of grown through copies (peak memory).
+  double volume = 1;
+  for (int d = 0; d < D; ++d) volume *= box_[d];
+  const double ball = D == 3 ? 4.18879020478639 * rc2 * rc : 3.141592653589793 * rc2;
+  const double n = static_cast<double>(s.size());
+  const auto guess = static_cast<std::size_t>(1.1 * 0.5 * n * n / volume * ball / threads) + 4096;
+#pragma omp parallel
+  {
+    const std::size_t t = static_cast<std::size_t>(omp_get_thread_num());
+    PairBuffer& b = buffers_[t];
+    b.used = 0;
+    if (b.i.size() < guess) b.i.resize(guess), b.j.resize(guess);
+#pragma omp for schedule(static)
+    for (long slot = 0; slot < slots; ++slot) {
+      slot_range_[slot].buffer = static_cast<std::uint32_t>(t);
+      build_cell(s, slot_cell_[slot], rc2, b, slot_range_[slot]);
+    }
+  }
+  pairs_valid_ = true;
+}
+
+template <int D> std::size_t CellGrid<D>::pair_count() const {
+  std::size_t n = 0;
+  for (const auto& r : slot_range_) n += r.count;
+  return n;
+}
+
+// The pairs (i, j) of cell c with i in c: j later in c, or in a half-shell neighbour cell.
+// Distances as in visit_cell (minimum image by nearbyint), the test vectorised over candidates.
+// Order: see the end.
+template <int D>
+void CellGrid<D>::build_cell(const State<D>& s, int c, double rc2, PairBuffer& b,
+                             SlotRange& range) const {
+  range.begin = b.used;
+  range.count = 0;
+  const std::size_t first = start_[c], ni = start_[c + 1] - first;
+  if (ni == 0) return;
+  std::array<int, D> idx;
+  int rem = c;
+  for (int d = 0; d < D; ++d) {
+    idx[d] = rem % n_[d];
+    rem /= n_[d];
+  }
+  auto& cand = b.cand;
+  cand.clear();
+  for (std::size_t i = first; i < first + ni; ++i) cand.push_back(static_cast<std::uint32_t>(i));
+  for (const auto& offset : stencil_) {
+    int nb = 0;
+    bool outside = false, zero = true;
+    for (int d = D - 1; d >= 0; --d) {
+      const int k = idx[d] + offset[d];
+      outside |= !periodic_[d] && (k < 0 || k >= n_[d]);
+      zero &= offset[d] == 0;
+      nb = nb * n_[d] + (k + n_[d]) % n_[d];
+    }
+    if (outside || zero) continue;
+    for (std::size_t j = start_[nb]; j < start_[nb + 1]; ++j)
+      cand.push_back(static_cast<std::uint32_t>(j));
+  }
+  const std::size_t nc = cand.size();
+  for (int d = 0; d < D; ++d) {
+    b.cx[d].resize(nc);
+    for (std::size_t k = 0; k < nc; ++k) b.cx[d][k] = s.x[d][cand[k]];
+  }
+  b.r2.resize(nc);
+  const std::size_t need = b.used + ni * nc;
+  if (b.i.size() < need) {
+    const std::size_t grown = std::max(need, b.i.size() + b.i.size() / 4);
+    b.i.resize(grown), b.j.resize(grown);
+  }
+  std::uint32_t* out_i = b.i.data();
+  std::uint32_t* out_j = b.j.data();
+  std::size_t m = b.used;
+  double* r2 = b.r2.data();
+  b.count.assign(ni + 1, 0);
+  for (std::size_t p = 0; p < ni; ++p) {
+    b.count[p] = m;
+    for (std::size_t k = p + 1; k < nc; ++k) r2[k] = 0;
+    for (int d = 0; d < D; ++d) {
+      const double xi = b.cx[d][p], box = box_[d], inv_box = inv_box_[d];
+      const double* xj = b.cx[d].data();
+      for (std::size_t k = p + 1; k < nc; ++k) {
+        double r = xi - xj[k];
+        r -= box * std::nearbyint(r * inv_box);
+        r2[k] += r * r;
+      }
+    }
+    const auto i = static_cast<std::uint32_t>(first + p);
+    for (std::size_t k = p + 1; k < nc; ++k) { // branch-free compaction
+      out_i[m] = i;
+      out_j[m] = cand[k];
+      m += r2[k] < rc2;
+    }
+  }
+  b.count[ni] = m;
+  // Round-robin over the cell's particles (the k-th pair of every i, then the (k+1)-th, ...):
+  // consecutive pairs rarely share a particle, so the sequential pair updates of the Shardlow
+  // sweep overlap in the processor instead of waiting on each other.
+  const std::size_t total = m - b.used;
+  b.tmp_i.resize(total), b.tmp_j.resize(total);
+  std::size_t o = 0;
+  for (std::size_t round = 0; o < total; ++round)
+    for (std::size_t p = 0; p < ni; ++p)
+      if (b.count[p] + round < b.count[p + 1]) {
+        b.tmp_i[o] = out_i[b.count[p] + round];
+        b.tmp_j[o++] = out_j[b.count[p] + round];
+      }
+  std::copy(b.tmp_i.begin(), b.tmp_i.end(), out_i + b.used);
+  std::copy(b.tmp_j.begin(), b.tmp_j.end(), out_j + b.used);
+  range.count = static_cast<std::uint32_t>(total);
+  b.used = m;
 }
 
 template <int D> void CellGrid<D>::sort(State<D>& s, Carried<D>& carried) {
   const std::size_t n = s.size();
+  pairs_valid_ = false;
   cell_.resize(n);
   std::fill(start_.begin(), start_.end(), 0);
-  for (std::size_t i = 0; i < n; ++i) {
+  const long count = static_cast<long>(n);
+  for (long i = 0; i < count; ++i) {
     double pos[D];
     for (int d = 0; d < D; ++d) {
       double& xd = s.x[d][i];
@@ -54,8 +178,8 @@ template <int D> void CellGrid<D>::sort(State<D>& s, Carried<D>& carried) {
       pos[d] = xd;
     }
     cell_[i] = cell_of(pos);
-    ++start_[cell_[i] + 1];
   }
+  for (std::size_t i = 0; i < n; ++i) ++start_[cell_[i] + 1];
   std::partial_sum(start_.begin(), start_.end(), start_.begin());
   // Counting sort by cell, then by id inside each cell (lists are short and nearly sorted).
   order_.resize(n);
@@ -66,11 +190,12 @@ template <int D> void CellGrid<D>::sort(State<D>& s, Carried<D>& carried) {
     for (auto it = b + (b != e); it < e; ++it) // insertion sort by id
       for (auto k = it; k > b && s.id[*(k - 1)] > s.id[*k]; --k) std::iter_swap(k - 1, k);
   }
-  auto permute = [&](auto& a) {
+  // Serial on purpose: on a shared machine every extra barrier can cost a scheduler time slice.
+  auto permute = [&](auto& a) { // through a kept buffer: no allocation per step
     if (a.empty()) return;
-    using T = typename std::decay_t<decltype(a)>::value_type;
-    std::vector<T> tmp(n);
-    for (std::size_t k = 0; k < n; ++k) tmp[k] = a[order_[k]];
+    auto& tmp = scratch_for(a);
+    tmp.resize(n);
+    for (long k = 0; k < count; ++k) tmp[k] = a[order_[k]];
     a.swap(tmp);
   };
   for (int d = 0; d < D; ++d) {

@@ -30,15 +30,23 @@ template <int D> struct Carried {
 
 template <int D> class CellGrid {
 public:
-  // Cell side >= rc. In a periodic direction the cell count is a multiple of 3 (cells of one of
-  // the 27 / 9 colours then touch disjoint particles, also across the wrap), or 1 when the box
-  // holds fewer than 3 cutoffs. A direction with walls has no wrap and no minimum image.
+  // Cell side >= rc. The unit of parallel work is a row of cells along x; a row's pairs touch
+  // its own row and the next one in the last direction, and rows y-1..y+1 in the one after in 3D
+  // (half shell), so rows are coloured by (y mod 3, z mod 2) in 3D and y mod 2 in 2D: rows of one
+  // colour touch disjoint particles, also across the wrap, where a periodic direction then has a
+  // cell count that is a multiple of 3 (3D y), even and >= 4 (the last direction), >= 3 (x), or 1
+  // when the box is too small. A direction with walls has no wrap and no minimum image.
   CellGrid(const std::array<double, D>& box, double rc,
            std::array<bool, D> periodic = all_periodic())
       : box_(box), periodic_(periodic) {
     for (int d = 0; d < D; ++d) {
       int n = static_cast<int>(std::floor(box[d] / rc));
-      if (periodic[d]) n = n >= 3 ? 3 * (n / 3) : 1;
+      if (periodic[d] && d == D - 1)
+        n = n >= 4 ? 2 * (n / 2) : 1;
+      else if (periodic[d] && d == 1)
+        n = n >= 3 ? 3 * (n / 3) : 1;
+      else if (periodic[d])
+        n = n >= 3 ? n : 1;
       n_[d] = std::max(n, 1);
       inv_side_[d] = n_[d] / box[d];
       inv_box_[d] = periodic[d] ? 1.0 / box[d] : 0.0; // 0: nearbyint(0) = 0, no image shift
@@ -83,26 +91,60 @@ public:
   }
 
   // Calls fn(i, j, dx, r2) once for every pair closer than rc (dx = x_i - x_j). Colours run in
-  // turn, the cells of one colour in parallel: the pairs a cell visits touch only its 3^D block,
-  // so no two threads write the same particle and each particle sees its pairs in one fixed
-  // order, whatever the thread count.
+  // turn, the rows of one colour in parallel (see the constructor): no two threads write the
+  // same particle, a particle is touched by one row per colour, and so it sees its pairs in one
+  // fixed order, whatever the thread count.
   template <class PairFn> void for_each_pair(const State<D>& s, double rc, PairFn&& fn) const {
     const double rc2 = rc * rc;
-    const int colours = static_cast<int>(colour_cells_.size());
+    const int colours = static_cast<int>(colour_begin_.size()) - 1;
     for (int colour = 0; colour < colours; ++colour) {
-      const auto& list = colour_cells_[colour];
-      const long count = static_cast<long>(list.size());
+      const long first = colour_begin_[colour], last = colour_begin_[colour + 1];
 #pragma omp parallel for schedule(static)
-      for (long k = 0; k < count; ++k) visit_cell(s, list[k], rc2, fn);
+      for (long unit = first; unit < last; ++unit)
+        for (int x = 0; x < n_[0]; ++x) visit_cell(s, slot_cell_[unit * n_[0] + x], rc2, fn);
     }
+  }
+
+  // ---- The pair list: every pair closer than rc once, stored per cell (the cell of the
+  // particle i), built after a sort from the positions alone, so that its content and order do
+  // not depend on the thread count. sort() invalidates it.
+  void build_pairs(const State<D>& s, double rc);
+  bool has_pairs() const {
+    return pairs_valid_;
+  }
+  std::size_t pair_count() const;
+  // Calls fn(i, j, count) with one cell's pairs (storage indices, in a fixed order: round-robin
+  // over the cell's particles, see build_cell). Colours in turn, cells of one colour in parallel,
+  // as in for_each_pair: a particle sees its pairs in one fixed order whatever the thread count.
+  template <class BlockFn> void for_each_pair_block(BlockFn&& fn) const {
+    const int colours = static_cast<int>(colour_begin_.size()) - 1;
+    const long nx = n_[0];
+    for (int colour = 0; colour < colours; ++colour) {
+      const long first = colour_begin_[colour], last = colour_begin_[colour + 1];
+#pragma omp parallel for schedule(static)
+      for (long unit = first; unit < last; ++unit) {
+        for (long slot = unit * nx; slot < (unit + 1) * nx; ++slot) {
+          const SlotRange& r = slot_range_[slot];
+          if (r.count == 0) continue;
+          const PairBuffer& b = buffers_[r.buffer];
+          fn(b.i.data() + r.begin, b.j.data() + r.begin, static_cast<std::size_t>(r.count));
+        }
+      }
+    }
+  }
+  // Minimum image: r - image_box(d) nearbyint(r inv_box(d)) (0 in wall directions).
+  double image_box(int d) const {
+    return box_[d];
+  }
+  double inv_box(int d) const {
+    return inv_box_[d];
   }
 
   // The same pairs, one thread, in the same order (reference for tests and for serial passes).
   template <class PairFn>
   void for_each_pair_serial(const State<D>& s, double rc, PairFn&& fn) const {
     const double rc2 = rc * rc;
-    for (const auto& list : colour_cells_)
-      for (const int c : list) visit_cell(s, c, rc2, fn);
+    for (const int c : slot_cell_) visit_cell(s, c, rc2, fn);
   }
 
 private:
@@ -140,6 +182,19 @@ private:
   }
 
   void build_stencil();
+  struct PairBuffer { // one per building thread
+    std::vector<std::uint32_t> i, j;
+    std::size_t used = 0;
+    std::vector<std::uint32_t> cand; // scratch: candidate indices of one cell
+    std::vector<double> cx[D], r2;   // scratch: their positions and distances
+    std::vector<std::size_t> count;  // scratch: first pair of each particle of the cell
+    std::vector<std::uint32_t> tmp_i, tmp_j;
+  };
+  struct SlotRange {
+    std::uint32_t buffer = 0, count = 0;
+    std::size_t begin = 0;
+  };
+  void build_cell(const State<D>& s, int c, double rc2, PairBuffer& b, SlotRange& range) const;
 
   std::array<double, D> box_, inv_side_, inv_box_;
   std::array<bool, D> periodic_;
@@ -147,9 +202,21 @@ private:
   int total_ = 1;
   std::vector<std::size_t> start_;
   std::vector<std::array<int, D>> stencil_; // half shell: each neighbour pair of cells once
-  std::vector<std::vector<int>> colour_cells_;
+  std::vector<int> slot_cell_;              // cells in colour order, row by row (n_[0] per row)
+  std::vector<long> colour_begin_;          // first row of each colour (index into the rows of
+                                            // slot_cell_), and the end
+  std::vector<SlotRange> slot_range_;
+  std::vector<PairBuffer> buffers_;
+  bool pairs_valid_ = false;
   std::vector<int> cell_, order_;
   std::vector<double> scratch_;
+  std::vector<std::uint32_t> scratch_id_;
+  std::vector<double>& scratch_for(std::vector<double>&) {
+    return scratch_;
+  }
+  std::vector<std::uint32_t>& scratch_for(std::vector<std::uint32_t>&) {
+    return scratch_id_;
+  }
 };
 
 } // namespace twinflow::particle

@@ -61,3 +61,50 @@ TEST(Neighbours, CellSearchMatchesBruteForce2D) {
   check<2>({{2.1, 12}}, 1.0, 200, 5);
   check<2>({{4, 4}}, 1.24, 150, 6);
 }
+
+namespace {
+// The pair list (build_pairs + for_each_pair_block) holds exactly the pairs of for_each_pair.
+template <int D>
+void check_list(const std::array<double, D>& box, double rc, std::size_t n, unsigned seed,
+                std::array<bool, D> periodic) {
+  State<D> s;
+  Carried<D> carried;
+  s.box = box;
+  std::srand(seed);
+  for (int d = 0; d < D; ++d) s.x[d].resize(n), s.v[d].assign(n, 0.0);
+  s.id.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    s.id[i] = static_cast<std::uint32_t>(i);
+    for (int d = 0; d < D; ++d) s.x[d][i] = box[d] * (std::rand() / (RAND_MAX + 1.0));
+  }
+  CellGrid<D> grid(box, rc, periodic);
+  grid.sort(s, carried);
+  std::set<std::pair<std::uint32_t, std::uint32_t>> reference, listed;
+  grid.for_each_pair_serial(s, rc, [&](std::size_t i, std::size_t j, const double*, double) {
+    reference.insert(std::minmax(s.id[i], s.id[j]));
+  });
+  EXPECT_FALSE(grid.has_pairs());
+  grid.build_pairs(s, rc);
+  ASSERT_TRUE(grid.has_pairs());
+  std::size_t visits = 0;
+  grid.for_each_pair_block([&](const std::uint32_t* i, const std::uint32_t* j, std::size_t count) {
+#pragma omp critical
+    for (std::size_t k = 0; k < count; ++k, ++visits)
+      listed.insert(std::minmax(s.id[i[k]], s.id[j[k]]));
+  });
+  EXPECT_EQ(visits, reference.size()) << "a pair listed twice";
+  EXPECT_EQ(grid.pair_count(), reference.size());
+  EXPECT_EQ(listed, reference);
+  grid.sort(s, carried);
+  EXPECT_FALSE(grid.has_pairs()) << "a sort invalidates the list";
+}
+} // namespace
+
+TEST(Neighbours, PairListMatchesCellSearch) {
+  check_list<3>({{8.5, 6.2, 7.9}}, 1.0, 1500, 3, {{true, true, true}});
+  check_list<3>({{2.5, 6.2, 3.9}}, 1.0, 300, 4, {{true, true, true}});  // single cells, wraps
+  check_list<3>({{6.5, 5.2, 4.4}}, 1.0, 600, 5, {{true, false, true}}); // walls in y
+  check_list<3>({{6.5, 5.2, 5.1}}, 1.0, 600, 6, {{false, true, false}});
+  check_list<2>({{12.3, 9.7}}, 1.0, 900, 7, {{true, true}});
+  check_list<2>({{12.3, 3.7}}, 1.0, 300, 8, {{true, false}});
+}

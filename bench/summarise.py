@@ -1,0 +1,76 @@
+#!/usr/bin/env python3
+"""Tables from bench/vs_lammps.sh's raw measurements (medians over repeats)."""
+import math
+import statistics as st
+import sys
+from collections import defaultdict
+
+perf, scenes, thermo = defaultdict(list), defaultdict(list), []
+for line in open(sys.argv[1]):
+    w = line.split()
+    if not w:
+        continue
+    if w[0] == "perf" and len(w) >= 4:
+        who, integ, par, n = w[1].split(":")
+        perf[(who, integ, int(par), int(n))].append((float(w[2]), float(w[3])))
+    elif w[0] == "scene" and len(w) >= 4:
+        scene, integ, par = w[1].split(":")
+        scenes[(scene, integ, int(par))].append(float(w[2]))
+    elif w[0] == "thermo":
+        f = [x.strip() for x in line.split("|")]
+        thermo.append([f[0].split()[1]] + f[1:])
+
+med = lambda v: st.median(x[0] for x in v)
+fmt = lambda x: "%.3g" % x if x else "-"
+if perf:
+    sizes = sorted({k[3] for k in perf})
+    cfg = [("ours", "shardlow", 1), ("ours", "shardlow", 2), ("ours", "ec-verlet", 1),
+           ("ours", "ec-verlet", 2), ("lammps", "shardlow", 1), ("lammps", "shardlow", 2)]
+    names = ["shardlow 1T", "shardlow 2T", "ec-verlet 1T", "ec-verlet 2T", "LAMMPS 1 rank",
+             "LAMMPS 2 ranks"]
+    reps = max(len(v) for v in perf.values())
+    print("particle-steps/s, a0 = 15 + heat (median of %d; ratios against LAMMPS's best "
+          "configuration at that N)\n" % reps)
+    print("| N | " + " | ".join(names) + " | shardlow / LAMMPS | ec-verlet / LAMMPS |"
+          " 2-thread efficiency shardlow, ec-verlet |")
+    print("|---" * (len(names) + 4) + "|")
+    for n in sizes:
+        v = [med(perf[c + (n,)]) if perf.get(c + (n,)) else 0 for c in cfg]
+        best = max(v[4], v[5])
+        ratio = lambda x: "%.2fx" % (x / best) if best else "-"
+        eff = lambda one, two: "%.0f%%" % (100 * two / (2 * one)) if one else "-"
+        print("| %d | %s | %s (%s) | %s (%s) | %s, %s |" % (
+            n, " | ".join(fmt(x) for x in v), ratio(v[1]), ratio(v[0]), ratio(v[3]),
+            ratio(v[2]), eff(v[0], v[1]), eff(v[2], v[3])))
+    print("\n(ratios: 2 threads, in brackets 1 thread)\n")
+    print("cost exponent b in time per step ~ N^b (least squares over N = %s):\n" %
+          ", ".join(map(str, sizes)))
+    for c, name in zip(cfg, names):
+        pts = [(math.log(n), math.log(n / med(perf[c + (n,)]))) for n in sizes if perf.get(c + (n,))]
+        if len(pts) >= 2:
+            mx = st.mean(p[0] for p in pts)
+            my = st.mean(p[1] for p in pts)
+            b = sum((x - mx) * (y - my) for x, y in pts) / sum((x - mx) ** 2 for x, _ in pts)
+            print("- %s: b = %.3f" % (name, b))
+    print("\nmemory: peak-RSS difference between the largest and smallest N, per particle "
+          "(median RSS):\n")
+    for c, name in zip(cfg, names):
+        have = [n for n in sizes if perf.get(c + (n,))]
+        if len(have) >= 2:
+            lo, hi = have[0], have[-1]
+            r = lambda n: st.median(x[1] for x in perf[c + (n,)])
+            print("- %s: %.0f bytes/particle (%.0f MB at N = %d)" % (
+                name, (r(hi) - r(lo)) * 1024 / (hi - lo), r(hi) / 1024, hi))
+if scenes:
+    print("\nscenes, ours, N = 48000 (particle-steps/s, median; 1 / 2 threads):\n")
+    print("| scene | shardlow | ec-verlet |\n|---|---|---|")
+    for scene in ["ideal", "ideal+heat", "a0=15", "a0=15+heat"]:
+        cell = lambda i: " / ".join(fmt(st.median(scenes[(scene, i, t)])) if scenes.get(
+            (scene, i, t)) else "-" for t in (1, 2))
+        print("| %s | %s | %s |" % (scene, cell("shardlow"), cell("ec-verlet")))
+if thermo:
+    print("\nthermodynamics, N = 6000, a0 = 15 + heat, 10 tau sampled after 10 tau "
+          "(energy drift: max |E(t) - E(0)|/E(0) over all 20 tau):\n")
+    print("| code | max dE/E0 | T_kinetic | T_internal | pressure |\n|---|---|---|---|---|")
+    for row in thermo:
+        print("| " + " | ".join(row) + " |")

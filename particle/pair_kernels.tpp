@@ -1,0 +1,256 @@
+// The pair passes of ec-verlet and shardlow (included from simulation.hpp): one cell's pairs at a
+// time from the grid's pair list; the per-pair algebra (geometry, Philox noise, weights, forces) in
+// loops over the block that vectorise, then the updates of the particles in pair order.
+
+#include <omp.h>
+
+#include <tuple>
+
+namespace twinflow::particle {
+
+// Per-thread scratch of one block of pairs.
+template <int D> struct PairScratch {
+  std::vector<double> e[D], dv[D], r, wd, wr, wh, swh, xi, zeta, a, b, c, ui, uj;
+  static PairScratch& get(std::size_t n) {
+    static thread_local PairScratch s;
+    if (s.r.size() < n) {
+      const std::size_t size = n + n / 2 + 16;
+      for (int d = 0; d < D; ++d) s.e[d].resize(size), s.dv[d].resize(size);
+      for (auto* v :
+           {&s.r, &s.wd, &s.wr, &s.wh, &s.swh, &s.xi, &s.zeta, &s.a, &s.b, &s.c, &s.ui, &s.uj})
+        v->resize(size);
+    }
+    return s;
+  }
+};
+
+// D column pointers held as scalars (an array of pointers indexed by d keeps a loop from
+// vectorising; after unrolling over d the selects fold away).
+template <class T> struct Columns {
+  T *c0 = nullptr, *c1 = nullptr, *c2 = nullptr;
+  template <class V> explicit Columns(V& arrays) {
+    c0 = arrays[0].data();
+    if constexpr (std::tuple_size<V>::value > 1) c1 = arrays[1].data();
+    if constexpr (std::tuple_size<V>::value > 2) c2 = arrays[2].data();
+  }
+  explicit Columns(std::vector<double>* arrays, int dims) {
+    c0 = arrays[0].data();
+    if (dims > 1) c1 = arrays[1].data();
+    if (dims > 2) c2 = arrays[2].data();
+  }
+  T* operator[](int d) const { return d == 0 ? c0 : d == 1 ? c1 : c2; }
+};
+
+// Unit vectors e_ij = (x_i - x_j)/r_ij (minimum image) and distances of a block.
+template <class M>
+void Simulation<M>::pair_geometry(const std::uint32_t* I, const std::uint32_t* J, std::size_t n,
+                                  PairScratch<D>& s) const {
+  const double b0 = grid_.image_box(0), b1 = grid_.image_box(1), b2 = grid_.image_box(D - 1);
+  const double i0 = grid_.inv_box(0), i1 = grid_.inv_box(1), i2 = grid_.inv_box(D - 1);
+  const Columns<const double> x(state_.x);
+  const Columns<double> e(s.e, D);
+  double* __restrict r = s.r.data();
+  for (std::size_t k = 0; k < n; ++k) // gathers: a scalar loop (no vector gathers on every CPU)
+    for (int d = 0; d < D; ++d) e[d][k] = x[d][I[k]] - x[d][J[k]];
+  for (std::size_t k = 0; k < n; ++k) {
+    double dx[D], r2 = 0;
+    for (int d = 0; d < D; ++d) {
+      double c = e[d][k];
+      const double box = d == 0 ? b0 : d == 1 ? b1 : b2, inv_box = d == 0 ? i0 : d == 1 ? i1 : i2;
+      c -= box * std::nearbyint(c * inv_box); // as in the pair search: the same r2
+      dx[d] = c;
+      r2 += c * c;
+    }
+    const double rk = std::sqrt(r2), inv_r = 1 / rk;
+    for (int d = 0; d < D; ++d) e[d][k] = dx[d] * inv_r;
+    r[k] = rk;
+  }
+}
+
+// Gathers u_i, u_j (DPDE) and, with velocities, v_i - v_j of a block into the scratch.
+template <class M>
+void Simulation<M>::pair_gather(const std::uint32_t* I, const std::uint32_t* J, std::size_t n,
+                                PairScratch<D>& s, bool velocities) const {
+  if constexpr (M::has_energy) {
+    const double* u = state_.u.data();
+    double* __restrict ui = s.ui.data();
+    double* __restrict uj = s.uj.data();
+    for (std::size_t k = 0; k < n; ++k) ui[k] = u[I[k]], uj[k] = u[J[k]];
+  }
+  if (velocities) {
+    const Columns<const double> v(state_.v);
+    const Columns<double> dv(s.dv, D);
+    for (std::size_t k = 0; k < n; ++k)
+      for (int d = 0; d < D; ++d) dv[d][k] = v[d][I[k]] - v[d][J[k]];
+  }
+}
+
+// Conservative forces and potentials only (shardlow's velocity-Verlet part).
+template <class M> void Simulation<M>::conservative_blocks() {
+  if constexpr (M::Conservative::active) {
+    const auto cons = model_.conservative;
+    const double inv_cv = 1 / model_.cv;
+    double* f[D];
+    for (int d = 0; d < D; ++d) f[d] = carried_.f[d].data();
+    double* pot = carried_.potential.data();
+    grid_.for_each_pair_block([&](const std::uint32_t* I, const std::uint32_t* J, std::size_t n) {
+      auto& s = PairScratch<D>::get(n);
+      pair_geometry(I, J, n, s);
+      pair_gather(I, J, n, s, false);
+      double* __restrict fc = s.a.data();
+      double* __restrict phi = s.b.data();
+      const double *r = s.r.data(), *ui = s.ui.data(), *uj = s.uj.data();
+#pragma omp simd
+      for (std::size_t k = 0; k < n; ++k) {
+        double th_i = 1, th_j = 1, fk, pk;
+        if constexpr (M::has_energy) th_i = ui[k] * inv_cv, th_j = uj[k] * inv_cv;
+        cons.eval(r[k], th_i, th_j, fk, pk);
+        const bool in = r[k] < cons.rc;
+        fc[k] = in ? fk : 0;
+        phi[k] = in ? pk : 0;
+      }
+      for (std::size_t k = 0; k < n; ++k) {
+        const std::size_t i = I[k], j = J[k];
+        for (int d = 0; d < D; ++d) {
+          const double fd = fc[k] * s.e[d][k];
+          f[d][i] += fd;
+          f[d][j] -= fd;
+        }
+        pot[i] += 0.5 * phi[k];
+        pot[j] += 0.5 * phi[k];
+      }
+    });
+  }
+}
+
+// All pair forces at the current state (ec-verlet): F^C + F^D + F^R along e_ij, potentials and
+// heat rates q_ij (physics.md; 002:(3), (7)); the same algebra as pair_force.
+template <class M> void Simulation<M>::force_blocks(const PairNoise& noise) {
+  const auto cons = model_.conservative;
+  const auto fr = model_.friction;
+  const auto heat = model_.heat;
+  const double inv_cv = 1 / model_.cv, inv_sqrt_dt = inv_sqrt_dt_;
+  double* f[D];
+  for (int d = 0; d < D; ++d) f[d] = carried_.f[d].data();
+  double* pot = carried_.potential.data();
+  double* q = carried_.q.data();
+  const std::uint32_t* id = state_.id.data();
+  grid_.for_each_pair_block([&](const std::uint32_t* I, const std::uint32_t* J, std::size_t n) {
+    auto& s = PairScratch<D>::get(n);
+    pair_geometry(I, J, n, s);
+    pair_gather(I, J, n, s, true);
+    noise.gaussians(n, I, J, id, s.xi.data(), s.zeta.data());
+    fr.w.eval(n, s.r.data(), s.wd.data(), s.wr.data());
+    if constexpr (M::Heat::active) heat.w.eval(n, s.r.data(), s.wh.data(), s.swh.data());
+    double* __restrict fe = s.a.data();
+    double* __restrict phi = s.b.data();
+    double* __restrict qk = s.c.data();
+    const double *r = s.r.data(), *wd = s.wd.data(), *wr = s.wr.data(), *xi = s.xi.data();
+    const double *wh = s.wh.data(), *swh = s.swh.data(), *zeta = s.zeta.data();
+    const double *ui = s.ui.data(), *uj = s.uj.data();
+    const Columns<const double> e(s.e, D), dv(s.dv, D);
+#pragma omp simd
+    for (std::size_t k = 0; k < n; ++k) {
+      double th_i = 1, th_j = 1, fc = 0, pk = 0;
+      if constexpr (M::has_energy) th_i = ui[k] * inv_cv, th_j = uj[k] * inv_cv;
+      if constexpr (M::Conservative::active) {
+        cons.eval(r[k], th_i, th_j, fc, pk);
+        const bool in = r[k] < cons.rc;
+        fc = in ? fc : 0;
+        pk = in ? pk : 0;
+      }
+      double ev = 0;
+      for (int d = 0; d < D; ++d) ev += e[d][k] * dv[d][k];
+      // Noise amplitude at the pre-point; the friction carries 003:(18)'s drift correction.
+      const double sigma = fr.sigma_of(fr.harmonic(th_i, th_j));
+      fe[k] = fc - fr.ito_gamma(th_i, th_j) * wd[k] * ev + sigma * wr[k] * xi[k] * inv_sqrt_dt;
+      phi[k] = pk;
+      if constexpr (M::Heat::active) {
+        double rate, amplitude;
+        heat.eval_w(wh[k], swh[k], th_i, th_j, rate, amplitude);
+        qk[k] = rate + amplitude * zeta[k] * inv_sqrt_dt; // q_ij, physics.md
+      }
+    }
+    for (std::size_t k = 0; k < n; ++k) {
+      const std::size_t i = I[k], j = J[k];
+      for (int d = 0; d < D; ++d) {
+        const double fd = fe[k] * e[d][k];
+        f[d][i] += fd;
+        f[d][j] -= fd;
+      }
+      pot[i] += 0.5 * phi[k];
+      pot[j] += 0.5 * phi[k];
+      if constexpr (M::Heat::active) q[i] += qk[k], q[j] -= qk[k];
+    }
+  });
+}
+
+// The Shardlow sweep over all pairs at r(t): per pair, heat exchange, then Shardlow's S1
+// splitting of the pair's dissipative+random update (explicit half, implicit half, same xi), the
+// kinetic change of each half taken from the pair's internal energies, so energy is conserved
+// per half (Lisal et al. 2011; LAMMPS fix shardlow). Pairs in list order: each update sees the
+// previous ones, and the colouring keeps them exact in parallel.
+template <class M> void Simulation<M>::shardlow_sweep(const PairNoise& noise) {
+  if (!grid_.has_pairs()) grid_.build_pairs(state_, model_.rc);
+  const auto fr = model_.friction;
+  const auto heat = model_.heat;
+  const double dt = dt_, sqrt_dt = sqrt_dt_, m = model_.mass, inv_m = 1 / m;
+  const double inv_cv = 1 / model_.cv;
+  double* u = state_.u.data();
+  double* v[D];
+  for (int d = 0; d < D; ++d) v[d] = state_.v[d].data();
+  const std::uint32_t* id = state_.id.data();
+  grid_.for_each_pair_block([&](const std::uint32_t* I, const std::uint32_t* J, std::size_t n) {
+    auto& s = PairScratch<D>::get(n);
+    pair_geometry(I, J, n, s);
+    noise.gaussians(n, I, J, id, s.xi.data(), s.zeta.data());
+    fr.w.eval(n, s.r.data(), s.wd.data(), s.wr.data());
+    if constexpr (M::Heat::active) heat.w.eval(n, s.r.data(), s.wh.data(), s.swh.data());
+    const double *wd = s.wd.data(), *wr = s.wr.data(), *xi = s.xi.data();
+    const double *wh = s.wh.data(), *swh = s.swh.data(), *zeta = s.zeta.data();
+    const double* e[D];
+    for (int d = 0; d < D; ++d) e[d] = s.e[d].data();
+    for (std::size_t k = 0; k < n; ++k) {
+      const std::size_t i = I[k], j = J[k];
+      double th_i = 1, th_j = 1;
+      if constexpr (M::has_energy) th_i = u[i] * inv_cv, th_j = u[j] * inv_cv;
+      if constexpr (M::Heat::active) {
+        double rate, amplitude;
+        heat.eval_w(wh[k], swh[k], th_i, th_j, rate, amplitude);
+        const double dq = rate * dt + amplitude * zeta[k] * sqrt_dt; // q_ij dt
+        u[i] += dq;
+        u[j] -= dq;
+        th_i = u[i] * inv_cv, th_j = u[j] * inv_cv;
+      }
+      double vr = 0;
+      for (int d = 0; d < D; ++d) vr += e[d][k] * (v[d][i] - v[d][j]);
+      // The noise amplitude is taken at the pre-point for both halves (Ito), so the friction
+      // carries 003:(18)'s drift correction (a no-op for constant sigma).
+      const double kick = fr.sigma_of(fr.harmonic(th_i, th_j)) * wr[k] * xi[k] * sqrt_dt;
+      // Half 1, explicit: dp = 1/2 (-gamma w_D v_r dt + sigma w_R xi sqrt(dt))
+      const double dp1 = 0.5 * (-fr.ito_gamma(th_i, th_j) * wd[k] * vr * dt + kick);
+      const double vr1 = vr + 2 * dp1 * inv_m;
+      if constexpr (M::has_energy) {
+        const double dk = dp1 * 0.5 * (vr + vr1); // exact kinetic change of the pair
+        u[i] -= 0.5 * dk;
+        u[j] -= 0.5 * dk;
+        th_i = u[i] * inv_cv, th_j = u[j] * inv_cv;
+      }
+      // Half 2, implicit in v_r: v_r2 (1 + gamma' w_D dt/m) = v_r1 + sigma w_R xi sqrt(dt)/m
+      const double vr2 = fr.implicit_half(vr1 + kick * inv_m, th_i, th_j, wd[k] * dt * inv_m);
+      const double dp2 = 0.5 * m * (vr2 - vr1);
+      if constexpr (M::has_energy) {
+        const double dk = dp2 * 0.5 * (vr1 + vr2);
+        u[i] -= 0.5 * dk;
+        u[j] -= 0.5 * dk;
+      }
+      const double dv = (dp1 + dp2) * inv_m;
+      for (int d = 0; d < D; ++d) {
+        v[d][i] += dv * e[d][k];
+        v[d][j] -= dv * e[d][k];
+      }
+    }
+  });
+}
+
+} // namespace twinflow::particle

@@ -677,15 +677,16 @@ private:
         r << relax_time_[k] << "," << relax_amplitude_[k] << "\n";
       out_.relaxation_csv = r.str();
     }
-    out_.fields_csv = fields_.result().csv();
+    const BinnedFields final_fields = fields_.result(); // reduced over the blocks once
+    out_.fields_csv = final_fields.csv();
     out_.field_grid.dim = D;
     for (int d = 0; d < D; ++d) {
       out_.field_grid.counts[d] = p_.bins[d];
       out_.field_grid.spacing[d] = p_.box[d] / p_.bins[d];
     }
-    if (p_.poiseuille_force != 0) j["poiseuille"] = poiseuille_fit(p_, fields_.result());
+    if (p_.poiseuille_force != 0) j["poiseuille"] = poiseuille_fit(p_, final_fields);
     if (p_.has_walls()) {
-      const io::Json profile = wall_profile_fit(p_, fields_.result());
+      const io::Json profile = wall_profile_fit(p_, final_fields);
       if (!profile.is_null()) j["wall_profile"] = profile;
     }
     if (slab_profile_) {

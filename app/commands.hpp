@@ -29,6 +29,11 @@ int check_case(const CommandLine&);
 int print_parameters(const CommandLine&);
 int particle_stage(const CommandLine&);
 int continuum_stage(const CommandLine&);
+// The continuum twin into RUNDIR/<stage_name> ("continuum", "continuum_calibrated").
+int continuum_twin(const CommandLine&, const std::string& stage_name);
+int compare_stage(const CommandLine&);
+// --set options that make the calibrated twin of a finished particle run in run_dir.
+std::vector<std::string> calibrated_twin_overrides(const std::string& run_dir);
 int transport_stage(const CommandLine&);
 int bench(const CommandLine&);
 int run_all(const CommandLine&);

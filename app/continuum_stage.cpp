@@ -45,6 +45,10 @@ void coefficients_from_transport(const std::filesystem::path& run_dir, const std
 } // namespace
 
 int continuum_stage(const CommandLine& cl) {
+  return continuum_twin(cl, "continuum");
+}
+
+int continuum_twin(const CommandLine& cl, const std::string& stage_name) {
   const auto start = std::chrono::steady_clock::now();
   // Everything is validated (case file, run directory) before anything is written.
   Case c;
@@ -52,7 +56,7 @@ int continuum_stage(const CommandLine& cl) {
   const std::filesystem::path run_dir =
       cl.out.empty() ? std::filesystem::path("twinflow-runs") / parameters.name
                      : std::filesystem::path(cl.out);
-  const io::StageDirectory stage(run_dir, "continuum", cl.force);
+  const io::StageDirectory stage(run_dir, stage_name, cl.force);
   continuum::ContinuumParameters p = parameters.continuum;
   if (c.registry().get("Continuum/Coefficients/Source") == "transport")
     coefficients_from_transport(run_dir, parameters.transport.source, p);

@@ -33,7 +33,7 @@ const std::map<std::string, Command>& commands() {
       {"transport",
        {"CASE      estimate and measure kappa, eta, alpha, c_p", app::transport_stage, true}},
       {"continuum", {"CASE      run the deal.II continuum twin", app::continuum_stage, true}},
-      {"compare", {"RUNDIR    compare the twins of a finished run", not_yet, true}},
+      {"compare", {"RUNDIR    compare the twins of a finished run", app::compare_stage, true}},
       {"run",
        {"CASE      all stages: particle, transport, continuum, compare", app::run_all, true}},
       {"sweep", {"CASE      a grid of paired runs (--vary, --rayleigh)", not_yet, true}},

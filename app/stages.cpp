@@ -144,25 +144,40 @@ int particle_stage(const CommandLine& cl) {
   return 0;
 }
 
-// The particle scene, the fluid's coefficients, and the continuum twin fed with them. The
-// comparison stage comes with the study issue.
+// The particle scene, the fluid's coefficients, the continuum twins fed with them (nominal;
+// calibrated: the walls at the temperatures the particle fluid reaches there), the comparison.
 int run_all(const CommandLine& cl) {
   Case c;
   const CaseParameters p = c.load(cl.target, cl.overrides);
+  const fs::path run_dir = run_directory(cl, p);
+  const bool walls = p.scene.has_walls() && !p.scene.heat_slabs.size();
   // Every stage's folder is checked before the first one runs (bad input writes nothing).
-  for (const char* name : {"particle", "transport", "continuum"})
-    io::StageDirectory(run_directory(cl, p), name, cl.force || cl.restart);
-  std::cout << "run: '" << p.name << "': particle, transport, continuum (the comparison stage "
-            << "comes with the study issue)\n";
+  for (const char* name : {"particle", "transport", "continuum", "continuum_calibrated"})
+    io::StageDirectory(run_dir, name, cl.force || cl.restart);
+  std::cout << "run: '" << p.name << "': particle, transport, continuum"
+            << (walls ? " (nominal and calibrated)" : "") << ", compare\n";
   if (const int rc = particle_stage(cl)) return rc;
   CommandLine later = cl;
   later.restart = false;
   later.force = cl.force || cl.restart; // a restarted run's later stages start afresh
+  later.out = run_dir.string();
   if (const int rc = transport_stage(later)) return rc;
   bool chosen = false; // the user's own choice of coefficients wins
   for (const auto& o : cl.overrides) chosen |= o.find("Continuum/Coefficients/Source") == 0;
   if (!chosen) later.overrides.push_back("Continuum/Coefficients/Source=transport");
-  return continuum_stage(later);
+  if (const int rc = continuum_twin(later, "continuum")) return rc;
+  if (walls && fs::exists(run_dir / "particle" / "fields.h5")) {
+    CommandLine calibrated = later;
+    for (const auto& o : calibrated_twin_overrides(run_dir.string())) {
+      std::cout << "run: calibrated twin: --set '" << o << "'\n";
+      calibrated.overrides.push_back(o);
+    }
+    if (const int rc = continuum_twin(calibrated, "continuum_calibrated")) return rc;
+  }
+  if (!fs::exists(run_dir / "particle" / "fields.h5")) return 0; // nothing binned to compare
+  CommandLine compare = cl;
+  compare.target = run_dir.string();
+  return compare_stage(compare);
 }
 
 } // namespace twinflow::app

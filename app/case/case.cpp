@@ -24,9 +24,20 @@ Case::Case() {
 CaseParameters Case::load(const std::string& filename, const std::vector<std::string>& overrides) {
   registry_.parse_file(filename);
   for (const auto& o : overrides) registry_.set_override(o);
+  return resolve(std::filesystem::path(filename).stem().string());
+}
+
+CaseParameters Case::load_resolved(const io::Json& resolved, const std::string& name) {
+  if (!resolved.is_object()) throw io::InputError("recorded case parameters: not an object");
+  for (const auto& [path, value] : resolved.items())
+    registry_.set_override(path + "=" + (value.is_string() ? value.string() : value.dump()));
+  return resolve(name);
+}
+
+CaseParameters Case::resolve(const std::string& default_name) {
   CaseParameters c;
   c.name = registry_.get("Case name");
-  if (c.name.empty()) c.name = std::filesystem::path(filename).stem().string();
+  if (c.name.empty()) c.name = default_name;
   c.scene = resolve_scene(registry_);
   c.particle = resolve_particle(registry_, c.scene);
   c.transport.source = registry_.get("Transport/Source");

@@ -64,9 +64,12 @@ public:
   Case();
   // Reads the file, applies --set overrides, checks every value: throws io::InputError.
   CaseParameters load(const std::string& filename, const std::vector<std::string>& overrides);
+  // The parameters a stage recorded in its summary.json ("parameters": path -> value).
+  CaseParameters load_resolved(const io::Json& resolved, const std::string& name);
   const Registry& registry() const { return registry_; }
 
 private:
+  CaseParameters resolve(const std::string& default_name);
   Registry registry_;
 };
 

@@ -1,0 +1,338 @@
+// twinflow compare RUNDIR: the distance between the particle run and its continuum twins
+// (nominal, calibrated), results in RUNDIR/compare. Also the calibrated twin's wall conditions.
+
+#include <cmath>
+#include <filesystem>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+
+#include "app/case/case.hpp"
+#include "app/commands.hpp"
+#include "compare/twin_distance.hpp"
+#include "io/files.hpp"
+
+namespace twinflow::app {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+io::Json read_json(const fs::path& file, const std::string& hint) {
+  if (!fs::exists(file)) throw io::InputError(file.string() + ": missing; " + hint);
+  return io::Json::parse(io::read_file(file));
+}
+
+double number(const io::Json& j, std::initializer_list<const char*> path) {
+  const io::Json* v = &j;
+  for (const char* key : path) {
+    v = v->is_object() ? v->find(key) : nullptr;
+    if (!v) return std::nan("");
+  }
+  return v->is_number() ? v->number() : std::nan("");
+}
+
+const char* kAxis = "xyz";
+std::string wall_name(int d, int side) {
+  return std::string(1, kAxis[d]) + (side ? "_upper" : "_lower");
+}
+
+// What compare needs of a finished particle run.
+struct ParticleRun {
+  io::Json summary;
+  CaseParameters parameters;
+  io::FieldFile::Contents fields;
+  std::array<bool, 3> walled{{false, false, false}};
+};
+
+ParticleRun load_particle_run(const fs::path& run_dir) {
+  ParticleRun r;
+  const fs::path dir = run_dir / "particle";
+  r.summary = read_json(dir / "summary.json",
+                        "the particle stage has not finished in " + run_dir.string() +
+                            " (twinflow run CASE --out " + run_dir.string() + ")");
+  Case c;
+  const io::Json* case_name = r.summary.find("case");
+  r.parameters = c.load_resolved(*r.summary.find("parameters"),
+                                 case_name && case_name->is_string() ? case_name->string() : "");
+  if (!fs::exists(dir / "fields.h5"))
+    throw io::InputError((dir / "fields.h5").string() +
+                         ": missing; the particle scene has no field bins to compare");
+  r.fields = io::FieldFile::read(dir / "fields.h5");
+  if (r.fields.snapshots.empty())
+    throw io::InputError((dir / "fields.h5").string() + ": holds no snapshot");
+  for (int d = 0; d < r.parameters.scene.dim; ++d)
+    r.walled[d] = !r.parameters.scene.boundary[d].periodic;
+  return r;
+}
+
+// The heated direction: the walled direction whose two thermal walls differ in temperature.
+int heated_direction(const SceneParameters& s) {
+  for (int d = 0; d < s.dim; ++d) {
+    const auto& b = s.boundary[d];
+    if (!b.periodic && b.thermal[0] && b.thermal[1] && b.temperature[0] != b.temperature[1])
+      return d;
+  }
+  return -1;
+}
+
+struct ContinuumTwin {
+  std::string name; // "nominal", "calibrated"
+  std::string stage;
+  io::Json summary;
+  compare::BinnedState state;
+};
+
+} // namespace
+
+// --set options of the calibrated twin: each thermal wall at the temperature the particle fluid
+// reaches at it (extrapolated from the bins beyond the wall layer), i.e. the measured
+// wall temperature jump taken out of the boundary condition.
+std::vector<std::string> calibrated_twin_overrides(const std::string& run_dir) {
+  const ParticleRun run = load_particle_run(run_dir);
+  const auto& snapshot = run.fields.snapshots.back();
+  const compare::BinnedState particle = compare::particle_state(run.fields.grid, snapshot);
+  const auto interior =
+      compare::interior_bins(run.fields.grid, run.walled, run.parameters.compare.wall_layer);
+  std::vector<std::string> overrides;
+  for (int d = 0; d < run.parameters.scene.dim; ++d) {
+    const auto& b = run.parameters.scene.boundary[d];
+    if (b.periodic) continue;
+    for (int side = 0; side < 2; ++side) {
+      if (!b.thermal[side]) continue;
+      const auto w = compare::wall_fluid_temperature(particle, interior, d, side);
+      if (!std::isfinite(w.value)) continue;
+      std::ostringstream o;
+      o << std::setprecision(10) << "Scene/" << kAxis[d] << " boundaries/"
+        << (side ? "Upper" : "Lower") << " wall temperature=" << w.value;
+      overrides.push_back(o.str());
+    }
+  }
+  return overrides;
+}
+
+int compare_stage(const CommandLine& cl) {
+  const fs::path run_dir = cl.target;
+  if (!fs::is_directory(run_dir))
+    throw io::InputError(run_dir.string() + ": not a run directory (twinflow compare RUNDIR, "
+                                            "where RUNDIR is the --out of twinflow run)");
+  const ParticleRun run = load_particle_run(run_dir);
+  const SceneParameters& scene = run.parameters.scene;
+  const io::Grid& grid = run.fields.grid;
+  const double wall_layer = run.parameters.compare.wall_layer;
+
+  std::vector<ContinuumTwin> twins;
+  for (const auto& [name, stage] : {std::pair<std::string, std::string>{"nominal", "continuum"},
+                                    {"calibrated", "continuum_calibrated"}}) {
+    const fs::path dir = run_dir / stage;
+    if (!fs::exists(dir / "summary.json")) continue;
+    ContinuumTwin t;
+    t.name = name;
+    t.stage = stage;
+    t.summary = read_json(dir / "summary.json", "");
+    t.state = compare::continuum_state(grid, dir / "bins.csv");
+    twins.push_back(std::move(t));
+  }
+  if (twins.empty() || twins.front().name != "nominal")
+    throw io::InputError((run_dir / "continuum" / "summary.json").string() +
+                         ": missing; the continuum twin has not run (twinflow continuum CASE "
+                         "--out " + run_dir.string() + ")");
+  const io::StageDirectory stage(run_dir, "compare", true); // derived, cheap: always rewritten
+  stage.create();
+
+  const auto interior = compare::interior_bins(grid, run.walled, wall_layer);
+  const ContinuumTwin& nominal = twins.front();
+  // Scales: the nominal wall temperature difference (else the continuum's temperature range)
+  // and the nominal continuum's largest speed.
+  const int heated = heated_direction(scene);
+  double dT = 0;
+  if (heated >= 0) {
+    dT = std::fabs(scene.boundary[heated].temperature[0] - scene.boundary[heated].temperature[1]);
+  } else {
+    double lo = INFINITY, hi = -INFINITY;
+    for (double T : nominal.state.temperature) lo = std::min(lo, T), hi = std::max(hi, T);
+    dT = hi - lo;
+  }
+  const double speed_scale = number(nominal.summary, {"results", "max_speed_chi_over_H"}) *
+                             number(nominal.summary, {"dimensionless", "velocity_scale_chi_over_H"});
+  const bool compare_velocity = std::isfinite(speed_scale) && speed_scale > 0;
+
+  io::Json metrics = io::Json::object();
+  metrics["stage"] = "compare";
+  metrics["case"] = run.parameters.name;
+  metrics["provenance"] = io::provenance();
+  metrics["wall_layer"] = wall_layer;
+  {
+    // The thickness actually left out: whole bins, so a layer rounds up to bin edges.
+    double excluded = 0;
+    for (int d = 0; d < grid.dim; ++d)
+      if (run.walled[d])
+        excluded = std::max(excluded, std::ceil(wall_layer / grid.spacing[d] - 1e-9) * grid.spacing[d]);
+    metrics["wall_layer_excluded"] = excluded;
+  }
+  long n_interior = 0;
+  for (char c : interior) n_interior += c;
+  metrics["bins"] = io::Json::array();
+  for (int d = 0; d < grid.dim; ++d) metrics["bins"].push_back(double(grid.counts[d]));
+  metrics["interior_bins"] = double(n_interior);
+  metrics["temperature_scale"] = dT;
+  metrics["velocity_scale"] = compare_velocity ? speed_scale : std::nan("");
+  metrics["temperature_field"] = "T_kinetic (particle) against T (continuum), / temperature_scale";
+
+  const io::Json& presults = *run.summary.find("results");
+  io::Json table = io::Json::object();
+  table["wall_seconds_particle"] = number(presults, {"wall_seconds"});
+  table["particle_steps"] = number(presults, {"N"}) *
+                            (number(presults, {"steps"}) + number(presults, {"equilibration_steps"}));
+
+  // Particle heat flow through the heated direction's walls, as a Nusselt number against the
+  // nominal twin's conduction flux kappa dT / H (the same kappa for every twin).
+  io::Json particle = io::Json::object();
+  const double q0 = number(nominal.summary, {"dimensionless", "conduction_flux"});
+  double q_particle = std::nan("");
+  if (heated >= 0) {
+    const int hot = scene.boundary[heated].temperature[0] > scene.boundary[heated].temperature[1] ? 0 : 1;
+    const auto flux = [&](int side, const char* key) {
+      return number(presults, {"walls", wall_name(heated, side).c_str(), key});
+    };
+    const double q_in = flux(hot, "heat_flux_in"), q_out = -flux(1 - hot, "heat_flux_in");
+    const double se = std::hypot(flux(hot, "heat_flux_in_stderr"), flux(1 - hot, "heat_flux_in_stderr"));
+    q_particle = 0.5 * (q_in + q_out);
+    particle["heat_flux_hot_wall"] = q_in;
+    particle["heat_flux_cold_wall"] = q_out;
+    particle["heat_flux"] = q_particle;
+    particle["heat_flux_stderr"] = 0.5 * se;
+    particle["nusselt"] = q_particle / q0;
+    particle["nusselt_stderr"] = 0.5 * se / q0;
+    // In a steady state the two walls carry the same flow; their difference is the fluid
+    // still heating or cooling.
+    particle["nusselt_hot_wall"] = q_in / q0;
+    particle["nusselt_cold_wall"] = q_out / q0;
+    particle["wall_imbalance_over_stderr"] = (q_in - q_out) / se;
+    table["nusselt_particle"] = q_particle / q0;
+    table["nusselt_particle_stderr"] = 0.5 * se / q0;
+  }
+  // The fluid's temperature at each thermal wall, and the jump from the wall's own.
+  const compare::BinnedState final_state =
+      compare::particle_state(grid, run.fields.snapshots.back());
+  io::Json jumps = io::Json::object();
+  for (int d = 0; d < scene.dim; ++d) {
+    const auto& b = scene.boundary[d];
+    if (b.periodic) continue;
+    for (int side = 0; side < 2; ++side) {
+      if (!b.thermal[side]) continue;
+      const auto w = compare::wall_fluid_temperature(final_state, interior, d, side);
+      io::Json j = io::Json::object();
+      j["wall_temperature"] = b.temperature[side];
+      j["fluid_temperature_at_wall"] = w.value;
+      j["fluid_temperature_at_wall_stderr"] = w.stderr_;
+      j["jump"] = b.temperature[side] - w.value;
+      j["extrapolated_from_distance"] = w.extrapolated_from;
+      jumps[wall_name(d, side)] = j;
+    }
+  }
+  particle["wall_temperature_jumps"] = jumps;
+  particle["wall_seconds"] = number(presults, {"wall_seconds"});
+  metrics["particle"] = particle;
+
+  io::Json twins_json = io::Json::object();
+  std::cout << std::setprecision(4);
+  std::cout << "compare: " << n_interior << " interior bins (wall layer " << wall_layer
+            << "), temperature scale " << dT;
+  if (compare_velocity) std::cout << ", velocity scale " << speed_scale;
+  std::cout << "\n";
+  if (heated >= 0)
+    std::cout << "compare: particle Nu = " << number(particle, {"nusselt"}) << " +- "
+              << number(particle, {"nusselt_stderr"}) << " (hot wall "
+              << number(particle, {"nusselt_hot_wall"}) << ", cold wall "
+              << number(particle, {"nusselt_cold_wall"}) << ")\n";
+  for (const ContinuumTwin& t : twins) {
+    io::Json j = io::Json::object();
+    j["stage"] = t.stage;
+    const auto T = compare::temperature_distance(final_state, t.state, interior, dT);
+    j["temperature"] = T.to_json();
+    table["temperature_l2_" + t.name] = T.l2;
+    table["temperature_l2_" + t.name + "_stderr"] = T.l2_stderr;
+    table["temperature_l2_noise"] = T.noise;
+    table["temperature_max_" + t.name] = T.max;
+    std::cout << "compare: " << t.name << " twin: temperature L2 " << T.l2 << " +- " << T.l2_stderr
+              << " (noise " << T.noise << "), max " << T.max << " +- " << T.max_stderr;
+    if (compare_velocity) {
+      const auto v = compare::velocity_distance(final_state, t.state, interior, speed_scale);
+      j["velocity"] = v.to_json();
+      table["velocity_l2_" + t.name] = v.l2;
+      table["velocity_l2_" + t.name + "_stderr"] = v.l2_stderr;
+      table["velocity_l2_noise"] = v.noise;
+      std::cout << "; velocity L2 " << v.l2 << " +- " << v.l2_stderr << " (noise " << v.noise << ")";
+    }
+    std::cout << "\n";
+    const double nu_own = number(t.summary, {"results", "nusselt_volume_average"});
+    const double q_own = number(t.summary, {"dimensionless", "conduction_flux"});
+    if (heated >= 0 && std::isfinite(nu_own)) {
+      const double q = nu_own * q_own;
+      j["nusselt_own"] = nu_own; // against this twin's own wall temperature difference
+      j["heat_flux"] = q;
+      j["nusselt"] = q / q0; // against the nominal conduction flux, as the particle's
+      j["nusselt_particle_minus_twin"] = q_particle / q0 - q / q0;
+      j["nusselt_relative_difference"] = q_particle / q - 1;
+      table["nusselt_" + t.name] = q / q0;
+      std::cout << "compare: " << t.name << " twin: Nu = " << q / q0 << " (own dT: " << nu_own
+                << "); particle / twin heat flux - 1 = " << q_particle / q - 1 << "\n";
+    }
+    j["rayleigh"] = number(t.summary, {"dimensionless", "rayleigh"});
+    table["rayleigh_" + t.name] = number(t.summary, {"dimensionless", "rayleigh"});
+    table["wall_seconds_continuum" + std::string(t.name == "nominal" ? "" : "_" + t.name)] =
+        number(t.summary, {"stage_wall_time_s"});
+    twins_json[t.name] = j;
+  }
+  table["rayleigh"] = number(nominal.summary, {"dimensionless", "rayleigh"});
+  table["prandtl"] = number(nominal.summary, {"dimensionless", "prandtl"});
+  metrics["twins"] = twins_json;
+
+  // Error against run time: the same distances for each cumulative snapshot of the run.
+  std::ostringstream series;
+  series << std::setprecision(8);
+  series << "# distance of each cumulative particle snapshot to the twins (interior bins), "
+            "units of the temperature / velocity scale of metrics.json\n";
+  series << "snapshot,time,wall_seconds,particle_steps";
+  for (const auto& t : twins) {
+    series << ",temperature_l2_" << t.name << ",temperature_l2_" << t.name << "_stderr";
+    if (compare_velocity) series << ",velocity_l2_" << t.name << ",velocity_l2_" << t.name << "_stderr";
+  }
+  series << ",temperature_noise" << (compare_velocity ? ",velocity_noise" : "") << "\n";
+  for (std::size_t s = 0; s < run.fields.snapshots.size(); ++s) {
+    const auto& snap = run.fields.snapshots[s];
+    const compare::BinnedState p = compare::particle_state(grid, snap);
+    series << s << "," << snap.time << "," << snap.wall_seconds << "," << snap.particle_steps;
+    double t_noise = 0, v_noise = 0;
+    for (const auto& t : twins) {
+      const auto T = compare::temperature_distance(p, t.state, interior, dT);
+      series << "," << T.l2 << "," << T.l2_stderr;
+      t_noise = T.noise;
+      if (compare_velocity) {
+        const auto v = compare::velocity_distance(p, t.state, interior, speed_scale);
+        series << "," << v.l2 << "," << v.l2_stderr;
+        v_noise = v.noise;
+      }
+    }
+    series << "," << t_noise;
+    if (compare_velocity) series << "," << v_noise;
+    series << "\n";
+  }
+
+  std::vector<std::pair<std::string, const compare::BinnedState*>> continua;
+  for (const auto& t : twins) continua.emplace_back(t.name, &t.state);
+  metrics["table_row"] = table;
+  metrics["files"] = io::Json::array();
+  for (const char* f : {"bins.csv", "profiles.csv", "error_vs_time.csv"}) metrics["files"].push_back(f);
+  io::write_file_atomically(stage.file("bins.csv"), compare::bins_csv(final_state, interior, continua));
+  io::write_file_atomically(stage.file("profiles.csv"),
+                            compare::midline_profiles_csv(final_state, continua));
+  io::write_file_atomically(stage.file("error_vs_time.csv"), series.str());
+  io::write_file_atomically(stage.file("metrics.json"), metrics.dump()); // last: complete
+  std::cout << "compare: results in " << stage.path().string()
+            << " (metrics.json, bins.csv, profiles.csv, error_vs_time.csv)\n";
+  return 0;
+}
+
+} // namespace twinflow::app

@@ -1,0 +1,383 @@
+#include "compare/twin_distance.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <iomanip>
+#include <sstream>
+
+#include "io/files.hpp"
+
+namespace twinflow::compare {
+
+namespace {
+
+std::array<long, 3> bin_index(const io::Grid& g, long b) {
+  return {{b % g.counts[0], (b / g.counts[0]) % g.counts[1], b / (g.counts[0] * g.counts[1])}};
+}
+
+long flat_index(const io::Grid& g, const std::array<long, 3>& i) {
+  return i[0] + g.counts[0] * (i[1] + g.counts[1] * i[2]);
+}
+
+double centre(const io::Grid& g, int d, long i) { return g.origin[d] + (i + 0.5) * g.spacing[d]; }
+
+const io::Field& require_field(const io::Snapshot& s, const std::string& name) {
+  const io::Field* f = s.find(name);
+  if (!f) throw io::InputError("particle fields: no field '" + name + "' in the snapshot");
+  return *f;
+}
+
+std::vector<std::string> split(const std::string& line, char sep) {
+  std::vector<std::string> out;
+  std::stringstream in(line);
+  std::string item;
+  while (std::getline(in, item, sep)) out.push_back(item);
+  return out;
+}
+
+// Central layer(s) of an axis with n bins: one when n is odd, two when it is even.
+std::vector<long> central_layers(long n) {
+  if (n % 2) return {n / 2};
+  return {n / 2 - 1, n / 2};
+}
+
+} // namespace
+
+io::Json Distance::to_json() const {
+  io::Json j = io::Json::object();
+  j["l2"] = l2;
+  j["l2_stderr"] = l2_stderr;
+  j["noise"] = noise;
+  j["excess_over_noise"] = excess;
+  j["max"] = max;
+  j["max_stderr"] = max_stderr;
+  j["max_at"] = io::Json::array();
+  for (double x : max_at) j["max_at"].push_back(x);
+  j["bins"] = static_cast<double>(bins);
+  return j;
+}
+
+BinnedState particle_state(const io::Grid& grid, const io::Snapshot& snapshot) {
+  BinnedState s;
+  s.grid = grid;
+  const io::Field& T = require_field(snapshot, "temperature_kinetic");
+  s.temperature = T.values;
+  s.temperature_se = T.standard_error;
+  const io::Field& n = require_field(snapshot, "density");
+  s.density = n.values;
+  s.density_se = n.standard_error;
+  if (const io::Field* v = snapshot.find("velocity")) {
+    s.velocity = v->values;
+    s.velocity_se = v->standard_error;
+  }
+  return s;
+}
+
+BinnedState continuum_state(const io::Grid& grid, const std::filesystem::path& bins_csv) {
+  std::istringstream in(io::read_file(bins_csv));
+  std::string line;
+  std::vector<std::string> header;
+  while (std::getline(in, line))
+    if (!line.empty() && line[0] != '#') {
+      header = split(line, ',');
+      break;
+    }
+  auto column = [&](const std::string& name) {
+    const auto it = std::find(header.begin(), header.end(), name);
+    return it == header.end() ? -1 : static_cast<int>(it - header.begin());
+  };
+  const char* index_names[3] = {"ix", "iy", "iz"};
+  const char* velocity_names[3] = {"u_x", "u_y", "u_z"};
+  std::array<int, 3> index_column{{-1, -1, -1}}, velocity_column{{-1, -1, -1}};
+  for (int d = 0; d < grid.dim; ++d) {
+    index_column[d] = column(index_names[d]);
+    velocity_column[d] = column(velocity_names[d]);
+    if (index_column[d] < 0)
+      throw io::InputError(bins_csv.string() + ": no column '" + index_names[d] +
+                           "'; the continuum's bins do not match the particle grid");
+  }
+  const int t_column = column("T");
+  if (t_column < 0) throw io::InputError(bins_csv.string() + ": no temperature column 'T'");
+  const bool has_velocity = velocity_column[0] >= 0;
+
+  BinnedState s;
+  s.grid = grid;
+  const long cells = grid.cell_count();
+  s.temperature.assign(cells, std::nan(""));
+  if (has_velocity) s.velocity.assign(cells * grid.dim, std::nan(""));
+  long rows = 0;
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    const auto v = split(line, ',');
+    if (v.size() != header.size())
+      throw io::InputError(bins_csv.string() + ": a row has " + std::to_string(v.size()) +
+                           " values, the header " + std::to_string(header.size()));
+    std::array<long, 3> i{{0, 0, 0}};
+    for (int d = 0; d < grid.dim; ++d) {
+      i[d] = std::stol(v[index_column[d]]);
+      if (i[d] < 0 || i[d] >= grid.counts[d])
+        throw io::InputError(bins_csv.string() + ": bin index " + std::to_string(i[d]) +
+                             " outside the particle grid's " + std::to_string(grid.counts[d]));
+    }
+    const long b = flat_index(grid, i);
+    s.temperature[b] = std::stod(v[t_column]);
+    if (has_velocity)
+      for (int d = 0; d < grid.dim; ++d) s.velocity[b * grid.dim + d] = std::stod(v[velocity_column[d]]);
+    ++rows;
+  }
+  if (rows != cells)
+    throw io::InputError(bins_csv.string() + ": " + std::to_string(rows) + " bins, the particle grid has " +
+                         std::to_string(cells));
+  return s;
+}
+
+std::vector<char> interior_bins(const io::Grid& grid, const std::array<bool, 3>& walled,
+                                double wall_layer) {
+  std::vector<char> interior(grid.cell_count(), 1);
+  for (long b = 0; b < grid.cell_count(); ++b) {
+    const auto i = bin_index(grid, b);
+    for (int d = 0; d < grid.dim; ++d) {
+      if (!walled[d]) continue;
+      const double lower = i[d] * grid.spacing[d], upper = (i[d] + 1) * grid.spacing[d];
+      const double length = grid.counts[d] * grid.spacing[d];
+      // A small tolerance: a layer equal to a bin width excludes exactly that bin.
+      const double tol = 1e-9 * grid.spacing[d];
+      if (lower < wall_layer - tol || upper > length - wall_layer + tol) interior[b] = 0;
+    }
+  }
+  return interior;
+}
+
+namespace {
+// l2, its error and the noise from per-bin squared differences and their error terms.
+Distance finish(double sum_d2, double sum_sigma2, double sum_d2_sigma2, long n, double max,
+                double max_se, std::array<double, 3> max_at) {
+  Distance r;
+  r.bins = n;
+  if (n == 0) return r;
+  const double mean_d2 = sum_d2 / n;
+  r.l2 = std::sqrt(mean_d2);
+  r.noise = std::sqrt(sum_sigma2 / n);
+  r.excess = std::sqrt(std::max(0.0, mean_d2 - sum_sigma2 / n));
+  // d(mean d^2) = (2/n) sqrt(sum d^2 sigma^2); d l2 = d(mean d^2) / (2 l2)
+  r.l2_stderr = r.l2 > 0 ? std::sqrt(sum_d2_sigma2) / (n * r.l2) : r.noise;
+  r.max = max;
+  r.max_stderr = max_se;
+  r.max_at = max_at;
+  return r;
+}
+} // namespace
+
+Distance temperature_distance(const BinnedState& p, const BinnedState& c,
+                              const std::vector<char>& interior, double scale) {
+  double s_d2 = 0, s_sig2 = 0, s_d2sig2 = 0, max = -1, max_se = 0;
+  std::array<double, 3> at{{0, 0, 0}};
+  long n = 0;
+  for (long b = 0; b < p.grid.cell_count(); ++b) {
+    if (!interior[b]) continue;
+    const double d = (p.temperature[b] - c.temperature[b]) / scale;
+    const double sig = p.temperature_se.empty() ? 0 : p.temperature_se[b] / scale;
+    s_d2 += d * d;
+    s_sig2 += sig * sig;
+    s_d2sig2 += d * d * sig * sig;
+    if (std::fabs(d) > max) {
+      max = std::fabs(d);
+      max_se = sig;
+      const auto i = bin_index(p.grid, b);
+      for (int k = 0; k < 3; ++k) at[k] = centre(p.grid, k, i[k]);
+    }
+    ++n;
+  }
+  return finish(s_d2, s_sig2, s_d2sig2, n, std::max(max, 0.0), max_se, at);
+}
+
+Distance velocity_distance(const BinnedState& p, const BinnedState& c,
+                           const std::vector<char>& interior, double scale) {
+  if (!p.has_velocity() || !c.has_velocity()) return {};
+  const int dim = p.grid.dim;
+  double s_d2 = 0, s_sig2 = 0, s_d2sig2 = 0, max = -1, max_se = 0;
+  std::array<double, 3> at{{0, 0, 0}};
+  long n = 0;
+  for (long b = 0; b < p.grid.cell_count(); ++b) {
+    if (!interior[b]) continue;
+    double d2 = 0, sig2 = 0, d2sig2 = 0;
+    for (int k = 0; k < dim; ++k) {
+      const double d = (p.velocity[b * dim + k] - c.velocity[b * dim + k]) / scale;
+      const double sig = p.velocity_se.empty() ? 0 : p.velocity_se[b * dim + k] / scale;
+      d2 += d * d;
+      sig2 += sig * sig;
+      d2sig2 += d * d * sig * sig;
+    }
+    s_d2 += d2;
+    s_sig2 += sig2;
+    s_d2sig2 += d2sig2;
+    if (std::sqrt(d2) > max) {
+      max = std::sqrt(d2);
+      // error of |a - c| along its own direction
+      max_se = d2 > 0 ? std::sqrt(d2sig2 / d2) : std::sqrt(sig2);
+      const auto i = bin_index(p.grid, b);
+      for (int k = 0; k < 3; ++k) at[k] = centre(p.grid, k, i[k]);
+    }
+    ++n;
+  }
+  return finish(s_d2, s_sig2, s_d2sig2, n, std::max(max, 0.0), max_se, at);
+}
+
+WallFluidTemperature wall_fluid_temperature(const BinnedState& p, const std::vector<char>& interior,
+                                            int direction, int side) {
+  const io::Grid& g = p.grid;
+  const long n = g.counts[direction];
+  // Layer index counted from the wall, and back to the grid index.
+  auto grid_index = [&](long k) { return side == 0 ? k : n - 1 - k; };
+  long first = -1;
+  for (long k = 0; k + 1 < n && first < 0; ++k)
+    for (long b = 0; b < g.cell_count(); ++b)
+      if (interior[b] && bin_index(g, b)[direction] == grid_index(k)) {
+        first = k;
+        break;
+      }
+  WallFluidTemperature w;
+  if (first < 0) return {std::nan(""), std::nan(""), 0};
+  const double h = g.spacing[direction];
+  w.extrapolated_from = (first + 0.5) * h;
+  const double r = w.extrapolated_from / h; // T_wall = T1 + (T1 - T2) r
+  double sum = 0, var = 0;
+  long columns = 0;
+  for (long b = 0; b < g.cell_count(); ++b) {
+    auto i = bin_index(g, b);
+    if (!interior[b] || i[direction] != grid_index(first)) continue;
+    i[direction] = grid_index(first + 1);
+    const long b2 = flat_index(g, i);
+    sum += (1 + r) * p.temperature[b] - r * p.temperature[b2];
+    if (!p.temperature_se.empty())
+      var += (1 + r) * (1 + r) * p.temperature_se[b] * p.temperature_se[b] +
+             r * r * p.temperature_se[b2] * p.temperature_se[b2];
+    ++columns;
+  }
+  w.value = sum / columns;
+  w.stderr_ = std::sqrt(var) / columns;
+  return w;
+}
+
+namespace {
+struct ProfilePoint {
+  double T = 0, T_se = 0;
+  std::array<double, 3> v{{0, 0, 0}}, v_se{{0, 0, 0}};
+};
+
+// Mean over the central layers of the other directions at index i along `direction`.
+ProfilePoint profile_point(const BinnedState& s, int direction, long i) {
+  const io::Grid& g = s.grid;
+  const int dim = g.dim;
+  std::vector<long> layers[3];
+  for (int d = 0; d < 3; ++d)
+    layers[d] = d == direction ? std::vector<long>{i} : central_layers(g.counts[d]);
+  ProfilePoint p;
+  std::array<double, 3> v_var{{0, 0, 0}};
+  double T_var = 0;
+  long m = 0;
+  for (long a : layers[0])
+    for (long b : layers[1])
+      for (long c : layers[2]) {
+        const long k = flat_index(g, {{a, b, c}});
+        p.T += s.temperature[k];
+        if (!s.temperature_se.empty()) T_var += s.temperature_se[k] * s.temperature_se[k];
+        if (s.has_velocity())
+          for (int d = 0; d < dim; ++d) {
+            p.v[d] += s.velocity[k * dim + d];
+            if (!s.velocity_se.empty())
+              v_var[d] += s.velocity_se[k * dim + d] * s.velocity_se[k * dim + d];
+          }
+        ++m;
+      }
+  p.T /= m;
+  p.T_se = std::sqrt(T_var) / m;
+  for (int d = 0; d < dim; ++d) {
+    p.v[d] /= m;
+    p.v_se[d] = std::sqrt(v_var[d]) / m;
+  }
+  return p;
+}
+
+const char* kAxis = "xyz";
+
+void write_state_header(std::ostream& out, const std::string& name, const BinnedState& s,
+                        bool errors) {
+  out << ",T_" << name;
+  if (errors) out << ",T_" << name << "_se";
+  if (s.has_velocity())
+    for (int d = 0; d < s.grid.dim; ++d) {
+      out << ",v" << kAxis[d] << "_" << name;
+      if (errors) out << ",v" << kAxis[d] << "_" << name << "_se";
+    }
+}
+} // namespace
+
+std::string midline_profiles_csv(
+    const BinnedState& particle,
+    const std::vector<std::pair<std::string, const BinnedState*>>& continua) {
+  std::ostringstream out;
+  out << std::setprecision(10);
+  out << "# mid-line profiles: bins along each direction through the box centre, averaged over "
+         "the central layer(s) of the other directions; _se: block standard errors\n";
+  out << "direction,coordinate";
+  write_state_header(out, "particle", particle, true);
+  for (const auto& [name, s] : continua) write_state_header(out, name, *s, false);
+  out << "\n";
+  const io::Grid& g = particle.grid;
+  const int dim = g.dim;
+  for (int d = 0; d < dim; ++d)
+    for (long i = 0; i < g.counts[d]; ++i) {
+      out << kAxis[d] << "," << centre(g, d, i);
+      const ProfilePoint p = profile_point(particle, d, i);
+      out << "," << p.T << "," << p.T_se;
+      if (particle.has_velocity())
+        for (int k = 0; k < dim; ++k) out << "," << p.v[k] << "," << p.v_se[k];
+      for (const auto& entry : continua) {
+        const BinnedState& s = *entry.second;
+        const ProfilePoint q = profile_point(s, d, i);
+        out << "," << q.T;
+        if (s.has_velocity())
+          for (int k = 0; k < dim; ++k) out << "," << q.v[k];
+      }
+      out << "\n";
+    }
+  return out.str();
+}
+
+std::string bins_csv(const BinnedState& particle, const std::vector<char>& interior,
+                     const std::vector<std::pair<std::string, const BinnedState*>>& continua) {
+  std::ostringstream out;
+  out << std::setprecision(10);
+  out << "# every bin: centre, interior (1: counted in the field errors), the particle's "
+         "averages with block standard errors (_se), each continuum twin's bin averages\n";
+  const io::Grid& g = particle.grid;
+  const int dim = g.dim;
+  for (int d = 0; d < dim; ++d) out << (d ? "," : "") << kAxis[d];
+  out << ",interior,density_particle,density_particle_se";
+  write_state_header(out, "particle", particle, true);
+  for (const auto& [name, s] : continua) write_state_header(out, name, *s, false);
+  out << "\n";
+  for (long b = 0; b < g.cell_count(); ++b) {
+    const auto i = bin_index(g, b);
+    for (int d = 0; d < dim; ++d) out << (d ? "," : "") << centre(g, d, i[d]);
+    out << "," << int(interior[b]) << "," << particle.density[b] << ","
+        << (particle.density_se.empty() ? 0.0 : particle.density_se[b]);
+    out << "," << particle.temperature[b] << ","
+        << (particle.temperature_se.empty() ? 0.0 : particle.temperature_se[b]);
+    if (particle.has_velocity())
+      for (int k = 0; k < dim; ++k)
+        out << "," << particle.velocity[b * dim + k] << ","
+            << (particle.velocity_se.empty() ? 0.0 : particle.velocity_se[b * dim + k]);
+    for (const auto& entry : continua) {
+      const BinnedState& s = *entry.second;
+      out << "," << s.temperature[b];
+      if (s.has_velocity())
+        for (int k = 0; k < dim; ++k) out << "," << s.velocity[b * dim + k];
+    }
+    out << "\n";
+  }
+  return out.str();
+}
+
+} // namespace twinflow::compare

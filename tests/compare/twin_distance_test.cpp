@@ -1,0 +1,107 @@
+// The comparison's numbers on hand-made states whose answers are known exactly.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "compare/twin_distance.hpp"
+
+using namespace twinflow;
+
+namespace {
+
+io::Grid grid_2d(long nx, long ny, double h) {
+  io::Grid g;
+  g.dim = 2;
+  g.counts = {{nx, ny, 1}};
+  g.spacing = {{h, h, 1}};
+  return g;
+}
+
+double centre(const io::Grid& g, int d, long b) {
+  const long i = d == 0 ? b % g.counts[0] : b / g.counts[0];
+  return (i + 0.5) * g.spacing[d];
+}
+
+// T(x, y) = a + s x everywhere, no flow; errors `se` per bin.
+compare::BinnedState linear_state(const io::Grid& g, double a, double s, double se) {
+  compare::BinnedState st;
+  st.grid = g;
+  for (long b = 0; b < g.cell_count(); ++b) {
+    st.temperature.push_back(a + s * centre(g, 0, b));
+    if (se > 0) st.temperature_se.push_back(se);
+    for (int d = 0; d < 2; ++d) st.velocity.push_back(0);
+    if (se > 0)
+      for (int d = 0; d < 2; ++d) st.velocity_se.push_back(se);
+  }
+  return st;
+}
+
+} // namespace
+
+TEST(TwinDistance, InteriorExcludesWholeBinsWithinTheWallLayer) {
+  const io::Grid g = grid_2d(10, 10, 2.0);
+  const auto layer = compare::interior_bins(g, {{true, true, false}}, 1.0);
+  EXPECT_EQ(std::count(layer.begin(), layer.end(), 1), 64);
+  const auto none = compare::interior_bins(g, {{true, true, false}}, 0.0);
+  EXPECT_EQ(std::count(none.begin(), none.end(), 1), 100);
+  const auto x_only = compare::interior_bins(g, {{true, false, false}}, 2.0); // exactly one bin
+  EXPECT_EQ(std::count(x_only.begin(), x_only.end(), 1), 80);
+  const auto thick = compare::interior_bins(g, {{true, true, false}}, 2.5);
+  EXPECT_EQ(std::count(thick.begin(), thick.end(), 1), 36);
+}
+
+TEST(TwinDistance, ConstantOffsetGivesItsSizeAndIdenticalTwinsZero) {
+  const io::Grid g = grid_2d(8, 6, 1.0);
+  const auto interior = compare::interior_bins(g, {{true, true, false}}, 0.0);
+  const auto c = linear_state(g, 1.0, 0.05, 0);
+  const auto same = compare::temperature_distance(linear_state(g, 1.0, 0.05, 0), c, interior, 2.0);
+  EXPECT_EQ(same.l2, 0.0);
+  EXPECT_EQ(same.max, 0.0);
+  const auto off = compare::temperature_distance(linear_state(g, 1.1, 0.05, 0), c, interior, 2.0);
+  EXPECT_NEAR(off.l2, 0.05, 1e-14); // 0.1 / scale 2
+  EXPECT_NEAR(off.max, 0.05, 1e-14);
+  EXPECT_EQ(off.bins, 48);
+}
+
+// Pure noise of known sigma: l2 approaches the noise estimate, and the excess stays within a
+// few of its own standard errors of zero.
+TEST(TwinDistance, NoiseAloneIsRecognisedAsNoise) {
+  const io::Grid g = grid_2d(40, 40, 1.0);
+  const auto interior = compare::interior_bins(g, {{false, false, false}}, 0.0);
+  const auto c = linear_state(g, 1.0, 0.0, 0);
+  auto p = linear_state(g, 1.0, 0.0, 0.01);
+  std::mt19937_64 rng(7);
+  std::normal_distribution<double> normal(0.0, 0.01);
+  for (double& T : p.temperature) T += normal(rng);
+  const auto d = compare::temperature_distance(p, c, interior, 1.0);
+  EXPECT_NEAR(d.noise, 0.01, 1e-15);
+  // mean of 1600 chi^2_1 / 1600: relative error sqrt(2/1600) = 3.5% on l2^2
+  EXPECT_NEAR(d.l2 * d.l2 / (d.noise * d.noise), 1.0, 4 * std::sqrt(2.0 / 1600));
+  EXPECT_LT(d.excess, 0.5 * d.noise);
+}
+
+TEST(TwinDistance, WallTemperatureOfALinearProfileIsExact) {
+  const io::Grid g = grid_2d(10, 10, 2.0);
+  const auto interior = compare::interior_bins(g, {{true, true, false}}, 1.0);
+  const auto p = linear_state(g, 0.9, -0.01, 0.003);
+  const auto lower = compare::wall_fluid_temperature(p, interior, 0, 0);
+  const auto upper = compare::wall_fluid_temperature(p, interior, 0, 1);
+  EXPECT_NEAR(lower.value, 0.9, 1e-13);
+  EXPECT_NEAR(upper.value, 0.9 - 0.01 * 20, 1e-13);
+  EXPECT_DOUBLE_EQ(lower.extrapolated_from, 3.0); // bins [0, 2] are in the wall layer
+  // 8 columns, each (1 + r)^2 + r^2 times sigma^2 with r = 1.5
+  EXPECT_NEAR(lower.stderr_, 0.003 * std::sqrt(2.5 * 2.5 + 1.5 * 1.5) / std::sqrt(8.0), 1e-15);
+}
+
+TEST(TwinDistance, VelocityDistanceIsTheVectorNorm) {
+  const io::Grid g = grid_2d(4, 4, 1.0);
+  const auto interior = compare::interior_bins(g, {{false, false, false}}, 0.0);
+  auto p = linear_state(g, 1.0, 0.0, 0);
+  const auto c = linear_state(g, 1.0, 0.0, 0);
+  for (long b = 0; b < g.cell_count(); ++b) p.velocity[2 * b] = 0.03, p.velocity[2 * b + 1] = 0.04;
+  const auto d = compare::velocity_distance(p, c, interior, 0.1);
+  EXPECT_NEAR(d.l2, 0.5, 1e-14);
+  EXPECT_NEAR(d.max, 0.5, 1e-14);
+}

@@ -48,9 +48,9 @@ struct ParticleRun {
 ParticleRun load_particle_run(const fs::path& run_dir) {
   ParticleRun r;
   const fs::path dir = run_dir / "particle";
-  r.summary = read_json(dir / "summary.json",
-                        "the particle stage has not finished in " + run_dir.string() +
-                            " (twinflow run CASE --out " + run_dir.string() + ")");
+  r.summary =
+      read_json(dir / "summary.json", "the particle stage has not finished in " + run_dir.string() +
+                                          " (twinflow run CASE --out " + run_dir.string() + ")");
   Case c;
   const io::Json* case_name = r.summary.find("case");
   r.parameters = c.load_resolved(*r.summary.find("parameters"),
@@ -136,7 +136,8 @@ int compare_stage(const CommandLine& cl) {
   if (twins.empty() || twins.front().name != "nominal")
     throw io::InputError((run_dir / "continuum" / "summary.json").string() +
                          ": missing; the continuum twin has not run (twinflow continuum CASE "
-                         "--out " + run_dir.string() + ")");
+                         "--out " +
+                         run_dir.string() + ")");
   const io::StageDirectory stage(run_dir, "compare", true); // derived, cheap: always rewritten
   stage.create();
 
@@ -153,8 +154,9 @@ int compare_stage(const CommandLine& cl) {
     for (double T : nominal.state.temperature) lo = std::min(lo, T), hi = std::max(hi, T);
     dT = hi - lo;
   }
-  const double speed_scale = number(nominal.summary, {"results", "max_speed_chi_over_H"}) *
-                             number(nominal.summary, {"dimensionless", "velocity_scale_chi_over_H"});
+  const double speed_scale =
+      number(nominal.summary, {"results", "max_speed_chi_over_H"}) *
+      number(nominal.summary, {"dimensionless", "velocity_scale_chi_over_H"});
   const bool compare_velocity = std::isfinite(speed_scale) && speed_scale > 0;
 
   io::Json metrics = io::Json::object();
@@ -167,7 +169,8 @@ int compare_stage(const CommandLine& cl) {
     double excluded = 0;
     for (int d = 0; d < grid.dim; ++d)
       if (run.walled[d])
-        excluded = std::max(excluded, std::ceil(wall_layer / grid.spacing[d] - 1e-9) * grid.spacing[d]);
+        excluded =
+            std::max(excluded, std::ceil(wall_layer / grid.spacing[d] - 1e-9) * grid.spacing[d]);
     metrics["wall_layer_excluded"] = excluded;
   }
   long n_interior = 0;
@@ -182,8 +185,8 @@ int compare_stage(const CommandLine& cl) {
   const io::Json& presults = *run.summary.find("results");
   io::Json table = io::Json::object();
   table["wall_seconds_particle"] = number(presults, {"wall_seconds"});
-  table["particle_steps"] = number(presults, {"N"}) *
-                            (number(presults, {"steps"}) + number(presults, {"equilibration_steps"}));
+  table["particle_steps"] = number(presults, {"N"}) * (number(presults, {"steps"}) +
+                                                       number(presults, {"equilibration_steps"}));
 
   // Particle heat flow through the heated direction's walls, as a Nusselt number against the
   // nominal twin's conduction flux kappa dT / H (the same kappa for every twin).
@@ -191,12 +194,14 @@ int compare_stage(const CommandLine& cl) {
   const double q0 = number(nominal.summary, {"dimensionless", "conduction_flux"});
   double q_particle = std::nan("");
   if (heated >= 0) {
-    const int hot = scene.boundary[heated].temperature[0] > scene.boundary[heated].temperature[1] ? 0 : 1;
+    const int hot =
+        scene.boundary[heated].temperature[0] > scene.boundary[heated].temperature[1] ? 0 : 1;
     const auto flux = [&](int side, const char* key) {
       return number(presults, {"walls", wall_name(heated, side).c_str(), key});
     };
     const double q_in = flux(hot, "heat_flux_in"), q_out = -flux(1 - hot, "heat_flux_in");
-    const double se = std::hypot(flux(hot, "heat_flux_in_stderr"), flux(1 - hot, "heat_flux_in_stderr"));
+    const double se =
+        std::hypot(flux(hot, "heat_flux_in_stderr"), flux(1 - hot, "heat_flux_in_stderr"));
     q_particle = 0.5 * (q_in + q_out);
     particle["heat_flux_hot_wall"] = q_in;
     particle["heat_flux_cold_wall"] = q_out;
@@ -263,7 +268,8 @@ int compare_stage(const CommandLine& cl) {
       table["velocity_l2_" + t.name] = v.l2;
       table["velocity_l2_" + t.name + "_stderr"] = v.l2_stderr;
       table["velocity_l2_noise"] = v.noise;
-      std::cout << "; velocity L2 " << v.l2 << " +- " << v.l2_stderr << " (noise " << v.noise << ")";
+      std::cout << "; velocity L2 " << v.l2 << " +- " << v.l2_stderr << " (noise " << v.noise
+                << ")";
     }
     std::cout << "\n";
     const double nu_own = number(t.summary, {"results", "nusselt_volume_average"});
@@ -297,7 +303,8 @@ int compare_stage(const CommandLine& cl) {
   series << "snapshot,time,wall_seconds,particle_steps";
   for (const auto& t : twins) {
     series << ",temperature_l2_" << t.name << ",temperature_l2_" << t.name << "_stderr";
-    if (compare_velocity) series << ",velocity_l2_" << t.name << ",velocity_l2_" << t.name << "_stderr";
+    if (compare_velocity)
+      series << ",velocity_l2_" << t.name << ",velocity_l2_" << t.name << "_stderr";
   }
   series << ",temperature_noise" << (compare_velocity ? ",velocity_noise" : "") << "\n";
   for (std::size_t s = 0; s < run.fields.snapshots.size(); ++s) {
@@ -324,8 +331,10 @@ int compare_stage(const CommandLine& cl) {
   for (const auto& t : twins) continua.emplace_back(t.name, &t.state);
   metrics["table_row"] = table;
   metrics["files"] = io::Json::array();
-  for (const char* f : {"bins.csv", "profiles.csv", "error_vs_time.csv"}) metrics["files"].push_back(f);
-  io::write_file_atomically(stage.file("bins.csv"), compare::bins_csv(final_state, interior, continua));
+  for (const char* f : {"bins.csv", "profiles.csv", "error_vs_time.csv"})
+    metrics["files"].push_back(f);
+  io::write_file_atomically(stage.file("bins.csv"),
+                            compare::bins_csv(final_state, interior, continua));
   io::write_file_atomically(stage.file("profiles.csv"),
                             compare::midline_profiles_csv(final_state, continua));
   io::write_file_atomically(stage.file("error_vs_time.csv"), series.str());

@@ -2,8 +2,10 @@
 #include <csignal>
 #include <cstdlib>
 #include <filesystem>
+#include <iomanip>
 #include <iostream>
 #include <optional>
+#include <sstream>
 
 #include <unistd.h>
 
@@ -21,6 +23,60 @@ namespace fs = std::filesystem;
 namespace {
 fs::path run_directory(const CommandLine& cl, const CaseParameters& c) {
   return cl.out.empty() ? fs::path("twinflow-runs") / c.name : fs::path(cl.out);
+}
+
+// What a stage's results depend on: the case parameters of the given sections (as resolved with
+// the stage's --set options), the code revision and the upstream stages' hashes. FNV-1a 64 of
+// that, written next to the results as inputs.json; `run` reuses a stage whose hash is unchanged.
+struct StageInputs {
+  io::Json inputs = io::Json::object();
+  std::string hash;
+};
+
+StageInputs stage_inputs(const CommandLine& cl, std::initializer_list<const char*> sections,
+                         const std::vector<std::string>& upstream_hashes) {
+  Case c;
+  c.load(cl.target, cl.overrides);
+  StageInputs s;
+  io::Json parameters = io::Json::object();
+  const io::Json resolved = c.registry().resolved_json();
+  for (const auto& [path, value] : resolved.items())
+    for (const char* section : sections)
+      if (path.rfind(section, 0) == 0) parameters[path] = value;
+  s.inputs["parameters"] = parameters;
+  s.inputs["twinflow_git_revision"] = *io::provenance().find("twinflow_git_revision");
+  s.inputs["upstream"] = io::Json::array();
+  for (const auto& h : upstream_hashes) s.inputs["upstream"].push_back(h);
+  std::uint64_t h = 1469598103934665603ull; // FNV-1a 64
+  for (unsigned char ch : s.inputs.dump()) h = (h ^ ch) * 1099511628211ull;
+  std::ostringstream hex;
+  hex << std::hex << std::setw(16) << std::setfill('0') << h;
+  s.hash = hex.str();
+  s.inputs["hash"] = s.hash;
+  return s;
+}
+
+// The stage's earlier results are complete and were made from the same inputs.
+bool reusable(const fs::path& stage_dir, const StageInputs& s) {
+  if (!fs::exists(stage_dir / "summary.json") || !fs::exists(stage_dir / "inputs.json"))
+    return false;
+  const io::Json recorded = io::Json::parse(io::read_file(stage_dir / "inputs.json"));
+  const io::Json* h = recorded.find("hash");
+  return h && h->is_string() && h->string() == s.hash;
+}
+
+// Runs a stage unless its inputs are unchanged; records its inputs after it succeeds.
+template <class Stage>
+int run_or_reuse(const fs::path& stage_dir, const StageInputs& s, bool force, Stage&& stage) {
+  if (!force && reusable(stage_dir, s)) {
+    std::cout << "run: " << stage_dir.filename().string() << ": inputs unchanged (" << s.hash
+              << "), results reused\n";
+    return 0;
+  }
+  fs::remove(stage_dir / "inputs.json"); // stale until the stage finishes again
+  const int rc = stage();
+  if (rc == 0) io::write_file_atomically(stage_dir / "inputs.json", s.inputs.dump());
+  return rc;
 }
 
 } // namespace
@@ -151,28 +207,60 @@ int run_all(const CommandLine& cl) {
   const CaseParameters p = c.load(cl.target, cl.overrides);
   const fs::path run_dir = run_directory(cl, p);
   const bool walls = p.scene.has_walls() && !p.scene.heat_slabs.size();
-  // Every stage's folder is checked before the first one runs (bad input writes nothing).
-  for (const char* name : {"particle", "transport", "continuum", "continuum_calibrated"})
-    io::StageDirectory(run_dir, name, cl.force || cl.restart);
+  // The particle results are the expensive ones: kept unless their inputs are unchanged (reused)
+  // or --force / --restart says otherwise; checked before anything runs (bad input writes
+  // nothing). Later stages are derived from them and recomputed whenever their inputs changed.
+  const StageInputs particle_inputs = stage_inputs(cl, {"Scene/", "Particle/"}, {});
+  const bool reuse_particle =
+      !cl.force && !cl.restart && reusable(run_dir / "particle", particle_inputs);
+  if (!reuse_particle) io::StageDirectory(run_dir, "particle", cl.force || cl.restart);
   std::cout << "run: '" << p.name << "': particle, transport, continuum"
             << (walls ? " (nominal and calibrated)" : "") << ", compare\n";
-  if (const int rc = particle_stage(cl)) return rc;
   CommandLine later = cl;
   later.restart = false;
-  later.force = cl.force || cl.restart; // a restarted run's later stages start afresh
+  later.force = true; // derived from the particle results: recomputed when their inputs change
   later.out = run_dir.string();
-  if (const int rc = transport_stage(later)) return rc;
+  if (const int rc = run_or_reuse(run_dir / "particle", particle_inputs, cl.force || cl.restart,
+                                  [&] { return particle_stage(cl); }))
+    return rc;
+  // The coefficients at the temperature the particle fluid actually has, unless the case says.
+  if (p.transport.temperature == 0) {
+    const io::Json s = io::Json::parse(io::read_file(run_dir / "particle" / "summary.json"));
+    const io::Json* T = s.find("results") ? s.find("results")->find("T_kinetic") : nullptr;
+    if (T && T->is_number() && T->number() > 0) {
+      std::ostringstream o;
+      o << std::setprecision(4) << "Transport/Temperature=" << T->number();
+      later.overrides.push_back(o.str());
+      std::cout << "run: transport at the particle fluid's mean temperature: --set '" << o.str()
+                << "'\n";
+    }
+  }
+  const StageInputs transport_inputs =
+      stage_inputs(later, {"Scene/", "Particle/", "Transport/"}, {particle_inputs.hash});
+  if (const int rc = run_or_reuse(run_dir / "transport", transport_inputs, false,
+                                  [&] { return transport_stage(later); }))
+    return rc;
   bool chosen = false; // the user's own choice of coefficients wins
   for (const auto& o : cl.overrides) chosen |= o.find("Continuum/Coefficients/Source") == 0;
   if (!chosen) later.overrides.push_back("Continuum/Coefficients/Source=transport");
-  if (const int rc = continuum_twin(later, "continuum")) return rc;
+  const StageInputs continuum_inputs =
+      stage_inputs(later, {"Scene/", "Transport/", "Continuum/"}, {transport_inputs.hash});
+  if (const int rc = run_or_reuse(run_dir / "continuum", continuum_inputs, false,
+                                  [&] { return continuum_twin(later, "continuum"); }))
+    return rc;
   if (walls && fs::exists(run_dir / "particle" / "fields.h5")) {
     CommandLine calibrated = later;
     for (const auto& o : calibrated_twin_overrides(run_dir.string())) {
       std::cout << "run: calibrated twin: --set '" << o << "'\n";
       calibrated.overrides.push_back(o);
     }
-    if (const int rc = continuum_twin(calibrated, "continuum_calibrated")) return rc;
+    const StageInputs calibrated_inputs =
+        stage_inputs(calibrated, {"Scene/", "Transport/", "Continuum/"},
+                     {transport_inputs.hash, particle_inputs.hash});
+    if (const int rc =
+            run_or_reuse(run_dir / "continuum_calibrated", calibrated_inputs, false,
+                         [&] { return continuum_twin(calibrated, "continuum_calibrated"); }))
+      return rc;
   }
   if (!fs::exists(run_dir / "particle" / "fields.h5")) return 0; // nothing binned to compare
   CommandLine compare = cl;

@@ -32,6 +32,7 @@ int transport_stage(const CommandLine& cl) {
         if (cp.scene.boundary[d].thermal[s])
           wall_mean += cp.scene.boundary[d].temperature[s], ++walls;
   if (walls > 0) p.temperature = wall_mean / walls;
+  if (cp.transport.temperature > 0) p.temperature = cp.transport.temperature;
   // Bulk runs start in equilibrium at the state point, whatever the scene's own start (a case
   // that starts at rest would otherwise measure at a lower temperature).
   p.initial_velocities = particle::InitialVelocities::Maxwell;

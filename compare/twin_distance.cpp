@@ -19,7 +19,9 @@ long flat_index(const io::Grid& g, const std::array<long, 3>& i) {
   return i[0] + g.counts[0] * (i[1] + g.counts[1] * i[2]);
 }
 
-double centre(const io::Grid& g, int d, long i) { return g.origin[d] + (i + 0.5) * g.spacing[d]; }
+double centre(const io::Grid& g, int d, long i) {
+  return g.origin[d] + (i + 0.5) * g.spacing[d];
+}
 
 const io::Field& require_field(const io::Snapshot& s, const std::string& name) {
   const io::Field* f = s.find(name);
@@ -122,12 +124,13 @@ BinnedState continuum_state(const io::Grid& grid, const std::filesystem::path& b
     const long b = flat_index(grid, i);
     s.temperature[b] = std::stod(v[t_column]);
     if (has_velocity)
-      for (int d = 0; d < grid.dim; ++d) s.velocity[b * grid.dim + d] = std::stod(v[velocity_column[d]]);
+      for (int d = 0; d < grid.dim; ++d)
+        s.velocity[b * grid.dim + d] = std::stod(v[velocity_column[d]]);
     ++rows;
   }
   if (rows != cells)
-    throw io::InputError(bins_csv.string() + ": " + std::to_string(rows) + " bins, the particle grid has " +
-                         std::to_string(cells));
+    throw io::InputError(bins_csv.string() + ": " + std::to_string(rows) +
+                         " bins, the particle grid has " + std::to_string(cells));
   return s;
 }
 
@@ -313,9 +316,9 @@ void write_state_header(std::ostream& out, const std::string& name, const Binned
 }
 } // namespace
 
-std::string midline_profiles_csv(
-    const BinnedState& particle,
-    const std::vector<std::pair<std::string, const BinnedState*>>& continua) {
+std::string
+midline_profiles_csv(const BinnedState& particle,
+                     const std::vector<std::pair<std::string, const BinnedState*>>& continua) {
   std::ostringstream out;
   out << std::setprecision(10);
   out << "# mid-line profiles: bins along each direction through the box centre, averaged over "

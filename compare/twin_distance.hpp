@@ -66,9 +66,9 @@ WallFluidTemperature wall_fluid_temperature(const BinnedState& particle,
 // over the central layer(s) of the other directions (two layers when the count is even).
 // Rows: direction, coordinate, then per state T (and T_se for the particle), velocity
 // components (and their errors).
-std::string midline_profiles_csv(const BinnedState& particle,
-                                 const std::vector<std::pair<std::string, const BinnedState*>>&
-                                     continua);
+std::string
+midline_profiles_csv(const BinnedState& particle,
+                     const std::vector<std::pair<std::string, const BinnedState*>>& continua);
 
 // Every bin: centre, interior flag, the particle's T and velocity with errors, each continuum's.
 std::string bins_csv(const BinnedState& particle, const std::vector<char>& interior,

@@ -16,6 +16,10 @@ enum class Friction { ConstantSigma, ConstantGamma };
 enum class HeatLaw { None, Inverse, Linear };
 enum class HeatCoefficient { Constant, Seed002 };
 enum class InitialVelocities { Maxwell, Rest };
+// Equilibrium: u_i = (c_v + k) T, the equilibrium mean (000:(3.21)), so an isolated fluid stays
+// at T. Theta: theta_i = T (u_i = c_v T), seed 002's start; an isolated ideal fluid then settles
+// at T (c_v + d/2) / (c_v + k + d/2).
+enum class InitialInternalEnergy { Equilibrium, Theta };
 
 // w(r) = (1 - r/cutoff)^exponent for r < cutoff.
 struct WeightParameters {
@@ -57,6 +61,7 @@ struct ParticleParameters {
   double temperature_perturbation = 0; // initial theta = T (1 + A sin(2 pi x / Lx))
   double poiseuille_force = 0;         // +F along x where y < Ly/2, -F above (reverse Poiseuille)
   InitialVelocities initial_velocities = InitialVelocities::Maxwell;
+  InitialInternalEnergy initial_internal_energy = InitialInternalEnergy::Equilibrium;
 
   EnergyModel energy = EnergyModel::Dpde;
   double cv = 200.0; // particle heat capacity, in units of k

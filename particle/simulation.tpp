@@ -52,8 +52,12 @@ Simulation<M>::Simulation(const M& model, const ParticleParameters& p)
   for (int d = 0; d < D; ++d)
     for (auto& v : state_.v[d]) v -= mean[d];
   if constexpr (M::has_energy) {
-    state_.u.assign(n, model_.cv * p.temperature); // theta_i = T
-    if (p.temperature_perturbation != 0)           // the thermal relaxation scene's initial mode
+    // 000:(3.21): <u> = (c_v + k) T in equilibrium (k = 1); seed 002 starts at theta_i = T
+    const double u0 = p.initial_internal_energy == InitialInternalEnergy::Equilibrium
+                          ? (model_.cv + 1) * p.temperature
+                          : model_.cv * p.temperature;
+    state_.u.assign(n, u0);
+    if (p.temperature_perturbation != 0) // the thermal relaxation scene's initial mode
       for (std::size_t i = 0; i < n; ++i)
         state_.u[i] *=
             1 + p.temperature_perturbation * std::sin(2 * M_PI * state_.x[0][i] / p.box[0]);

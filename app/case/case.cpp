@@ -42,6 +42,7 @@ CaseParameters Case::resolve(const std::string& default_name) {
   c.particle = resolve_particle(registry_, c.scene);
   c.transport.source = registry_.get("Transport/Source");
   c.transport.measure_flows = registry_.get_bool("Transport/Measure kappa and eta");
+  c.transport.temperature = registry_.get_double("Transport/Temperature");
   c.compare.wall_layer = registry_.get_double("Compare/Wall layer");
   c.continuum = resolve_continuum(registry_, c.scene);
   return c;
@@ -52,6 +53,10 @@ void declare_transport_and_compare(Registry& r) {
   r.declare("Transport/Source", "estimated", Selection("estimated|measured"),
             "Which coefficients feed the continuum twin: theory estimates or measured by short "
             "particle runs.");
+  r.declare("Transport/Temperature", "0", Double(0),
+            "State-point temperature of the transport stage (units of T0); 0: the mean of the "
+            "thermal walls, or Scene/Temperature without walls. `twinflow run` sets it to the "
+            "particle fluid's measured mean temperature unless the case or --set gives one.");
   r.declare("Transport/Measure kappa and eta", "false", Bool(),
             "Also measure kappa by thermal relaxation and eta by reverse Poiseuille flow (two "
             "particle runs of several relaxation times each: minutes at seed 002's state point).");

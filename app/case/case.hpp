@@ -43,6 +43,7 @@ struct SceneParameters {
 struct TransportParameters {
   std::string source = "estimated"; // estimated | measured
   bool measure_flows = false;       // also kappa by relaxation and eta by reverse Poiseuille
+  double temperature = 0;           // state point; 0: the walls' mean, else Scene/Temperature
 };
 
 struct CompareParameters {

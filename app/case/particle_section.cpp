@@ -32,6 +32,11 @@ void declare_particle(Registry& r) {
   r.declare(p + "Initial velocities", "maxwell", Selection("maxwell|rest"),
             "maxwell: Gaussian velocities at the scene temperature (zero total momentum); rest: "
             "all particles at rest (seed 000's closed-system start).");
+  r.declare(p + "Initial internal energy", "equilibrium", Selection("equilibrium|theta"),
+            "equilibrium: u_i = (c_v + k) T, the equilibrium mean energy (000:(3.21)), so an "
+            "isolated fluid stays at the scene temperature; theta: theta_i = T (u_i = c_v T, "
+            "seed 002's start), after which an isolated ideal fluid settles at "
+            "T (c_v + d/2) / (c_v + k + d/2) (8% low at c_v = 10 in 2D).");
 
   r.declare(p + "Internal energy/Model", "dpde", Selection("dpde|isothermal"),
             "dpde: every particle carries an internal energy u = c_v theta. isothermal: classical "
@@ -120,6 +125,9 @@ ParticleParameters resolve_particle(const Registry& r, const SceneParameters& sc
   r.require(p.mass > 0, s + "Mass", kPositive);
   p.initial_velocities = r.get(s + "Initial velocities") == "rest" ? InitialVelocities::Rest
                                                                    : InitialVelocities::Maxwell;
+  p.initial_internal_energy = r.get(s + "Initial internal energy") == "theta"
+                                  ? InitialInternalEnergy::Theta
+                                  : InitialInternalEnergy::Equilibrium;
 
   p.energy = r.get(s + "Internal energy/Model") == "isothermal" ? EnergyModel::Isothermal
                                                                 : EnergyModel::Dpde;

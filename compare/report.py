@@ -124,6 +124,7 @@ def read_table(path):
 # Number formatting
 
 def fmt(value, digits=4):
+    """value to `digits` significant digits, without exponent between 1e-3 and 1e5."""
     if value is None or (isinstance(value, float) and not math.isfinite(value)):
         return "–"
     if isinstance(value, bool):
@@ -133,8 +134,13 @@ def fmt(value, digits=4):
     if value == 0:
         return "0"
     if 1e-3 <= abs(value) < 1e5:
-        return f"{value:.{digits}g}"
-    return f"{value:.{max(1, digits - 1)}e}"
+        decimals = max(0, digits - 1 - math.floor(math.log10(abs(value))))
+        text = f"{value:.{decimals}f}"
+        return text.rstrip("0").rstrip(".") if "." in text else text
+    mantissa, exponent = f"{value:.{max(0, digits - 1)}e}".split("e")
+    if "." in mantissa:
+        mantissa = mantissa.rstrip("0").rstrip(".")
+    return f"{mantissa}e{int(exponent)}"
 
 
 def fmt_pm(value, error):
@@ -143,11 +149,12 @@ def fmt_pm(value, error):
         return "–"
     if not finite(error) or error <= 0:
         return fmt(value)
-    exponent = math.floor(math.log10(error))
-    if 1e-4 <= abs(value) < 1e5 or (value == 0 and 1e-4 <= error < 1e5):
-        decimals = max(0, 1 - exponent)
-        return f"{value:.{decimals}f} ± {error:.{decimals}f}"
-    return f"{value:.3e} ± {error:.2g}"
+    scale = max(abs(value), error)
+    power = 0 if 1e-4 <= scale < 1e5 else math.floor(math.log10(scale))
+    value, error = value / 10 ** power, error / 10 ** power
+    decimals = max(0, 1 - math.floor(math.log10(error)))
+    text = f"{value:.{decimals}f} ± {error:.{decimals}f}"
+    return text if power == 0 else f"({text})e{power}"
 
 
 def fmt_percent(fraction):
@@ -505,16 +512,24 @@ def wall_points(ax, metrics, direction, length):
 
 
 def plain_log_ticks(ax):
-    """Plain numbers (20, 30, 50) instead of 2x10^1 on log axes spanning few decades."""
-    from matplotlib.ticker import FuncFormatter, NullFormatter
+    """Plain numbers (20, 30, 50) instead of 2x10^1 on log axes spanning few decades; more
+    decades keep matplotlib's powers of ten."""
+    from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter
     label = FuncFormatter(lambda v, _: f"{v:g}")
     for axis, scale, limits in ((ax.xaxis, ax.get_xscale(), ax.get_xlim()),
                                 (ax.yaxis, ax.get_yscale(), ax.get_ylim())):
         if scale != "log" or not (limits[0] > 0):
             continue
-        axis.set_major_formatter(label)
-        few_decades = limits[1] / limits[0] < 30
-        axis.set_minor_formatter(label if few_decades else NullFormatter())
+        ratio = limits[1] / limits[0]
+        if ratio < 30:
+            axis.set_major_formatter(label)
+            axis.set_minor_formatter(label)
+        elif ratio < 1000:
+            axis.set_major_formatter(label)
+            axis.set_minor_locator(LogLocator(subs=(2.0, 5.0)))
+            axis.set_minor_formatter(label)
+        else:
+            axis.set_minor_formatter(NullFormatter())
 
 
 def figure_error_vs_time(out_dir, series, metrics, twins):
@@ -871,6 +886,8 @@ class Axis:
         self.name = name
         values = [to_float(t) for t in texts if t != ""]
         self.numeric = bool(values) and all(math.isfinite(v) for v in values)
+        shown = dict(sorted({to_float(t): t for t in texts if t != ""}.items()))
+        self.values, self.texts = list(shown), list(shown.values())
         if self.numeric:
             self.categories = []
             positive = [v for v in values if v > 0]
@@ -884,11 +901,17 @@ class Axis:
             return to_float(text)
         return self.categories.index(text) if text in self.categories else math.nan
 
-    def apply(self, ax, which="x"):
+    def apply(self, ax, which="x", ticks_at_values=False):
         set_scale = ax.set_xscale if which == "x" else ax.set_yscale
         if self.numeric:
             if self.log:
                 set_scale("log")
+            if ticks_at_values:
+                # A tick at each value of the grid, labelled as the user wrote it.
+                from matplotlib.ticker import NullLocator
+                axis = ax.xaxis if which == "x" else ax.yaxis
+                axis.set_minor_locator(NullLocator())
+                axis.set_ticks(self.values, self.texts)
         else:
             positions = range(len(self.categories))
             if which == "x":
@@ -897,6 +920,16 @@ class Axis:
             else:
                 ax.set_yticks(list(positions), self.categories)
                 ax.set_ylim(-0.5, len(self.categories) - 0.5)
+
+
+# Units of the keys a sweep or stability map commonly varies (the rest are shown as is).
+KEY_UNITS = {"Particle/Time step": "tau", "Scene/Density": "rc^-d", "Scene/Temperature": "T0",
+             "Particle/Internal energy/Heat capacity": "k",
+             "Particle/Conservative force/a0": "k T0 / rc"}
+
+
+def with_unit(key):
+    return f"{key} [{KEY_UNITS[key]}]" if key in KEY_UNITS else key
 
 
 def slug(text):
@@ -914,6 +947,17 @@ def plain(text):
 SWEEP_OWN_COLUMNS = ("target_rayleigh", "gravity", "wall_seconds")
 
 
+def study_case_name(grid, directory):
+    """The case's name, else its file's name, else the directory's."""
+    name = lookup(grid, "base_parameters", "Case name")
+    if name:
+        return name
+    case_file = lookup(grid, "case_file")
+    if case_file:
+        return re.sub(r"\.prm$", "", os.path.basename(case_file))
+    return os.path.basename(os.path.abspath(directory))
+
+
 def walls_no_slip(grid):
     """True / False from the base parameters' walled directions' Slip, None when not stated."""
     parameters = lookup(grid, "base_parameters") or {}
@@ -926,13 +970,37 @@ def walls_no_slip(grid):
     return all(answers) if answers else None
 
 
-def sweep_groups(table, rows, series_key):
-    """(label, rows) per value of the series key, in first-seen order; one group without one."""
+def sweep_groups(rows, series_key, order):
+    """(label, rows) per value of the series key, in the grid's order (then first seen); one
+    group without a series key."""
     if not series_key:
         return [("", rows)]
-    labels = list(dict.fromkeys(r.get(series_key, "") for r in rows))
+    labels = [v for v in order if any(r.get(series_key, "") == v for r in rows)]
+    labels += [v for v in dict.fromkeys(r.get(series_key, "") for r in rows) if v not in labels]
     return [(f"{series_key} = {label}", [r for r in rows if r.get(series_key, "") == label])
             for label in labels]
+
+
+def source_style(index, label):
+    """Marker and line style of the index-th source; the noise is a plain dotted line."""
+    if label == "noise":
+        return "", ":"
+    markers = ["o", "s", "^", "v", "D", "P"]
+    styles = ["-", "--", "-.", (0, (5, 1)), (0, (3, 1, 1, 1)), (0, (1, 1))]
+    return markers[index % len(markers)], styles[index % len(styles)]
+
+
+def mark_not_done(ax, x_axis, x_column, rows):
+    """A red cross on the x axis at each point that did not finish (listed in the report)."""
+    from matplotlib.lines import Line2D
+    xs = [x_axis.position(r.get(x_column, "")) for r in rows]
+    xs = [x for x in xs if finite(x) and (not x_axis.log or x > 0)]
+    if not xs:
+        return []
+    ax.plot(xs, [0.0] * len(xs), "x", color="#c0392b", ms=9, mew=2, clip_on=False, zorder=5,
+            transform=ax.get_xaxis_transform())
+    return [Line2D([], [], marker="x", ls="", color="#c0392b", ms=9, mew=2,
+                   label="point not done (see the report)")]
 
 
 def draw_sources(ax, table, groups, x_axis, x_column, sources):
@@ -942,8 +1010,6 @@ def draw_sources(ax, table, groups, x_axis, x_column, sources):
     from matplotlib.lines import Line2D
     import matplotlib.pyplot as plt
 
-    markers = ["o", "s", "^", "v", "D", "P"]
-    styles = ["-", "--", "-.", ":", (0, (5, 1)), (0, (3, 1, 1, 1))]
     cycle = plt.rcParams["axes.prop_cycle"].by_key()["color"]
     handles = []
     drawn = set()
@@ -951,6 +1017,7 @@ def draw_sources(ax, table, groups, x_axis, x_column, sources):
         xs = np.array([x_axis.position(r.get(x_column, "")) for r in rows], dtype=float)
         order = np.argsort(xs, kind="stable")
         for s, (label, column, error_column, colour) in enumerate(sources):
+            marker, style = source_style(s, label)
             if not table.has(column):
                 continue
             ys = table.numbers(column, rows)
@@ -962,18 +1029,17 @@ def draw_sources(ax, table, groups, x_axis, x_column, sources):
             c = colour if len(groups) == 1 else cycle[g % len(cycle)]
             idx = order[ok[order]]
             ax.errorbar(xs[idx], ys[idx], yerr=None if errors is None else errors[idx],
-                        marker=markers[s % len(markers)], ls=styles[s % len(styles)], color=c,
-                        ms=5, capsize=2.5, mfc="white" if s > 0 else c)
+                        marker=marker, ls=style, color=c, ms=5, capsize=2.5,
+                        mfc="white" if s > 0 else c)
             drawn.add(s)
             if len(groups) == 1:
-                handles.append(Line2D([], [], color=c, marker=markers[s % len(markers)],
-                                      ls=styles[s % len(styles)], label=label,
+                handles.append(Line2D([], [], color=c, marker=marker, ls=style, label=label,
                                       mfc="white" if s > 0 else c))
     if len(groups) > 1:
         for s, (label, *_rest) in enumerate(sources):
             if s in drawn:
-                handles.append(Line2D([], [], color="0.2", marker=markers[s % len(markers)],
-                                      ls=styles[s % len(styles)], label=label,
+                marker, style = source_style(s, label)
+                handles.append(Line2D([], [], color="0.2", marker=marker, ls=style, label=label,
                                       mfc="white" if s > 0 else "0.2"))
         for g, (group_label, _) in enumerate(groups):
             handles.append(Line2D([], [], color=cycle[g % len(cycle)], lw=4, label=group_label))
@@ -1000,21 +1066,25 @@ def report_sweep(sweep_dir, out_dir):
         x_label, x_name, series_key = "Rayleigh number Ra (nominal twin)", "rayleigh", (
             keys[0] if keys else None)
     elif keys:
-        x_column, x_label, x_name = keys[0], keys[0], slug(keys[0])
+        x_column, x_label, x_name = keys[0], with_unit(keys[0]), slug(keys[0])
         series_key = keys[1] if len(keys) > 1 else None
     else:
         x_column, x_label, x_name, series_key = "point", "point", "point", None
     x_axis = Axis(x_column, [r.get(x_column, "") for r in done] or [""])
     if by_rayleigh:
         x_axis.log = True
-    groups = sweep_groups(table, done, series_key)
+    groups = sweep_groups(done, series_key,
+                          [str(v) for v in (lookup(grid, "vary", series_key) or [])]
+                          if series_key else [])
 
-    case_name = lookup(grid, "base_parameters", "Case name") or os.path.basename(
-        lookup(grid, "case_file") or os.path.abspath(sweep_dir))
+    case_name = study_case_name(grid, sweep_dir)
     doc = Document(f"Sweep: {case_name}")
     doc.paragraph(f"Sweep directory: {os.path.abspath(sweep_dir)}. Case file: "
                   f"{lookup(grid, 'case_file') or '–'}. {UNITS_NOTE}.")
     grid_items = [f"{k}: {', '.join(map(str, v))}" for k, v in (lookup(grid, "vary") or {}).items()]
+    if not grid_items:  # sweep.json without the grid: the values in the table
+        grid_items = [f"{k}: " + ", ".join(dict.fromkeys(r.get(k, "") for r in table.rows))
+                      for k in keys]
     targets = lookup(grid, "rayleigh")
     if targets:
         grid_items.append("target Rayleigh numbers (gravity scaled): " +
@@ -1024,18 +1094,22 @@ def report_sweep(sweep_dir, out_dir):
     doc.paragraph(f"{len(table.rows)} points: {len(done)} done, {len(not_done)} not done.")
 
     figures = []
-    if done:
-        def finish(ax, handles, ylabel, title):
-            x_axis.apply(ax, "x")
-            ax.set_xlabel(x_label)
-            ax.set_ylabel(ylabel)
-            ax.set_title(title, fontsize=10)
-            ax.grid(alpha=0.3, which="both")
-            if handles:
-                ax.legend(handles=handles, fontsize=8)
 
+    def finish(ax, handles, ylabel, title, legend=True):
+        handles = handles + mark_not_done(ax, x_axis, x_column, not_done)
+        x_axis.apply(ax, "x")
+        ax.set_xlabel(x_label)
+        ax.set_ylabel(ylabel)
+        ax.set_title(title, fontsize=10)
+        ax.grid(alpha=0.3, which="both")
+        plain_log_ticks(ax)
+        if handles and legend:
+            ax.legend(handles=handles, fontsize=8, loc="upper left", bbox_to_anchor=(1.02, 1))
+
+    nusselt_columns = ("nusselt_particle", "nusselt_nominal", "nusselt_calibrated")
+    if done and any(table.has(c) for c in nusselt_columns):
         # Nusselt numbers.
-        fig, ax = plt.subplots(figsize=(6.8, 4.8), layout="constrained")
+        fig, ax = plt.subplots(figsize=(8.4, 4.8), layout="constrained")
         handles = draw_sources(ax, table, groups, x_axis, x_column, [
             ("particle ± stderr", "nusselt_particle", "nusselt_particle_stderr", COLOUR["particle"]),
             ("nominal twin", "nusselt_nominal", None, COLOUR["nominal"]),
@@ -1063,13 +1137,14 @@ def report_sweep(sweep_dir, out_dir):
                               f"each continuum twin's, against {x_label}. "
                         + (benchmark_note or "")))
 
+    if done:
         # Distances between the twins.
         fields = [f for f in ("temperature", "velocity") if any(
             table.has(f"{f}_l2_{t}") for t in TWINS)]
         if fields:
-            fig, axes = plt.subplots(1, len(fields), figsize=(6.2 * len(fields), 4.6),
+            fig, axes = plt.subplots(1, len(fields), figsize=(5.4 * len(fields) + 2.4, 4.6),
                                      squeeze=False, layout="constrained")
-            for ax, field in zip(axes[0], fields):
+            for n, (ax, field) in enumerate(zip(axes[0], fields)):
                 handles = draw_sources(ax, table, groups, x_axis, x_column, [
                     ("nominal twin ± stderr", f"{field}_l2_nominal", f"{field}_l2_nominal_stderr",
                      COLOUR["nominal"]),
@@ -1078,7 +1153,8 @@ def report_sweep(sweep_dir, out_dir):
                     ("noise", f"{field}_l2_noise", None, COLOUR["noise"])])
                 ax.set_yscale("log")
                 finish(ax, handles, f"{field} L2 / {'dT' if field == 'temperature' else 'U'}",
-                       f"{field}: L2 distance particle–twin and the noise")
+                       f"{field}: L2 distance particle–twin and the noise",
+                       legend=n == len(fields) - 1)  # one legend serves both panels
             name = save_figure(fig, out_dir, f"errors_vs_{x_name}.png")
             figures.append((name, "L2 distance of the particle fields to each twin (interior bins, "
                                   "in units of the point's temperature / velocity scale) with "
@@ -1091,7 +1167,7 @@ def report_sweep(sweep_dir, out_dir):
                   ("calibrated twin", "wall_seconds_continuum_calibrated", None,
                    COLOUR["calibrated"]),
                   ("whole point", "wall_seconds", None, "black")]
-        fig, ax = plt.subplots(figsize=(6.8, 4.8), layout="constrained")
+        fig, ax = plt.subplots(figsize=(8.4, 4.8), layout="constrained")
         handles = draw_sources(ax, table, groups, x_axis, x_column, stages)
         ax.set_yscale("log")
         finish(ax, handles, "wall-clock time [s]", f"cost per stage against {x_label}")
@@ -1161,8 +1237,7 @@ def report_stability(stability_dir, out_dir):
     grid = lookup(description, "grid") or {}
     keys = varied_keys(table, STABILITY_OWN_COLUMNS) or list((lookup(grid, "vary") or {}).keys())
     rows = table.rows
-    case_name = lookup(grid, "base_parameters", "Case name") or os.path.basename(
-        lookup(grid, "case_file") or os.path.abspath(stability_dir))
+    case_name = study_case_name(grid, stability_dir)
     doc = Document(f"Stability map: {case_name}")
     doc.paragraph(f"Stability directory: {os.path.abspath(stability_dir)}. Case file: "
                   f"{lookup(grid, 'case_file') or '–'}. {UNITS_NOTE}.")
@@ -1192,6 +1267,7 @@ def report_stability(stability_dir, out_dir):
                     mfc="none" if hollow else colour, mew=2, zorder=3)
             if status not in seen:
                 seen.append(status)
+        seen.sort(key=lambda s: list(STATUS_STYLE).index(s) if s in STATUS_STYLE else len(STATUS_STYLE))
         handles = [Line2D([], [], marker=STATUS_STYLE.get(s, ("0.75", "o"))[1], ls="", ms=9,
                           color=STATUS_STYLE.get(s, ("0.75", "o"))[0], label=s or "(no status)")
                    for s in seen]
@@ -1230,12 +1306,14 @@ def report_stability(stability_dir, out_dir):
                     else:
                         ax.plot(o, d, marker="_", ms=14, **line)
             if values:
-                handles.append(Line2D([], [], label="predicted dt_critical, 001 eq. (28)", **line))
-        x_axis.apply(ax, "x")
-        ax.set_xlabel(x_key + (" [tau]" if x_key == TIME_STEP_KEY else ""))
+                value_text = f" = {fmt(values[0], 3)} tau" if len(values) == 1 else ""
+                handles.append(Line2D([], [], label=f"predicted dt_critical{value_text}, "
+                                                    "001 eq. (28)", **line))
+        x_axis.apply(ax, "x", ticks_at_values=True)
+        ax.set_xlabel(with_unit(x_key))
         if y_axis:
-            y_axis.apply(ax, "y")
-            ax.set_ylabel(y_key + (" [tau]" if y_key == TIME_STEP_KEY else ""))
+            y_axis.apply(ax, "y", ticks_at_values=True)
+            ax.set_ylabel(with_unit(y_key))
         else:
             ax.set_yticks([])
             ax.set_ylim(-1, 1)
@@ -1265,8 +1343,9 @@ def report_stability(stability_dir, out_dir):
                           + [fmt(to_float(r.get(c))) for c in (
                               "dt", "predicted_dt_critical", "fluctuation_number")]
                           + [plain(r.get("predicted_stable"))]
+                          + [fmt(to_float(r.get(c)), 3) for c in ("energy_relative_drift_max",)]
+                          + [fmt(to_float(r.get(c)), 5) for c in ("T_kinetic", "T_internal")]
                           + [fmt(to_float(r.get(c)), 3) for c in (
-                              "energy_relative_drift_max", "T_kinetic", "T_internal",
                               "temperature_relative_error", "wall_seconds")]
                           + [plain(r.get("reason"))])
     doc.table(header, table_rows)
@@ -1276,8 +1355,8 @@ def report_stability(stability_dir, out_dir):
         matches = sum((r["status"] == "stable") == (r["predicted_stable"].lower() == "true")
                       for r in agree)
         doc.paragraph(f"Prediction against observation: {matches} of {len(agree)} points agree "
-                      "(stable predicted and observed, or unstable predicted and any instability "
-                      "status observed).")
+                      "(predicted stable and observed stable, or predicted unstable and observed "
+                      "any other status; failed points left out).")
     write_documents(doc, out_dir)
 
 

@@ -785,7 +785,8 @@ def report_run(run_dir, out_dir):
     if profiles and profiles.rows:
         titles = figure_profiles(out_dir, profiles, geometry, metrics, twins, excluded)
         doc.figure("profiles.png",
-                   "Mid-line profiles (" + "; ".join(titles) + "), compare/profiles.csv: particle "
+                   "Mid-line profiles (" + "; ".join(titles) + "), compare/profiles.csv ("
+                   + ("; ".join(profiles.comments) or "mid-line profiles") + "): particle "
                    "bins with their block standard errors, the twins as lines; grey: the "
                    "excluded wall layer; squares: the walls' temperatures; diamonds: the particle "
                    f"fluid's temperature extrapolated to the wall. {UNITS_NOTE}.")

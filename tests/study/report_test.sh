@@ -72,6 +72,8 @@ expect_text run_2d "not within noise"
 expect_report run_2d_calibrated $run_figures
 expect_text run_2d_calibrated "fraction explained"
 expect_text run_2d_calibrated "x_lower"
+expect_report run_3d $run_figures
+expect_text run_3d "the bin layer at y = 3 rc"
 expect_report sweep_rayleigh nusselt_vs_rayleigh.png errors_vs_rayleigh.png cost.png
 expect_text sweep_rayleigh "de Vahl Davis"
 expect_text sweep_rayleigh "the particle run went unstable at step 812"

@@ -261,15 +261,12 @@ class RunGeometry:
             lookup(nominal_summary, "case_parameters") or {}
         counts = lookup(metrics, "bins") or []
         self.dim = len(counts) or int(to_float(parameters.get("Scene/Dimension", "2")) or 2)
-        self.counts = [int(c) for c in counts] or [0] * self.dim
         box = [to_float(v) for v in str(parameters.get("Scene/Box size", "")).split(",")]
         if len(box) != self.dim or not all(math.isfinite(v) for v in box):
             box = self._box_from_bins(bins)
         self.box = box
         self.walled = [parameters.get(f"Scene/{AXES[d]} boundaries/Type", "") == "walls"
                        for d in range(self.dim)]
-        self.slip = {AXES[d]: parameters.get(f"Scene/{AXES[d]} boundaries/Slip")
-                     for d in range(self.dim) if self.walled[d]}
         # Heated direction: the one whose two walls' temperatures differ (metrics.json), else
         # the continuum's, else x.
         self.heated = None
@@ -321,8 +318,10 @@ def bin_plane(bins, geometry):
         cut_values = sorted({to_float(r[AXES[cut]]) for r in rows})
         layer = cut_values[len(cut_values) // 2]
         rows = [r for r in rows if to_float(r[AXES[cut]]) == layer]
-        cut_text = (f"the bin layer at {AXES[cut]} = {fmt(layer)} rc (layer {len(cut_values) // 2 + 1}"
-                    f" of {len(cut_values)}, the mid-plane layer)")
+        where = ("the middle layer" if len(cut_values) % 2 else
+                 "the first layer above the mid-plane")
+        cut_text = (f"the bin layer at {AXES[cut]} = {fmt(layer)} rc (layer "
+                    f"{len(cut_values) // 2 + 1} of {len(cut_values)}, {where})")
     xs = np.array(sorted({to_float(r[AXES[a]]) for r in rows}))
     ys = np.array(sorted({to_float(r[AXES[b]]) for r in rows}))
     index = {(to_float(r[AXES[a]]), to_float(r[AXES[b]])): r for r in rows}
@@ -378,8 +377,9 @@ def figure_fields(out_dir, bins, geometry, twins, metrics):
     va, vb = f"v{AXES[a]}", f"v{AXES[b]}"
     sources = [("particle", "particle (DPDE), T_kinetic")] + \
         [(t, TWIN_LABEL[t] + ", T") for t in twins if bins.has(f"T_{t}")]
-    reference = "calibrated" if "calibrated" in twins and bins.has("T_calibrated") else "nominal"
     maps = {name: grid(f"T_{name}") for name, _ in sources}
+    # The difference map against the calibrated twin when there is one, else the nominal.
+    reference = next((t for t in ("calibrated", "nominal") if t in maps), None)
     t_low = min(np.nanmin(m) for m in maps.values())
     t_high = max(np.nanmax(m) for m in maps.values())
     interior = grid("interior")
@@ -389,7 +389,7 @@ def figure_fields(out_dir, bins, geometry, twins, metrics):
     spacing = min(ex[1] - ex[0], ey[1] - ey[0])
     arrow_scale = v_max / (0.9 * spacing) if finite(v_max) and v_max > 0 else None
 
-    panels = len(sources) + 1
+    panels = len(sources) + (1 if reference else 0)
     columns = 2 if panels == 4 else panels
     rows = math.ceil(panels / columns)
     aspect = (ey[-1] - ey[0]) / (ex[-1] - ex[0])
@@ -428,6 +428,11 @@ def figure_fields(out_dir, bins, geometry, twins, metrics):
         decorate(ax)
         ax.set_title(title, loc="left", fontsize=10)
 
+    for ax in axes[panels:]:
+        ax.set_visible(False)
+    if reference is None:
+        save_figure(fig, out_dir, "fields.png")
+        return None, cut_text
     ax = axes[len(sources)]
     difference = maps["particle"] - maps[reference]
     limit = np.nanmax(np.abs(difference))
@@ -440,14 +445,11 @@ def figure_fields(out_dir, bins, geometry, twins, metrics):
     if len(at) >= geometry.dim and (cut is None or at[cut] == layer):
         ax.plot([at[a]], [at[b]], "x", color="black", ms=10, mew=2)
     ax.set_title(f"particle − {TWIN_LABEL[reference]}", loc="left", fontsize=10)
-    for ax in axes[panels:]:
-        ax.set_visible(False)
     save_figure(fig, out_dir, "fields.png")
     return reference, cut_text
 
 
 def figure_profiles(out_dir, profiles, geometry, metrics, twins, excluded):
-    import numpy as np
     import matplotlib.pyplot as plt
 
     h, g = geometry.heated, geometry.vertical
@@ -533,7 +535,6 @@ def plain_log_ticks(ax):
 
 
 def figure_error_vs_time(out_dir, series, metrics, twins):
-    import numpy as np
     import matplotlib.pyplot as plt
 
     fields = [("temperature", "temperature_noise", "temperature L2 / dT")]
@@ -580,7 +581,8 @@ def within_noise_sentence(name, distance):
         over = (l2 - noise) / se
         verdict = ("within noise" if over <= WITHIN_NOISE_STDERRS else
                    "not within noise: a difference between the twins")
-        return f"{head}, {fmt(over, 3)} standard errors above it — {verdict}."
+        side = "above" if over >= 0 else "below"
+        return f"{head}, {fmt(abs(over), 3)} standard errors {side} it — {verdict}."
     return head + (" — within noise." if l2 <= noise else " — above the noise (no standard error).")
 
 
@@ -679,7 +681,7 @@ def report_run(run_dir, out_dir):
             row(f"{field} noise / {scale}", [fmt(number(d[t], "noise")) for t in twins])
             row(f"{field} excess over noise / {scale}",
                 [fmt(number(d[t], "excess_over_noise")) for t in twins])
-            row(f"{field} max / {scale} (at)",
+            row(f"{field} max / {scale} (at the bin centre [rc])",
                 [f"{fmt_pm(number(d[t], 'max'), number(d[t], 'max_stderr'))} at "
                  f"({', '.join(fmt(v, 3) for v in (lookup(d[t], 'max_at') or [])[:geometry.dim])})"
                  for t in twins])
@@ -774,14 +776,14 @@ def report_run(run_dir, out_dir):
     if bins and bins.rows and bins.has("T_particle"):
         reference, cut_text = figure_fields(out_dir, bins, geometry, twins, metrics)
         where = f"; 3D: {cut_text}" if cut_text else ""
+        difference = (f", and particle − {TWIN_LABEL[reference]} on a diverging scale (×: the "
+                      "largest interior difference, metrics.json max_at)" if reference else "")
         doc.figure("fields.png",
-                   "Bin-averaged temperature: particle (T_kinetic), " +
-                   ", ".join(TWIN_LABEL[t] for t in twins) +
-                   f" on one colour scale, and particle − {TWIN_LABEL[reference]} on a diverging "
-                   "scale. Arrows: bin velocities (one scale for all maps, key on the particle "
-                   "map). ×: the largest interior difference (metrics.json max_at). "
-                   f"Hatched: the wall layer ({fmt(excluded)} rc) left out of the distances"
-                   f"{where}. {UNITS_NOTE}.")
+                   "Bin-averaged temperature: particle (T_kinetic)"
+                   + "".join(", " + TWIN_LABEL[t] for t in twins) + " on one colour scale"
+                   + difference + ". Arrows: bin velocities (one scale for all maps, key on the "
+                   f"particle map). Hatched: the wall layer ({fmt(excluded)} rc) left out of the "
+                   f"distances{where}. {UNITS_NOTE}.")
     if profiles and profiles.rows:
         titles = figure_profiles(out_dir, profiles, geometry, metrics, twins, excluded)
         doc.figure("profiles.png",
@@ -1229,7 +1231,6 @@ TIME_STEP_KEY = "Particle/Time step"
 
 
 def report_stability(stability_dir, out_dir):
-    import numpy as np
     import matplotlib.pyplot as plt
     from matplotlib.lines import Line2D
 
@@ -1287,25 +1288,24 @@ def report_stability(stability_dir, out_dir):
                     by_other.setdefault(key, dt_c)
             values = sorted(set(by_other.values()))
             line = dict(color="black", ls="--", lw=1.4, zorder=2)
-            if len(values) == 1 or other is None:
+            if len(values) == 1:
                 (ax.axvline if x_key == TIME_STEP_KEY else ax.axhline)(values[0], **line)
+            elif values and other.numeric:
+                # dt_critical as a curve over the other key.
+                pairs = sorted((other.position(k), v) for k, v in by_other.items())
+                o, d = zip(*pairs)
+                if x_key == TIME_STEP_KEY:
+                    ax.plot(d, o, marker="|", ms=14, **line)
+                else:
+                    ax.plot(o, d, marker="_", ms=14, **line)
             elif values:
-                half = 0.45 if not other.numeric else None
+                # One segment per category of the other key.
                 for key, dt_c in by_other.items():
                     p = other.position(key)
-                    if half is None:
-                        continue
                     if x_key == TIME_STEP_KEY:
-                        ax.plot([dt_c, dt_c], [p - half, p + half], **line)
+                        ax.plot([dt_c, dt_c], [p - 0.45, p + 0.45], **line)
                     else:
-                        ax.plot([p - half, p + half], [dt_c, dt_c], **line)
-                if other.numeric:
-                    pairs = sorted((other.position(k), v) for k, v in by_other.items())
-                    o, d = zip(*pairs)
-                    if x_key == TIME_STEP_KEY:
-                        ax.plot(d, o, marker="|", ms=14, **line)
-                    else:
-                        ax.plot(o, d, marker="_", ms=14, **line)
+                        ax.plot([p - 0.45, p + 0.45], [dt_c, dt_c], **line)
             if values:
                 value_text = f" = {fmt(values[0], 3)} tau" if len(values) == 1 else ""
                 handles.append(Line2D([], [], label=f"predicted dt_critical{value_text}, "

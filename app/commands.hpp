@@ -1,6 +1,8 @@
 #pragma once
 // The twinflow subcommands. Each takes the parsed command line; bad input throws io::InputError.
 
+#include <filesystem>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -32,6 +34,8 @@ int continuum_stage(const CommandLine&);
 // The continuum twin into RUNDIR/<stage_name> ("continuum", "continuum_calibrated").
 int continuum_twin(const CommandLine&, const std::string& stage_name);
 int compare_stage(const CommandLine&);
+// RUNDIR/report (or a sweep's / stability map's): figures and report.md/html.
+void write_report(const std::filesystem::path& dir);
 // --set options that make the calibrated twin of a finished particle run in run_dir.
 std::vector<std::string> calibrated_twin_overrides(const std::string& run_dir);
 int transport_stage(const CommandLine&);

@@ -2,6 +2,7 @@
 // (nominal, calibrated), results in RUNDIR/compare. Also the calibrated twin's wall conditions.
 
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
@@ -84,6 +85,26 @@ struct ContinuumTwin {
 };
 
 } // namespace
+
+// Figures and report.md/html by compare/report.py, with the first python3 that has matplotlib
+// (Debian's python3-matplotlib). A missing python is not an error of the run: it says so.
+void write_report(const fs::path& dir) {
+  std::string quoted = "'";
+  for (char ch : fs::absolute(dir).string())
+    quoted += ch == '\'' ? std::string("'\\''") : std::string(1, ch);
+  quoted += "'";
+  for (const char* python : {"/usr/bin/python3", "python3"}) {
+    const std::string probe = std::string(python) + " -c 'import matplotlib' >/dev/null 2>&1";
+    if (std::system(probe.c_str()) != 0) continue;
+    const std::string command = std::string(python) + " " + TWINFLOW_REPORT_SCRIPT + " " + quoted;
+    if (std::system(command.c_str()) != 0)
+      std::cerr << "twinflow: the report failed (" << command << "); the results are complete\n";
+    return;
+  }
+  std::cerr << "twinflow: no python3 with matplotlib: no figures (apt install python3-matplotlib, "
+               "then python3 "
+            << TWINFLOW_REPORT_SCRIPT << " " << dir.string() << ")\n";
+}
 
 // --set options of the calibrated twin: each thermal wall at the temperature the particle fluid
 // reaches at it (extrapolated from the bins beyond the wall layer), i.e. the measured
@@ -340,7 +361,8 @@ int compare_stage(const CommandLine& cl) {
   io::write_file_atomically(stage.file("error_vs_time.csv"), series.str());
   io::write_file_atomically(stage.file("metrics.json"), metrics.dump()); // last: complete
   std::cout << "compare: results in " << stage.path().string()
-            << " (metrics.json, bins.csv, profiles.csv, error_vs_time.csv)\n";
+            << " (metrics.json, bins.csv, profiles.csv, error_vs_time.csv)" << std::endl;
+  write_report(run_dir);
   return 0;
 }
 

@@ -488,8 +488,8 @@ int run_study(const CommandLine& cl, Study& s, std::vector<Point>& points) {
   write_table(dir, s, varied, points, rows);
   std::cerr << s.name << ": " << points.size() << " points, " << tasks.size() << " to run, " << jobs
             << " at a time" << (threads > 0 ? ", " + std::to_string(threads) : "")
-            << (threads > 0 ? " thread(s) each" : "") << "; table: " << (dir / (s.name + ".csv"))
-            << "\n";
+            << (threads > 0 ? " thread(s) each" : "")
+            << "; table: " << (dir / (s.name + ".csv")).string() << "\n";
 
   double wall_sum = 0;
   std::size_t done_now = 0;

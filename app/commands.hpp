@@ -17,6 +17,10 @@ struct CommandLine {
   bool force = false;
   bool restart = false;
   double wall_time_limit = 0; // seconds; 0: none. Past it a run checkpoints and stops.
+  // sweep and stability
+  std::vector<std::string> vary; // "Section/Key=V1,V2,..." per option
+  std::vector<double> rayleigh;  // target Rayleigh numbers (sweep)
+  int jobs = 0;                  // points run at once; 0: cores / threads per point
 };
 
 // Exit code of a run stopped by a signal or the wall-time limit after writing its checkpoint.
@@ -41,5 +45,7 @@ std::vector<std::string> calibrated_twin_overrides(const std::string& run_dir);
 int transport_stage(const CommandLine&);
 int bench(const CommandLine&);
 int run_all(const CommandLine&);
+int sweep(const CommandLine&);
+int stability(const CommandLine&);
 
 } // namespace twinflow::app

@@ -4,6 +4,7 @@
 
 #include <deal.II/base/mpi.h>
 
+#include <cmath>
 #include <iostream>
 #include <map>
 
@@ -23,10 +24,6 @@ struct Command {
   bool needs_target;
 };
 
-int not_yet(const app::CommandLine& cl) {
-  throw app::NotImplemented("'" + cl.command + "' is not implemented yet");
-}
-
 const std::map<std::string, Command>& commands() {
   static const std::map<std::string, Command> table = {
       {"particle", {"CASE      run the DPDE particle scene", app::particle_stage, true}},
@@ -36,8 +33,9 @@ const std::map<std::string, Command>& commands() {
       {"compare", {"RUNDIR    compare the twins of a finished run", app::compare_stage, true}},
       {"run",
        {"CASE      all stages: particle, transport, continuum, compare", app::run_all, true}},
-      {"sweep", {"CASE      a grid of paired runs (--vary, --rayleigh)", not_yet, true}},
-      {"stability", {"CASE      classify stability over a parameter grid", not_yet, true}},
+      {"sweep", {"CASE      a grid of paired runs (--vary, --rayleigh)", app::sweep, true}},
+      {"stability",
+       {"CASE      classify particle runs over a parameter grid (--vary)", app::stability, true}},
       {"bench", {"          particle-steps/s of the particle core", app::bench, false}},
       {"check-case",
        {"CASE      validate a case file and print its resolved parameters", app::check_case, true}},
@@ -71,6 +69,29 @@ double parse_duration(const std::string& text) {
   return value * scale;
 }
 
+// "1e3, 1e4,3e4" -> numbers > 0
+std::vector<double> parse_rayleigh_list(const std::string& text) {
+  std::vector<double> values;
+  std::size_t start = 0;
+  while (start <= text.size()) {
+    const std::size_t comma = std::min(text.find(',', start), text.size());
+    const std::string item = text.substr(start, comma - start);
+    std::size_t used = 0;
+    double value = -1;
+    try {
+      value = std::stod(item, &used);
+    } catch (const std::exception&) {
+    }
+    if (!(value > 0) || !std::isfinite(value) ||
+        item.find_first_not_of(" \t", used) != std::string::npos)
+      throw io::InputError("--rayleigh '" + text +
+                           "': allowed: numbers > 0 separated by commas (e.g. 1e3,1e4)");
+    values.push_back(value);
+    start = comma + 1;
+  }
+  return values;
+}
+
 } // namespace
 
 int main(int argc, char** argv) {
@@ -87,7 +108,14 @@ int main(int argc, char** argv) {
       "force", "overwrite an earlier run's results")(
       "restart", "continue an interrupted run from its checkpoint")(
       "wall-time", po::value<std::string>(),
-      "checkpoint and stop after this long (e.g. 3600, 90m, 2h); continue with --restart");
+      "checkpoint and stop after this long (e.g. 3600, 90m, 2h); continue with --restart")(
+      "vary", po::value<std::vector<std::string>>()->composing(),
+      "sweep, stability: one axis of the grid, 'Section/Key=V1,V2,...' (repeatable; vector "
+      "components separated by spaces: 'Scene/Gravity=0 -0.01,0 -0.02')")(
+      "rayleigh", po::value<std::string>(),
+      "sweep: target Rayleigh numbers R1,R2,... reached by scaling |g|")(
+      "jobs,j", po::value<int>(),
+      "sweep, stability: points run at once (default: cores / threads per point)");
   po::options_description hidden;
   hidden.add_options()("command", po::value<std::string>())("target", po::value<std::string>());
   po::positional_options_description positional;
@@ -125,6 +153,23 @@ int main(int argc, char** argv) {
     cl.restart = vm.count("restart") > 0;
     if (vm.count("wall-time"))
       cl.wall_time_limit = parse_duration(vm["wall-time"].as<std::string>());
+    const bool grid_command = cl.command == "sweep" || cl.command == "stability";
+    for (const char* option : {"vary", "rayleigh", "jobs"})
+      if (vm.count(option) && !grid_command)
+        throw io::InputError(std::string("--") + option + " belongs to sweep and stability, not '" +
+                             cl.command + "'");
+    if (vm.count("rayleigh") && cl.command != "sweep")
+      throw io::InputError("--rayleigh belongs to sweep, not '" + cl.command + "'");
+    if (vm.count("wall-time") && grid_command)
+      throw io::InputError("--wall-time is not available for " + cl.command +
+                           " (stop it with Ctrl-C; running the same command again continues it)");
+    if (vm.count("vary")) cl.vary = vm["vary"].as<std::vector<std::string>>();
+    if (vm.count("rayleigh")) cl.rayleigh = parse_rayleigh_list(vm["rayleigh"].as<std::string>());
+    if (vm.count("jobs")) {
+      cl.jobs = vm["jobs"].as<int>();
+      if (cl.jobs < 1)
+        throw io::InputError("--jobs " + std::to_string(cl.jobs) + ": allowed: >= 1");
+    }
     return it->second.run(cl);
   } catch (const po::error& e) {
     std::cerr << "twinflow: error: " << e.what() << " (twinflow --help)\n";

@@ -46,8 +46,17 @@ struct TransportParameters {
   double temperature = 0;           // state point; 0: the walls' mean, else Scene/Temperature
 };
 
+// Bounds of the stability map (twinflow stability).
+struct StabilityBounds {
+  double energy_drift = 1e-3;          // largest acceptable max |dE/E|
+  double temperature_tolerance = 0.05; // |T / T_target - 1|
+  double fluctuation_number = 1.0;     // 000:(3.34)'s number must stay below this
+};
+
 struct CompareParameters {
-  double wall_layer = 1.0; // thickness excluded from field errors
+  double wall_layer = 1.0;                  // thickness excluded from field errors
+  std::string rayleigh_control = "gravity"; // how a sweep reaches a target Ra
+  StabilityBounds stability;
 };
 
 struct CaseParameters {
@@ -67,10 +76,13 @@ public:
   CaseParameters load(const std::string& filename, const std::vector<std::string>& overrides);
   // The parameters a stage recorded in its summary.json ("parameters": path -> value).
   CaseParameters load_resolved(const io::Json& resolved, const std::string& name);
+  // The two halves of load(): read() rejects unknown keys and values outside a key's pattern;
+  // resolve() the values that do not fit together or the sections' ranges.
+  void read(const std::string& filename, const std::vector<std::string>& overrides);
+  CaseParameters resolve(const std::string& filename) const;
   const Registry& registry() const { return registry_; }
 
 private:
-  CaseParameters resolve(const std::string& default_name);
   Registry registry_;
 };
 

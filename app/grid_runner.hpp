@@ -1,0 +1,93 @@
+#pragma once
+// The grid behind `twinflow sweep` and `twinflow stability`: its points (the Cartesian product
+// of the --vary lists), each run as a child process of this binary (a crash or a blow-up of one
+// point cannot stop the others), the table written after every finished point, and resuming an
+// interrupted grid from that table and the points' own files.
+
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "app/case/case.hpp"
+#include "app/commands.hpp"
+#include "io/json.hpp"
+
+namespace twinflow::app::grid {
+
+// One --vary option: a case key and the values it takes, in the order given.
+struct Axis {
+  std::string key;                 // "Particle/Time step"
+  std::vector<std::string> shown;  // as the user wrote them ("0 -0.01"): the table's cells
+  std::vector<std::string> values; // as the case takes them ("0, -0.01"): the child's --set
+};
+
+// Parses every --vary text and checks each value against the case (with the user's --set):
+// an unknown key, a value outside its key's pattern or a key given twice throws io::InputError.
+std::vector<Axis> parse_axes(const CommandLine&);
+
+struct Point {
+  std::string name;                      // "007": its run directory DIR/points/007
+  std::vector<std::size_t> value_index;  // per axis
+  std::vector<std::string> assignments;  // "Key=value", --set after the user's own
+  std::string rejected;                  // non-empty: the case's message for these values together
+  CaseParameters resolved;               // the point's parameters (when not rejected)
+  io::Json columns = io::Json::object(); // the command's own columns before wall_seconds
+};
+
+// The Cartesian product of the axes (the first axis varies slowest), each point loaded through
+// app::Case with the user's --set and its own values. `copies` > 1 repeats every combination
+// (sweep --rayleigh: one copy per target). Points the case rejects as a whole (e.g. walls with
+// ec-verlet) are kept with their message; if every point is rejected, throws io::InputError.
+std::vector<Point> make_points(const CommandLine&, const std::vector<Axis>&,
+                               std::size_t copies = 1);
+
+// How a child process ended.
+struct ChildResult {
+  int exit_code = 0;       // the child's exit code; 128 + N when signal N killed it
+  double wall_seconds = 0; // of this attempt
+  std::string message;     // its last "twinflow: ..." line (or last line), without the prefix
+};
+
+// Runs `twinflow ARGUMENTS` (this very binary) with stdout and stderr appended to `log`.
+struct ChildTask {
+  std::vector<std::string> arguments;
+  std::filesystem::path log;
+};
+
+// Runs the tasks, up to `jobs` at once, and calls `on_done` (in this thread) as each ends. On
+// SIGINT/SIGTERM no new task starts and the signal is forwarded to the running ones, which are
+// waited for. Returns the signal received (0: none).
+int run_children(const std::vector<ChildTask>& tasks, int jobs,
+                 const std::function<void(std::size_t task, const ChildResult&)>& on_done);
+
+// What one command (sweep or stability) adds to the shared driver.
+struct Study {
+  std::string name;          // "sweep" or "stability": DIR/<name>.csv, DIR/<name>.json
+  std::string child_command; // the stage each point runs: "run" or "particle"
+  std::vector<std::string> columns_before_wall; // e.g. target_rayleigh, gravity
+  std::vector<std::string> columns_after_wall;  // fixed columns; other keys follow, sorted
+  io::Json grid; // what makes two invocations the same grid (compared on resume)
+  // Runs once the directory is accepted and before any point (e.g. the reference transport
+  // run); returns an exit code, 0 to go on.
+  std::function<int(const std::filesystem::path& dir)> prepare;
+  // True when the point's earlier result stands and it is not run again; may fill the row.
+  std::function<bool(const Point&, const std::filesystem::path& point_dir,
+                     const io::Json* previous_row, io::Json& row)>
+      finished;
+  // Fills status, reason and the command's columns from a child that ended.
+  std::function<void(const Point&, const std::filesystem::path& point_dir, const ChildResult&,
+                     io::Json& row)>
+      describe;
+};
+
+// The shared driver: refuses a different grid in DIR (exit 2) unless --force, runs the points
+// not finished yet (continuing interrupted particle runs with --restart), writes the table
+// after every point, prints a progress line per point. Exit code: 0, or 5 when interrupted.
+int run_study(const CommandLine&, Study&, std::vector<Point>& points);
+
+// Helpers for the commands' columns.
+double number_at(const io::Json& j, const std::string& dotted_path); // NaN when absent
+io::Json number_or_null(double v);
+
+} // namespace twinflow::app::grid

@@ -1,0 +1,210 @@
+// twinflow stability CASE --vary 'Section/Key=V1,V2': the particle stage at every point of the
+// grid, in child processes, each classified in one word beside the stability limits that theory
+// predicts for it.
+
+#include <algorithm>
+#include <cmath>
+#include <csignal>
+#include <filesystem>
+#include <set>
+#include <sstream>
+
+#include "app/case/case.hpp"
+#include "app/commands.hpp"
+#include "app/grid_runner.hpp"
+#include "io/files.hpp"
+#include "particle/theory.hpp"
+
+namespace twinflow::app {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// The temperature a stable run should hold: the mean of the thermal walls' temperatures, or
+// the scene's temperature when no wall exchanges heat. (After a run, a closed ideal fluid's own
+// energy equation of state refines the latter: see run_target_temperature.)
+double target_temperature(const SceneParameters& scene, int* thermal_walls = nullptr) {
+  double sum = 0;
+  int walls = 0;
+  for (int d = 0; d < scene.dim; ++d)
+    if (!scene.boundary[d].periodic)
+      for (int side = 0; side < 2; ++side)
+        if (scene.boundary[d].thermal[side]) sum += scene.boundary[d].temperature[side], ++walls;
+  if (thermal_walls) *thermal_walls = walls;
+  return walls ? sum / walls : scene.temperature;
+}
+
+// A closed ideal DPDE fluid started at T with Maxwell velocities holds more energy than its
+// equilibrium at T and settles at E / (N (d/2 + c_v + 1)) (README, "A start-up convention":
+// 8% below T at c_v = 10); the particle summary states that temperature, and it is the target.
+double run_target_temperature(const SceneParameters& scene, const io::Json& summary) {
+  int thermal_walls = 0;
+  const double before_run = target_temperature(scene, &thermal_walls);
+  // 000:(3.21) E/N = (d/2) k T + (c_v + k) T, evaluated by the particle run
+  const double energy_equation_of_state =
+      grid::number_at(summary, "results.T_energy_equation_of_state");
+  return thermal_walls == 0 && std::isfinite(energy_equation_of_state) ? energy_equation_of_state
+                                                                       : before_run;
+}
+
+struct Prediction {
+  double dt_critical, fluctuation_number;
+  bool stable;
+};
+
+// particle/theory.hpp's limits at the target temperature. constant-sigma friction enters 001's
+// isothermal analysis with the fluctuation-dissipation gamma at that temperature.
+Prediction predict(const CaseParameters& c) {
+  particle::ParticleParameters p = c.particle;
+  const double T = target_temperature(c.scene);
+  p.temperature = T;
+  const bool has_energy = p.energy == particle::EnergyModel::Dpde;
+  if (has_energy && p.friction == particle::Friction::ConstantSigma)
+    p.gamma = p.sigma * p.sigma / (2 * T); // 000:(2.37): sigma^2 = 2 k Theta gamma, Theta = T
+  Prediction out;
+  out.dt_critical = particle::marsh_yeomans_critical_dt(p); // 001:(28)
+  // 000:(3.34); no internal energy (isothermal DPD): no such limit
+  out.fluctuation_number = has_energy ? particle::fluctuation_stability_number(p) : std::nan("");
+  out.stable = p.dt < out.dt_critical &&
+               (!has_energy || out.fluctuation_number < c.compare.stability.fluctuation_number);
+  return out;
+}
+
+// Which particle in an InstabilityError message went wrong, and how (particle/simulation.tpp:
+// "unstable at step N (...): particle I x = (...) v = (...) u = U theta = ...; neighbours'
+// theta: ...", or the cold heat slab's "took more energy than particle I ... (u = U)").
+std::string classify_instability(const std::string& message) {
+  if (message.find("took more energy than particle") != std::string::npos)
+    return "negative_internal_energy";
+  const auto start = message.find("): particle ");
+  if (start == std::string::npos) return "unstable";
+  std::string own = message.substr(start);
+  own = own.substr(0, own.find("; neighbours")); // the failing particle's x, v, u, theta only
+  own = own.substr(0, own.find(". Stability:"));
+  std::string lower = own;
+  std::transform(lower.begin(), lower.end(), lower.begin(), ::tolower);
+  if (lower.find("nan") != std::string::npos || lower.find("inf") != std::string::npos)
+    return "non_finite";
+  const auto u = own.find(" u = ");
+  if (u != std::string::npos) {
+    std::istringstream value(own.substr(u + 5));
+    double energy = 0;
+    if (value >> energy && !(energy > 0)) return "negative_internal_energy";
+  }
+  return "unstable";
+}
+
+// A finished particle run: non-finite results, energy drift, temperature off target, or stable.
+void classify_summary(const CaseParameters& c, const fs::path& point_dir, io::Json& row) {
+  using grid::number_at, grid::number_or_null;
+  io::Json summary = io::Json::object();
+  try {
+    summary = io::Json::parse(io::read_file(point_dir / "particle" / "summary.json"));
+  } catch (const std::runtime_error& e) {
+    row["status"] = "failed";
+    row["reason"] = e.what();
+    return;
+  }
+  const bool has_energy = c.particle.energy == particle::EnergyModel::Dpde;
+  const double drift = number_at(summary, "results.energy_relative_drift_max");
+  const double tk = number_at(summary, "results.T_kinetic");
+  const double ti = number_at(summary, "results.T_internal");
+  const double target = run_target_temperature(c.scene, summary);
+  double error = std::abs(tk / target - 1);
+  if (has_energy) error = std::max(error, std::abs(ti / target - 1));
+  row["energy_relative_drift_max"] = number_or_null(drift);
+  row["T_kinetic"] = number_or_null(tk);
+  row["T_internal"] = number_or_null(ti);
+  row["T_target"] = number_or_null(target);
+  row["temperature_relative_error"] = number_or_null(error);
+  const auto& bounds = c.compare.stability;
+  // JSON has no NaN: a non-finite result is written as null, read back here as NaN
+  if (!std::isfinite(tk) || (has_energy && (!std::isfinite(ti) || !std::isfinite(drift)))) {
+    row["status"] = "non_finite";
+    row["reason"] = "non-finite T_kinetic, T_internal or energy drift in particle/summary.json";
+  } else if (has_energy && drift > bounds.energy_drift) { // isothermal DPD conserves no energy
+    row["status"] = "energy_drift";
+    row["reason"] = "max |dE/E| = " + std::to_string(drift) + " > " +
+                    std::to_string(bounds.energy_drift) + " (Compare/Stability/Energy drift bound)";
+  } else if (error > bounds.temperature_tolerance) {
+    row["status"] = "temperature_off";
+    row["reason"] = "T_kinetic = " + std::to_string(tk) +
+                    (has_energy ? ", T_internal = " + std::to_string(ti) : std::string()) +
+                    " against T_target = " + std::to_string(target) + " (tolerance " +
+                    std::to_string(bounds.temperature_tolerance) + ")";
+  } else {
+    row["status"] = "stable";
+    row["reason"] = "";
+  }
+}
+
+const std::set<std::string> kInstabilities = {"non_finite", "negative_internal_energy", "unstable"};
+
+} // namespace
+
+int stability(const CommandLine& cl) {
+  const std::vector<grid::Axis> axes = grid::parse_axes(cl);
+  if (axes.empty())
+    throw io::InputError("stability needs at least one --vary 'Section/Key=V1,V2,...'");
+  std::vector<grid::Point> points = grid::make_points(cl, axes);
+
+  Case base;
+  base.read(cl.target, cl.overrides);
+  grid::Study s;
+  s.name = "stability";
+  s.child_command = "particle";
+  s.columns_before_wall = {"dt",
+                           "predicted_dt_critical",
+                           "fluctuation_number",
+                           "predicted_stable",
+                           "energy_relative_drift_max",
+                           "T_kinetic",
+                           "T_internal",
+                           "T_target",
+                           "temperature_relative_error"};
+  s.grid = io::Json::object();
+  s.grid["case_file"] = fs::absolute(cl.target).lexically_normal().string();
+  s.grid["base_parameters"] = base.registry().resolved_json();
+  s.grid["vary"] = io::Json::object();
+  for (const auto& a : axes) {
+    s.grid["vary"][a.key] = io::Json::array();
+    for (const auto& v : a.shown) s.grid["vary"][a.key].push_back(v);
+  }
+  for (auto& p : points) {
+    if (!p.rejected.empty()) continue;
+    const Prediction prediction = predict(p.resolved);
+    p.columns["dt"] = p.resolved.particle.dt;
+    p.columns["predicted_dt_critical"] = grid::number_or_null(prediction.dt_critical);
+    p.columns["fluctuation_number"] = grid::number_or_null(prediction.fluctuation_number);
+    p.columns["predicted_stable"] = prediction.stable;
+  }
+
+  s.finished = [&](const grid::Point& p, const fs::path& point_dir, const io::Json* previous,
+                   io::Json& row) {
+    const io::Json* status = previous ? previous->find("status") : nullptr;
+    if (status && status->is_string() && kInstabilities.count(status->string())) {
+      row = *previous; // a blow-up is a result: the same inputs blow up again
+      return true;
+    }
+    if (!fs::exists(point_dir / "particle" / "summary.json")) return false;
+    row["exit_code"] = 0;
+    classify_summary(p.resolved, point_dir, row);
+    return true;
+  };
+  s.describe = [&](const grid::Point& p, const fs::path& point_dir, const grid::ChildResult& r,
+                   io::Json& row) {
+    if (r.exit_code == 0)
+      classify_summary(p.resolved, point_dir, row);
+    else if (r.exit_code == 4) // particle::InstabilityError
+      row["status"] = classify_instability(r.message);
+    else if (r.exit_code == kExitInterrupted || r.exit_code == 128 + SIGINT ||
+             r.exit_code == 128 + SIGTERM)
+      row["status"] = "interrupted";
+    else
+      row["status"] = "failed";
+  };
+  return grid::run_study(cl, s, points);
+}
+
+} // namespace twinflow::app

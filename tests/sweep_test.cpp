@@ -1,0 +1,216 @@
+// twinflow sweep and stability through the command line: every point a child process, failed
+// points recorded while the others finish, re-running skips finished points, a changed grid is
+// refused, bad --vary input writes nothing, and the stability classes beside theory's limits.
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "io/files.hpp"
+#include "io/json.hpp"
+#include "particle/theory.hpp"
+#include "run_twinflow.hpp"
+
+namespace fs = std::filesystem;
+using twinflow::io::Json;
+using twinflow::testing::Result;
+
+namespace {
+
+Result run(const std::string& args) {
+  return twinflow::testing::run_twinflow(args);
+}
+
+fs::path fresh_dir(const std::string& name) {
+  return twinflow::testing::fresh_dir("sweep_test", name);
+}
+
+std::string shipped(const std::string& name) {
+  return std::string(TWINFLOW_SOURCE_DIR) + "/cases/" + name + ".prm";
+}
+
+// The rows of DIR/<command>.json, in point order.
+std::vector<Json> rows(const fs::path& table) {
+  std::vector<Json> out;
+  const Json j = Json::parse(twinflow::io::read_file(table));
+  for (const auto& p : j.find("points")->elements()) out.push_back(*p.find("row"));
+  return out;
+}
+
+std::string text(const Json& row, const std::string& key) {
+  const Json* v = row.find(key);
+  return v && v->is_string() ? v->string() : "";
+}
+
+double number(const Json& row, const std::string& key) {
+  const Json* v = row.find(key);
+  return v && v->is_number() ? v->number() : std::nan("");
+}
+
+std::string file_text(const fs::path& file) {
+  std::ifstream in(file);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// The default cavity shrunk to 100 particles, 600 steps and a 4 x 4 (Q2) continuum mesh: one
+// paired run takes ~15 s, nearly all of it the transport stage's fixed bulk runs.
+const std::string kTinyCavity = shipped("heated_cavity_2d") +
+                                " --set 'Scene/Box size=10, 10' --set 'Scene/Density=1'"
+                                " --set 'Scene/Field bins=5, 5'"
+                                " --set 'Particle/Equilibration steps=200'"
+                                " --set 'Particle/Steps=400' --set 'Continuum/Mesh/Cells=4'"
+                                " --set 'Continuum/Mesh/Refinements=1'";
+
+} // namespace
+
+// Four points: one runs to the end, one fails at run time (dt = 2: a particle leaves the box in
+// the first step, exit 4), two are rejected by the case (walls with ec-verlet).
+TEST(Sweep, FailedPointsAreRecordedOthersFinishRerunSkipsChangedGridRefused) {
+  const fs::path dir = fresh_dir("grid");
+  const std::string grid = " --vary 'Particle/Time step=0.01,2' "
+                           "--vary 'Particle/Integrator=shardlow,ec-verlet' --jobs 2";
+  const Result first = run("sweep " + kTinyCavity + " --out " + dir.string() + grid);
+  ASSERT_EQ(first.code, 0) << first.output;
+  EXPECT_NE(first.output.find("sweep: point 4/4 done"), std::string::npos) << first.output;
+
+  const auto r = rows(dir / "sweep.json");
+  ASSERT_EQ(r.size(), 4u);
+  EXPECT_EQ(text(r[0], "status"), "done") << file_text(dir / "points/000/log.txt");
+  EXPECT_EQ(number(r[0], "exit_code"), 0);
+  EXPECT_EQ(text(r[0], "Particle/Time step"), "0.01");
+  EXPECT_EQ(text(r[0], "Particle/Integrator"), "shardlow");
+  EXPECT_GT(number(r[0], "rayleigh"), 0);
+  EXPECT_GT(number(r[0], "nusselt_nominal"), 0.9);
+  EXPECT_GT(number(r[0], "wall_seconds"), 0);
+  for (const std::size_t rejected : {1u, 3u}) {
+    EXPECT_EQ(text(r[rejected], "status"), "failed");
+    EXPECT_EQ(number(r[rejected], "exit_code"), 2);
+    EXPECT_NE(text(r[rejected], "reason").find("Particle/Integrator"), std::string::npos);
+  }
+  EXPECT_EQ(text(r[2], "status"), "failed");
+  EXPECT_EQ(number(r[2], "exit_code"), 4);
+  EXPECT_NE(text(r[2], "reason").find("unstable"), std::string::npos) << text(r[2], "reason");
+
+  const std::string csv = file_text(dir / "sweep.csv");
+  EXPECT_EQ(csv.rfind("point,status,reason,exit_code,Particle/Time step,Particle/Integrator,"
+                      "target_rayleigh,gravity,wall_seconds,",
+                      0),
+            0u)
+      << csv;
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 5) << csv;
+
+  // The same command again: the finished point is not run again.
+  const auto log_time = fs::last_write_time(dir / "points/000/log.txt");
+  const Result again = run("sweep " + kTinyCavity + " --out " + dir.string() + grid);
+  ASSERT_EQ(again.code, 0) << again.output;
+  EXPECT_NE(again.output.find("point 000 skipped"), std::string::npos) << again.output;
+  EXPECT_EQ(fs::last_write_time(dir / "points/000/log.txt"), log_time);
+  EXPECT_EQ(text(rows(dir / "sweep.json")[0], "status"), "done");
+
+  // Another grid in the same directory: refused, nothing changed.
+  const std::string table = file_text(dir / "sweep.csv");
+  const Result changed = run("sweep " + kTinyCavity + " --out " + dir.string() +
+                             " --vary 'Particle/Time step=0.01,3' --jobs 2");
+  EXPECT_EQ(changed.code, 2) << changed.output;
+  EXPECT_NE(changed.output.find("another grid"), std::string::npos) << changed.output;
+  EXPECT_EQ(file_text(dir / "sweep.csv"), table);
+}
+
+TEST(Sweep, BadVaryOrRayleighExitsTwoAndWritesNothing) {
+  const fs::path out = fresh_dir("bad");
+  const std::string cavity = shipped("heated_cavity_2d");
+  struct Case {
+    std::string args, expect;
+  } cases[] = {
+      {"sweep " + cavity + " --vary 'Particle/No such key=1,2'", "Particle/No such key"},
+      {"sweep " + cavity + " --vary 'Particle/Time step=0.01,fast'", "Particle/Time step"},
+      {"sweep " + cavity + " --vary 'Particle/Time step'", "Section/Key=V1,V2"},
+      {"sweep " + cavity + " --vary 'Particle/Time step=0.01,,0.02'", "empty value"},
+      {"sweep " + cavity + " --vary 'Particle/Time step=0.01' --vary 'Particle/Time step=0.02'",
+       "varied twice"},
+      {"sweep " + cavity, "needs at least one --vary"},
+      {"stability " + cavity + " --vary 'Particle/Integrator=ec-verlet,euler'",
+       "no point of the grid is a valid case"},
+      {"sweep " + cavity + " --vary 'Particle/Time step=0.01' --jobs 0", "--jobs"},
+      {"run " + cavity + " --vary 'Particle/Time step=0.01'", "--vary belongs to sweep"},
+      {"sweep " + cavity + " --rayleigh 1e3,x", "--rayleigh"},
+      {"sweep " + shipped("equilibrium_ideal_3d") + " --rayleigh 1e3", "Scene/Gravity"},
+      {"sweep " + cavity + " --rayleigh 1e3 --set 'Scene/x boundaries/Upper wall temperature=1.5'",
+       "heated direction"},
+  };
+  for (const auto& c : cases) {
+    const Result r = run(c.args + " --out " + out.string());
+    EXPECT_EQ(r.code, 2) << c.args << "\n" << r.output;
+    EXPECT_NE(r.output.find(c.expect), std::string::npos) << c.args << "\n" << r.output;
+    EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+    EXPECT_FALSE(fs::exists(out)) << c.args;
+  }
+}
+
+// A small periodic ideal DPDE box: dt = 0.005 is stable, dt = 2 is not; the table states
+// 001:(28)'s dt_c and 000:(3.34)'s number exactly as particle/theory computes them.
+TEST(Stability, ClassifiesPointsBesideTheoryLimits) {
+  const fs::path dir = fresh_dir("stability");
+  const std::string args =
+      "stability " + shipped("equilibrium_ideal_3d") +
+      " --set 'Scene/Box size=4, 4, 4' --set 'Particle/Equilibration steps=200'"
+      " --set 'Particle/Steps=1000' --set 'Particle/Dissipation/Parametrisation=constant-gamma'"
+      " --vary 'Particle/Time step=0.005,2' --jobs 2 --out " +
+      dir.string();
+  const Result r = run(args);
+  ASSERT_EQ(r.code, 0) << r.output;
+  const auto rows_now = rows(dir / "stability.json");
+  ASSERT_EQ(rows_now.size(), 2u);
+  const Json &small = rows_now[0], &huge = rows_now[1];
+  EXPECT_EQ(text(small, "status"), "stable") << text(small, "reason");
+  const std::string status = text(huge, "status");
+  EXPECT_TRUE(status == "non_finite" || status == "negative_internal_energy" ||
+              status == "unstable" || status == "energy_drift")
+      << status << ": " << text(huge, "reason");
+  EXPECT_LT(number(small, "energy_relative_drift_max"), 1e-10);
+  EXPECT_LT(number(small, "temperature_relative_error"), 0.05);
+
+  // The case's fluid, as particle/theory takes it.
+  twinflow::particle::ParticleParameters p;
+  p.dim = 3;
+  p.density = 3;
+  p.temperature = 1;
+  p.friction = twinflow::particle::Friction::ConstantGamma;
+  p.gamma = 4.5;
+  p.dissipation = {1.0, 2.0};
+  p.cv = 10;
+  p.heat = twinflow::particle::HeatLaw::Inverse;
+  p.heat_coefficient = twinflow::particle::HeatCoefficient::Constant;
+  p.kappa0 = 10;
+  p.heat_weight = {1.0, 2.0};
+  const double dt_c = twinflow::particle::marsh_yeomans_critical_dt(p);
+  for (const Json* row : {&small, &huge}) {
+    p.dt = number(*row, "dt");
+    EXPECT_DOUBLE_EQ(number(*row, "predicted_dt_critical"), dt_c);
+    EXPECT_DOUBLE_EQ(number(*row, "fluctuation_number"),
+                     twinflow::particle::fluctuation_stability_number(p));
+  }
+  EXPECT_NE(small.find("predicted_stable")->dump().find("true"), std::string::npos);
+  EXPECT_NE(huge.find("predicted_stable")->dump().find("false"), std::string::npos);
+
+  const std::string csv = file_text(dir / "stability.csv");
+  EXPECT_EQ(csv.rfind("point,status,reason,exit_code,Particle/Time step,dt,predicted_dt_critical,"
+                      "fluctuation_number,predicted_stable,energy_relative_drift_max,T_kinetic,"
+                      "T_internal,T_target,temperature_relative_error,wall_seconds\n",
+                      0),
+            0u)
+      << csv;
+
+  // Again: both results stand (a blow-up is a result too), nothing runs.
+  const Result again = run(args);
+  ASSERT_EQ(again.code, 0) << again.output;
+  EXPECT_NE(again.output.find("2 points, 0 to run"), std::string::npos) << again.output;
+}

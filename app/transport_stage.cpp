@@ -57,8 +57,13 @@ int transport_stage(const CommandLine& cl) {
     // c_p per particle: the ideal fluid's for the ideal gas (estimate); with conservative forces
     // the same is an approximation (c_p - c_v from the measured equation of state is not yet
     // used), stated in the summary.
-    kappa = transport::measure_conductivity_relaxation(p, with_g, with_g.heat_capacity_p);
-    eta = transport::measure_viscosity_poiseuille(p, with_g);
+    // Their own, smaller box: both runs last a few relaxation times of the box, ~ L^2.
+    particle::ParticleParameters flows = p;
+    const double flow_edge = std::max(
+        3 * p.largest_cutoff(), std::pow(cp.transport.flow_particles / p.density, 1.0 / p.dim));
+    flows.box = {{flow_edge, flow_edge, flow_edge}};
+    kappa = transport::measure_conductivity_relaxation(flows, with_g, with_g.heat_capacity_p);
+    eta = transport::measure_viscosity_poiseuille(flows, with_g);
   }
 
   std::ostringstream table;

@@ -50,6 +50,7 @@ CaseParameters Case::resolve(const std::string& filename) const {
   c.transport.source = registry_.get("Transport/Source");
   c.transport.measure_flows = registry_.get_bool("Transport/Measure kappa and eta");
   c.transport.temperature = registry_.get_double("Transport/Temperature");
+  c.transport.flow_particles = registry_.get_double("Transport/Flow particles");
   c.compare.wall_layer = registry_.get_double("Compare/Wall layer");
   c.compare.rayleigh_control = registry_.get("Compare/Rayleigh control");
   c.compare.stability.energy_drift = registry_.get_double("Compare/Stability/Energy drift bound");
@@ -70,6 +71,10 @@ void declare_transport_and_compare(Registry& r) {
             "State-point temperature of the transport stage (units of T0); 0: the mean of the "
             "thermal walls, or Scene/Temperature without walls. `twinflow run` sets it to the "
             "particle fluid's measured mean temperature unless the case or --set gives one.");
+  r.declare("Transport/Flow particles", "4000", Double(100),
+            "Particles in the square (cubic) base box of the kappa and eta runs, >= 100; the "
+            "relaxation run doubles it along x, the Poiseuille run along y. Their length grows "
+            "as the box edge squared: 1000 is ~16x faster than 4000 in 2D.");
   r.declare("Transport/Measure kappa and eta", "false", Bool(),
             "Also measure kappa by thermal relaxation and eta by reverse Poiseuille flow (two "
             "particle runs of several relaxation times each: minutes at seed 002's state point).");

@@ -44,6 +44,7 @@ struct TransportParameters {
   std::string source = "estimated"; // estimated | measured
   bool measure_flows = false;       // also kappa by relaxation and eta by reverse Poiseuille
   double temperature = 0;           // state point; 0: the walls' mean, else Scene/Temperature
+  double flow_particles = 4000;     // particles of the square/cubic base box of the flow runs
 };
 
 // Bounds of the stability map (twinflow stability).

@@ -44,7 +44,8 @@ StageInputs stage_inputs(const CommandLine& cl, std::initializer_list<const char
     for (const char* section : sections)
       if (path.rfind(section, 0) == 0) parameters[path] = value;
   s.inputs["parameters"] = parameters;
-  s.inputs["twinflow_git_revision"] = *io::provenance().find("twinflow_git_revision");
+  const io::Json provenance = io::provenance();
+  s.inputs["twinflow_git_revision"] = *provenance.find("twinflow_git_revision");
   s.inputs["upstream"] = io::Json::array();
   for (const auto& h : upstream_hashes) s.inputs["upstream"].push_back(h);
   std::uint64_t h = 1469598103934665603ull; // FNV-1a 64

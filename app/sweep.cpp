@@ -43,7 +43,8 @@ void add_metrics(const fs::path& point_dir, const std::set<std::string>& reserve
   };
   const fs::path metrics = point_dir / "compare" / "metrics.json";
   if (fs::exists(metrics)) {
-    if (const io::Json* table_row = read_json(metrics).find("table_row"))
+    const io::Json recorded = read_json(metrics);
+    if (const io::Json* table_row = recorded.find("table_row"))
       if (table_row->is_object())
         for (const auto& [key, value] : table_row->items()) put(key, value);
     return;

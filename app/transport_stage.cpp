@@ -105,8 +105,12 @@ int transport_stage(const CommandLine& cl) {
   if (cp.transport.measure_flows) {
     summary["results"]["measured"]["conductivity_relaxation"] = kappa.mean;
     summary["results"]["measured"]["conductivity_relaxation_stderr"] = kappa.stderr_;
-    summary["results"]["measured"]["conductivity_note"] =
-        "kappa = rho c_p chi with the ideal fluid's c_p = c_v + 2.5 k (3D)";
+    std::ostringstream note; // the ideal fluid's c_p = c_v + k + (d/2 + 1) k (000:(3.21))
+    note << "kappa = rho c_p chi with the ideal fluid's c_p = " << with_g.heat_capacity_p
+         << " k per particle; the relaxation and Poiseuille boxes hold ~"
+         << cp.transport.flow_particles
+         << " particles (x2): in 2D their coefficients depend on the box (long-time tails)";
+    summary["results"]["measured"]["conductivity_note"] = note.str();
     summary["results"]["measured"]["viscosity_poiseuille"] = eta.mean;
     summary["results"]["measured"]["viscosity_poiseuille_stderr"] = eta.stderr_;
   }

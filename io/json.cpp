@@ -16,7 +16,7 @@ Json& Json::operator[](const std::string& key) {
   return obj.back().second;
 }
 
-const Json* Json::find(const std::string& key) const {
+const Json* Json::find(const std::string& key) const& {
   if (!is_object()) return nullptr;
   for (const auto& [k, v] : std::get<Object>(value_))
     if (k == key) return &v;

@@ -45,7 +45,10 @@ public:
 
   // Object access: inserts the key if absent (turns null into an object).
   Json& operator[](const std::string& key);
-  const Json* find(const std::string& key) const;
+  // Pointers and references into a Json live as long as it: on a temporary they would dangle, so
+  // the compiler refuses (e.g. Json::parse(text).find(key)).
+  const Json* find(const std::string& key) const&;
+  const Json* find(const std::string& key) const&& = delete;
   void push_back(Json v);
 
   bool is_null() const { return std::holds_alternative<std::nullptr_t>(value_); }
@@ -53,9 +56,12 @@ public:
   bool is_number() const { return std::holds_alternative<double>(value_); }
   bool is_string() const { return std::holds_alternative<std::string>(value_); }
   double number() const { return std::get<double>(value_); }
-  const std::string& string() const { return std::get<std::string>(value_); }
-  const Object& items() const { return std::get<Object>(value_); }
-  const Array& elements() const { return std::get<Array>(value_); }
+  const std::string& string() const& { return std::get<std::string>(value_); }
+  const std::string& string() const&& = delete;
+  const Object& items() const& { return std::get<Object>(value_); }
+  const Object& items() const&& = delete;
+  const Array& elements() const& { return std::get<Array>(value_); }
+  const Array& elements() const&& = delete;
 
   void write(std::ostream& out, int indent = 0) const;
   std::string dump() const;

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -10,6 +11,8 @@
 #include <string>
 #include <sys/wait.h>
 
+#include "io/files.hpp"
+#include "io/json.hpp"
 #include "run_twinflow.hpp"
 
 namespace fs = std::filesystem;
@@ -160,4 +163,56 @@ TEST(Cli, InterruptedRunRestartsToIdenticalOutputs) {
   EXPECT_EQ(term.code, 5) << term.output;
   EXPECT_NE(term.output.find("interrupted by a signal"), std::string::npos) << term.output;
   EXPECT_TRUE(fs::exists(killed / "particle" / "checkpoint.twfc"));
+}
+
+// `run` on a tiny cavity: every stage, then compare's metrics; the same command again reuses
+// every stage by its inputs hash; a changed continuum key reruns only the continuum twins; a
+// changed particle key needs --force; `compare` alone rewrites only compare/.
+TEST(Cli, RunComparesTheTwinsAndReusesUnchangedStages) {
+  const std::string tiny = std::string(TWINFLOW_SOURCE_DIR) +
+                           "/cases/heated_cavity_2d.prm --threads 1"
+                           " --set 'Scene/Box size=10, 10' --set 'Scene/Density=1'"
+                           " --set 'Scene/Field bins=5, 5' --set 'Particle/Equilibration steps=200'"
+                           " --set 'Particle/Steps=400' --set 'Continuum/Mesh/Cells=4'"
+                           " --set 'Continuum/Mesh/Refinements=1'"
+                           " --set 'Transport/Measure kappa and eta=false'";
+  const fs::path dir = fresh_dir("reuse");
+  const Result first = run("run " + tiny + " --out " + dir.string());
+  ASSERT_EQ(first.code, 0) << first.output;
+  const auto metrics =
+      twinflow::io::Json::parse(twinflow::io::read_file(dir / "compare" / "metrics.json"));
+  const auto* row = metrics.find("table_row");
+  ASSERT_NE(row, nullptr);
+  for (const char* key :
+       {"nusselt_particle", "nusselt_particle_stderr", "nusselt_nominal", "nusselt_calibrated",
+        "temperature_l2_nominal", "temperature_l2_calibrated", "temperature_l2_noise"}) {
+    ASSERT_NE(row->find(key), nullptr) << key;
+    EXPECT_TRUE(std::isfinite(row->find(key)->number())) << key;
+  }
+  // 5 x 5 bins of 2 rc, wall layer 1 rc: the 3 x 3 interior
+  EXPECT_EQ(metrics.find("interior_bins")->number(), 9);
+  for (const char* f : {"bins.csv", "profiles.csv", "error_vs_time.csv"})
+    EXPECT_TRUE(fs::exists(dir / "compare" / f)) << f;
+
+  const Result again = run("run " + tiny + " --out " + dir.string());
+  ASSERT_EQ(again.code, 0) << again.output;
+  for (const char* stage : {"particle", "transport", "continuum", "continuum_calibrated"})
+    EXPECT_NE(again.output.find(std::string("run: ") + stage + ": inputs unchanged"),
+              std::string::npos)
+        << stage << "\n"
+        << again.output;
+
+  const Result mesh = run("run " + tiny + " --set 'Continuum/Mesh/Cells=2' --out " + dir.string());
+  ASSERT_EQ(mesh.code, 0) << mesh.output;
+  EXPECT_NE(mesh.output.find("run: particle: inputs unchanged"), std::string::npos);
+  EXPECT_NE(mesh.output.find("run: transport: inputs unchanged"), std::string::npos);
+  EXPECT_EQ(mesh.output.find("run: continuum: inputs unchanged"), std::string::npos);
+
+  const Result changed = run("run " + tiny + " --seed 5 --out " + dir.string());
+  EXPECT_EQ(changed.code, 2) << changed.output;
+  EXPECT_NE(changed.output.find("--force"), std::string::npos) << changed.output;
+
+  const Result compare = run("compare " + dir.string());
+  EXPECT_EQ(compare.code, 0) << compare.output;
+  EXPECT_EQ(run("compare " + (dir / "no-such-run").string()).code, 2);
 }

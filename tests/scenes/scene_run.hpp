@@ -29,7 +29,8 @@ inline io::Json run_case(const std::string& name, const std::string& extra,
   if (dir_out) *dir_out = dir;
   if (r.code != 0) return io::Json::object();
   std::cout << r.output;
-  return *io::Json::parse(io::read_file(dir / "particle" / "summary.json")).find("results");
+  const io::Json summary = io::Json::parse(io::read_file(dir / "particle" / "summary.json"));
+  return *summary.find("results");
 }
 
 inline double number(const io::Json& j, const std::string& dotted) {

@@ -116,19 +116,32 @@ std::vector<std::string> calibrated_twin_overrides(const std::string& run_dir) {
   const auto interior =
       compare::interior_bins(run.fields.grid, run.walled, run.parameters.compare.wall_layer);
   std::vector<std::string> overrides;
+  const bool kapitza = run.parameters.compare.calibration == "kapitza";
+  std::ostringstream conductances; // x lower, x upper, y lower, ...
+  conductances << std::setprecision(8);
+  const io::Json& walls = *run.summary.find("results");
   for (int d = 0; d < run.parameters.scene.dim; ++d) {
     const auto& b = run.parameters.scene.boundary[d];
-    if (b.periodic) continue;
     for (int side = 0; side < 2; ++side) {
-      if (!b.thermal[side]) continue;
-      const auto w = compare::wall_fluid_temperature(particle, interior, d, side);
-      if (!std::isfinite(w.value)) continue;
-      std::ostringstream o;
-      o << std::setprecision(10) << "Scene/" << kAxis[d] << " boundaries/"
-        << (side ? "Upper" : "Lower") << " wall temperature=" << w.value;
-      overrides.push_back(o.str());
+      double h = 0;
+      if (!b.periodic && b.thermal[side]) {
+        const auto w = compare::wall_fluid_temperature(particle, interior, d, side);
+        // h_K = q / (T_wall - T_fluid at the wall), from the particle wall's measured heat flow
+        const double q = number(walls, {"walls", wall_name(d, side).c_str(), "heat_flux_in"});
+        const double jump = b.temperature[side] - w.value;
+        if (kapitza && std::isfinite(q) && q * jump > 0) {
+          h = q / jump;
+        } else if (std::isfinite(w.value)) { // no usable jump: the fluid's wall temperature
+          std::ostringstream o;
+          o << std::setprecision(10) << "Scene/" << kAxis[d] << " boundaries/"
+            << (side ? "Upper" : "Lower") << " wall temperature=" << w.value;
+          overrides.push_back(o.str());
+        }
+      }
+      conductances << (d + side ? ", " : "") << h;
     }
   }
+  if (kapitza) overrides.push_back("Continuum/Kapitza conductances=" + conductances.str());
   return overrides;
 }
 

@@ -26,8 +26,10 @@ fs::path run_directory(const CommandLine& cl, const CaseParameters& c) {
 }
 
 // What a stage's results depend on: the case parameters of the given sections (as resolved with
-// the stage's --set options), the code revision and the upstream stages' hashes. FNV-1a 64 of
-// that, written next to the results as inputs.json; `run` reuses a stage whose hash is unchanged.
+// the stage's --set options) and the upstream stages' hashes. FNV-1a 64 of that, written next to
+// the results as inputs.json; `run` reuses a stage whose hash is unchanged. The code revision is
+// recorded beside it but not hashed: an upgrade does not throw away hours of particle data
+// (`run` says when it reuses another revision's results; --force recomputes).
 struct StageInputs {
   io::Json inputs = io::Json::object();
   std::string hash;
@@ -44,12 +46,12 @@ StageInputs stage_inputs(const CommandLine& cl, std::initializer_list<const char
     for (const char* section : sections)
       if (path.rfind(section, 0) == 0) parameters[path] = value;
   s.inputs["parameters"] = parameters;
-  const io::Json provenance = io::provenance();
-  s.inputs["twinflow_git_revision"] = *provenance.find("twinflow_git_revision");
   s.inputs["upstream"] = io::Json::array();
   for (const auto& h : upstream_hashes) s.inputs["upstream"].push_back(h);
   std::uint64_t h = 1469598103934665603ull; // FNV-1a 64
   for (unsigned char ch : s.inputs.dump()) h = (h ^ ch) * 1099511628211ull;
+  const io::Json provenance = io::provenance();
+  s.inputs["twinflow_git_revision"] = *provenance.find("twinflow_git_revision");
   std::ostringstream hex;
   hex << std::hex << std::setw(16) << std::setfill('0') << h;
   s.hash = hex.str();
@@ -63,7 +65,13 @@ bool reusable(const fs::path& stage_dir, const StageInputs& s) {
     return false;
   const io::Json recorded = io::Json::parse(io::read_file(stage_dir / "inputs.json"));
   const io::Json* h = recorded.find("hash");
-  return h && h->is_string() && h->string() == s.hash;
+  if (!h || !h->is_string() || h->string() != s.hash) return false;
+  const io::Json* then = recorded.find("twinflow_git_revision");
+  const io::Json* now = s.inputs.find("twinflow_git_revision");
+  if (then && now && then->is_string() && now->is_string() && then->string() != now->string())
+    std::cout << "run: " << stage_dir.filename().string() << ": made by revision " << then->string()
+              << " (this is " << now->string() << ")\n";
+  return true;
 }
 
 // Runs a stage unless its inputs are unchanged; records its inputs after it succeeds.

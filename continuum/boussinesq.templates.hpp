@@ -202,7 +202,7 @@ template <int dim> void BoussinesqProblem<dim>::make_constraints() {
       if (b.periodic) continue;
       for (int side = 0; side < 2; ++side) {
         const dealii::types::boundary_id id = 2 * d + side;
-        if (b.fixed_temperature[side]) {
+        if (b.fixed_temperature[side] && !b.robin(side)) {
           const double value = homogeneous ? 0.0 : b.temperature[side];
           dealii::VectorTools::interpolate_boundary_values(
               dof_handler_, id, dealii::Functions::ConstantFunction<dim>(value, n_components), c,

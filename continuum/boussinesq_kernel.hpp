@@ -5,7 +5,9 @@
 //   n m (du/dt + (u . grad) u) - div(2 eta(T) eps(u)) + grad p = -n m alpha (T - T_ref) g
 //   div u = 0
 //   n c_p (dT/dt + u . grad T) - div(kappa(T) grad T) = Q
-// eps(u) the symmetric gradient; flux walls add - int_Gamma h phi_T. Residual R and its exact
+// eps(u) the symmetric gradient; flux walls add - int_Gamma q phi_T, Kapitza (Robin) walls
+// - int_Gamma h_K (T_wall - T) phi_T (Kapitza 1941: a jump T_wall - T = q / h_K at the wall).
+// Residual R and its exact
 // Jacobian (Gateaux derivative) for Newton's method. Steady: no time derivatives. In time, a
 // multistep (BDF) derivative d/dt x ~ a0 x + h with the history h = sum_k a_k x^{n+1-k} of the
 // earlier steps (BDF2: a0 = 3/(2 dt), h = (-4 x^n + x^{n-1})/(2 dt); Hairer, Norsett & Wanner I,
@@ -31,8 +33,9 @@ public:
         fe_face_values_(fe, face_quadrature_, dealii::update_values | dealii::update_JxW_values),
         n_(fe.n_dofs_per_cell()), u_(quadrature_.size()), grad_T_(quadrature_.size()),
         grad_u_(quadrature_.size()), p_(quadrature_.size()), T_(quadrature_.size()),
-        history_u_(quadrature_.size()), history_T_(quadrature_.size()), phi_u_(n_), grad_phi_T_(n_),
-        grad_phi_u_(n_), eps_phi_u_(n_), div_phi_u_(n_), phi_p_(n_), phi_T_(n_) {}
+        history_u_(quadrature_.size()), history_T_(quadrature_.size()),
+        face_T_(face_quadrature_.size()), phi_u_(n_), grad_phi_T_(n_), grad_phi_u_(n_),
+        eps_phi_u_(n_), div_phi_u_(n_), phi_p_(n_), phi_T_(n_) {}
 
   // cell_rhs = -R (and cell_matrix = dR/dx if with_jacobian) at the state x, gravity scaled by
   // gravity_factor; with a `history`, the time derivatives a0 x + history are included.
@@ -113,17 +116,29 @@ public:
         }
       }
     }
-    // Prescribed heat flux into the domain through flux walls: - int_Gamma h phi_T.
+    // Heat flux into the domain through flux walls, - int_Gamma q phi_T, and through Kapitza
+    // walls, q = h_K (T_wall - T) with its Jacobian h_K phi_T,j phi_T,i.
     for (const auto& face : cell->face_iterators()) {
       if (!face->at_boundary()) continue;
       const int d = face->boundary_id() / 2, side = face->boundary_id() % 2;
       const auto& b = prm_.boundary[d];
-      if (b.periodic || b.fixed_temperature[side] || b.heat_flux[side] == 0.0) continue;
+      if (b.periodic) continue;
+      const bool robin = b.robin(side);
+      if (!robin && (b.fixed_temperature[side] || b.heat_flux[side] == 0.0)) continue;
       fe_face_values_.reinit(cell, face);
-      for (unsigned q = 0; q < face_quadrature_.size(); ++q)
-        for (unsigned i = 0; i < n_; ++i)
-          cell_rhs(i) +=
-              b.heat_flux[side] * fe_face_values_[temperature].value(i, q) * fe_face_values_.JxW(q);
+      if (robin) fe_face_values_[temperature].get_function_values(x, face_T_);
+      for (unsigned q = 0; q < face_quadrature_.size(); ++q) {
+        const double JxW = fe_face_values_.JxW(q);
+        const double h = b.kapitza_conductance[side];
+        const double flux_in = robin ? h * (b.temperature[side] - face_T_[q]) : b.heat_flux[side];
+        for (unsigned i = 0; i < n_; ++i) {
+          const double phi_i = fe_face_values_[temperature].value(i, q);
+          cell_rhs(i) += flux_in * phi_i * JxW;
+          if (robin && with_jacobian)
+            for (unsigned j = 0; j < n_; ++j)
+              cell_matrix(i, j) += h * fe_face_values_[temperature].value(j, q) * phi_i * JxW;
+        }
+      }
     }
   }
 
@@ -138,7 +153,7 @@ private:
   std::vector<dealii::Tensor<2, dim>> grad_u_;
   std::vector<double> p_, T_;
   std::vector<dealii::Tensor<1, dim>> history_u_;
-  std::vector<double> history_T_;
+  std::vector<double> history_T_, face_T_;
   std::vector<dealii::Tensor<1, dim>> phi_u_, grad_phi_T_;
   std::vector<dealii::Tensor<2, dim>> grad_phi_u_;
   std::vector<dealii::SymmetricTensor<2, dim>> eps_phi_u_;

@@ -106,6 +106,10 @@ void check(const ContinuumParameters& p) {
       require(p.boundary[d].periodic || !p.boundary[d].fixed_temperature[side] ||
                   p.boundary[d].temperature[side] > 0,
               "wall temperatures must be > 0");
+    for (int side = 0; side < 2; ++side)
+      require(p.boundary[d].kapitza_conductance[side] >= 0 &&
+                  (p.model == Model::Boussinesq || p.boundary[d].kapitza_conductance[side] == 0),
+              "Kapitza conductances must be >= 0, and > 0 only in the Boussinesq model");
   }
   require(p.number_density > 0 && p.particle_mass > 0 && p.heat_capacity > 0,
           "n, m and c_p must be > 0");

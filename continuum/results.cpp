@@ -40,8 +40,9 @@ io::Json to_json(const ContinuumParameters& p) {
       for (int side = 0; side < 2; ++side) {
         io::Json s = io::Json::object();
         s["fixed_temperature"] = b.fixed_temperature[side];
-        if (b.fixed_temperature[side])
-          s["temperature"] = b.temperature[side];
+        if (b.fixed_temperature[side]) s["temperature"] = b.temperature[side];
+        if (b.robin(side))
+          s["kapitza_conductance"] = b.kapitza_conductance[side];
         else
           s["heat_flux_in"] = b.heat_flux[side];
         w[side ? "upper" : "lower"] = s;

@@ -52,6 +52,7 @@ CaseParameters Case::resolve(const std::string& filename) const {
   c.transport.temperature = registry_.get_double("Transport/Temperature");
   c.transport.flow_particles = registry_.get_double("Transport/Flow particles");
   c.compare.wall_layer = registry_.get_double("Compare/Wall layer");
+  c.compare.calibration = registry_.get("Compare/Calibration");
   c.compare.rayleigh_control = registry_.get("Compare/Rayleigh control");
   c.compare.stability.energy_drift = registry_.get_double("Compare/Stability/Energy drift bound");
   c.compare.stability.temperature_tolerance =
@@ -78,6 +79,11 @@ void declare_transport_and_compare(Registry& r) {
   r.declare("Transport/Measure kappa and eta", "false", Bool(),
             "Also measure kappa by thermal relaxation and eta by reverse Poiseuille flow (two "
             "particle runs of several relaxation times each: minutes at seed 002's state point).");
+  r.declare("Compare/Calibration", "kapitza", Selection("kapitza|wall temperatures"),
+            "The calibrated twin's thermal walls: kapitza: the nominal wall temperatures with a "
+            "Kapitza (Robin) conductance h_K = q / jump per wall, from the particle wall's heat "
+            "flux q and the fluid's temperature jump there; wall temperatures: Dirichlet at the "
+            "fluid's temperature extrapolated to each wall.");
   r.declare("Compare/Wall layer", "1", Double(0),
             "Thickness (length units) of the layer next to each wall left out of field errors.");
   r.declare("Compare/Rayleigh control", "gravity", Selection("gravity"),

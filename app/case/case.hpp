@@ -56,6 +56,7 @@ struct StabilityBounds {
 
 struct CompareParameters {
   double wall_layer = 1.0;                  // thickness excluded from field errors
+  std::string calibration = "kapitza";      // kapitza | wall temperatures
   std::string rayleigh_control = "gravity"; // how a sweep reaches a target Ra
   StabilityBounds stability;
 };

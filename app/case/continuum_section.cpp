@@ -65,6 +65,12 @@ void declare_continuum(Registry& r) {
             "in the closed box (n = P/(k T), P from the box's mass N = Scene density x volume, "
             "for large temperature differences; Thermal expansion is then 1/T_ref and the key is "
             "ignored); or heat conduction without flow.");
+  r.declare(s + "Kapitza conductances", "", List(Double(0), 0, 6),
+            "Kapitza (Robin) walls of the Boussinesq twin: h_K per wall in the order x lower, "
+            "x upper, y lower, y upper, z lower, z upper (k T0 / (rc^(d-1) tau T0)); a thermal "
+            "wall with h_K > 0 takes the heat flux h_K (T_wall - T) instead of T = T_wall; 0 or "
+            "absent: T = T_wall. `run`'s calibrated twin sets them from the particle walls' "
+            "measured heat flux and temperature jump.");
   r.declare(s + "Mode", "steady", Selection("steady|transient"),
             "steady: the stationary state (Newton, with continuation in Ra and the mesh study "
             "over the refinement levels); transient: march in time from the initial state to "
@@ -177,6 +183,18 @@ continuum::ContinuumParameters resolve_continuum(const Registry& r, const SceneP
     to.temperature = from.temperature;
     to.heat_flux = {{0.0, 0.0}};
     to.no_slip = from.no_slip;
+  }
+  const std::vector<double> kapitza = r.get_doubles(s + "Kapitza conductances");
+  for (std::size_t w = 0; w < kapitza.size(); ++w) {
+    const int d = static_cast<int>(w / 2), side = static_cast<int>(w % 2);
+    r.require(d < scene.dim, s + "Kapitza conductances", "at most 2 x dimension values");
+    if (kapitza[w] == 0) continue;
+    r.require(!c.boundary[d].periodic && c.boundary[d].fixed_temperature[side],
+              s + "Kapitza conductances",
+              "0 for periodic directions and adiabatic walls (h_K > 0 only at thermal walls)");
+    r.require(c.model == continuum::Model::Boussinesq, s + "Kapitza conductances",
+              "0 unless Continuum/Model = boussinesq");
+    c.boundary[d].kapitza_conductance[side] = kapitza[w];
   }
 
   // Same units as the particle twin: n from the scene, m from the particle section.

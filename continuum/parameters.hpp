@@ -53,12 +53,12 @@ struct DirectionBoundary {
   std::array<bool, 2> fixed_temperature{{true, true}}; // Dirichlet (thermal wall) or flux wall
   std::array<double, 2> temperature{{1.0, 1.0}};       // of a fixed-temperature wall
   std::array<double, 2> heat_flux{{0.0, 0.0}};         // into the domain, of a flux wall
+  bool no_slip = true;                                 // else free slip (no normal flux)
   // Kapitza (Robin) condition of a fixed-temperature wall: with h > 0 the heat flux into the
   // domain is h (T_wall - T) instead of T = T_wall (the particle walls' temperature jump).
-  // Boussinesq only.
+  // Boussinesq only. (Last: aggregate initialisers of the fields above stay valid.)
   std::array<double, 2> kapitza_conductance{{0.0, 0.0}};
   bool robin(int side) const { return fixed_temperature[side] && kapitza_conductance[side] > 0; }
-  bool no_slip = true; // else free slip (no normal flux)
 };
 
 // A slab x_d in [lower, upper] that injects `power` (energy per time; < 0: a sink) uniformly:

@@ -93,3 +93,26 @@ TEST(Cavity3D, IterativeDistributedPathReproduces2D) {
   EXPECT_NEAR(r3.v_max_horizontal_midline.value, r2.v_max_horizontal_midline.value, 1e-5 * 20);
   EXPECT_NEAR(r3.v_max_horizontal_midline.position, r2.v_max_horizontal_midline.position, 1e-6);
 }
+
+// Kapitza (Robin) walls, q = h (T_wall - T). Without gravity the steady state is conduction in
+// series through the two wall conductances and the layer: q = dT / (1/h_0 + H/kappa + 1/h_1),
+// exact for Q2 (linear T). With convection, h -> infinity gives back the Dirichlet cavity.
+TEST(KapitzaWalls, ConductionInSeriesIsExactAndLargeConductanceIsDirichlet) {
+  ContinuumParameters p = test_cases::cavity(2, 1e4, 8, 1);
+  p.gravity = {{0, 0, 0}};
+  p.boundary[0].kapitza_conductance = {{2.0, 4.0}};
+  const ContinuumResult r = run(p, "");
+  const double kappa = p.conductivity.value_at_reference;   // 1 in these units
+  const double q = 1.0 / (1 / 2.0 + 1.0 / kappa + 1 / 4.0); // dT = 1, H = 1
+  EXPECT_NEAR(r.nusselt, q / kappa, 1e-8);
+  // fluid temperatures at the walls: T_wall -+ q / h
+  EXPECT_NEAR(r.temperature_max, 1.5 - q / 2.0, 1e-8);
+  EXPECT_NEAR(r.temperature_min, 0.5 + q / 4.0, 1e-8);
+
+  ContinuumParameters dirichlet = test_cases::cavity(2, 1e4, 8, 1);
+  ContinuumParameters stiff = dirichlet;
+  stiff.boundary[0].kapitza_conductance = {{1e9, 1e9}};
+  const double nu_dirichlet = run(dirichlet, "").nusselt, nu_stiff = run(stiff, "").nusselt;
+  std::printf("Nu: Dirichlet %.8f, h = 1e9 %.8f\n", nu_dirichlet, nu_stiff);
+  EXPECT_NEAR(nu_stiff, nu_dirichlet, 1e-6 * nu_dirichlet);
+}

@@ -288,6 +288,10 @@ int compare_stage(const CommandLine& cl) {
   for (const ContinuumTwin& t : twins) {
     io::Json j = io::Json::object();
     j["stage"] = t.stage;
+    if (t.name == "calibrated")
+      j["calibration"] = run.parameters.compare.calibration == "kapitza"
+                             ? "Kapitza walls (h_K = the particle wall's heat flux / its jump)"
+                             : "walls at the fluid's wall temperatures";
     const auto T = compare::temperature_distance(final_state, t.state, interior, dT);
     j["temperature"] = T.to_json();
     table["temperature_l2_" + t.name] = T.l2;

@@ -42,6 +42,12 @@ DE_VAHL_DAVIS_NUSSELT = ((1e3, 1.118), (1e4, 2.243), (1e5, 4.519), (1e6, 8.800))
 WITHIN_NOISE_STDERRS = 2.0
 
 
+def calibration_text(metrics):
+    """How the calibrated twin's walls were set (compare/metrics.json), for captions."""
+    twin = ((metrics or {}).get("twins") or {}).get("calibrated") or {}
+    return twin.get("calibration") or "walls at the fluid's wall temperatures"
+
+
 def fail(message):
     print(f"report: {message}", file=sys.stderr)
     sys.exit(EXIT_BAD_INPUT)
@@ -761,7 +767,7 @@ def report_run(run_dir, out_dir):
         gap("|Nu particle − Nu twin|",
             abs(number(metrics, "twins", "nominal", "nusselt_particle_minus_twin")),
             abs(number(metrics, "twins", "calibrated", "nusselt_particle_minus_twin")))
-        doc.table(["gap", "nominal twin", "calibrated twin (walls at the fluid's wall T)",
+        doc.table(["gap", "nominal twin", f"calibrated twin ({calibration_text(metrics)})",
                    "fraction explained = 1 − calibrated / nominal"], gap_rows)
         differences = parameter_differences(summaries["nominal"], summaries["calibrated"])
         if differences:
@@ -847,10 +853,10 @@ def floor_text(doc, series, metrics, twins, fields, particle, summaries):
         n_floor = number(metrics, "twins", "nominal", "temperature", "excess_over_noise")
         c_floor = number(metrics, "twins", "calibrated", "temperature", "excess_over_noise")
         if finite(n_floor) and finite(c_floor) and n_floor > 0:
-            causes.append(f"With the walls at the fluid's wall temperatures (calibrated twin) the "
+            causes.append(f"With {calibration_text(metrics)} (calibrated twin) the "
                           f"temperature floor goes from {fmt(n_floor, 3)} to {fmt(c_floor, 3)} "
                           f"({fmt_percent(c_floor / n_floor)} of the nominal twin's): the rest of "
-                          "the calibrated twin's floor is what the wall temperatures do not explain.")
+                          "the calibrated twin's floor is what that wall condition does not explain.")
     for twin in twins:
         rel = number(metrics, "twins", twin, "nusselt_relative_difference")
         if finite(rel):

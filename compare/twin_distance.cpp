@@ -171,42 +171,21 @@ Distance finish(double sum_d2, double sum_sigma2, double sum_d2_sigma2, long n, 
 }
 } // namespace
 
-Distance temperature_distance(const BinnedState& p, const BinnedState& c,
-                              const std::vector<char>& interior, double scale) {
+namespace {
+// The distance of fields with `components` values per bin (1: scalar, dim: vector, compared by
+// the norm of the difference); `a_se` may be empty.
+Distance field_distance(const io::Grid& grid, const std::vector<double>& a,
+                        const std::vector<double>& a_se, const std::vector<double>& c,
+                        int components, const std::vector<char>& interior, double scale) {
   double s_d2 = 0, s_sig2 = 0, s_d2sig2 = 0, max = -1, max_se = 0;
   std::array<double, 3> at{{0, 0, 0}};
   long n = 0;
-  for (long b = 0; b < p.grid.cell_count(); ++b) {
-    if (!interior[b]) continue;
-    const double d = (p.temperature[b] - c.temperature[b]) / scale;
-    const double sig = p.temperature_se.empty() ? 0 : p.temperature_se[b] / scale;
-    s_d2 += d * d;
-    s_sig2 += sig * sig;
-    s_d2sig2 += d * d * sig * sig;
-    if (std::fabs(d) > max) {
-      max = std::fabs(d);
-      max_se = sig;
-      const auto i = bin_index(p.grid, b);
-      for (int k = 0; k < 3; ++k) at[k] = centre(p.grid, k, i[k]);
-    }
-    ++n;
-  }
-  return finish(s_d2, s_sig2, s_d2sig2, n, std::max(max, 0.0), max_se, at);
-}
-
-Distance velocity_distance(const BinnedState& p, const BinnedState& c,
-                           const std::vector<char>& interior, double scale) {
-  if (!p.has_velocity() || !c.has_velocity()) return {};
-  const int dim = p.grid.dim;
-  double s_d2 = 0, s_sig2 = 0, s_d2sig2 = 0, max = -1, max_se = 0;
-  std::array<double, 3> at{{0, 0, 0}};
-  long n = 0;
-  for (long b = 0; b < p.grid.cell_count(); ++b) {
+  for (long b = 0; b < grid.cell_count(); ++b) {
     if (!interior[b]) continue;
     double d2 = 0, sig2 = 0, d2sig2 = 0;
-    for (int k = 0; k < dim; ++k) {
-      const double d = (p.velocity[b * dim + k] - c.velocity[b * dim + k]) / scale;
-      const double sig = p.velocity_se.empty() ? 0 : p.velocity_se[b * dim + k] / scale;
+    for (int k = 0; k < components; ++k) {
+      const double d = (a[b * components + k] - c[b * components + k]) / scale;
+      const double sig = a_se.empty() ? 0 : a_se[b * components + k] / scale;
       d2 += d * d;
       sig2 += sig * sig;
       d2sig2 += d * d * sig * sig;
@@ -218,12 +197,24 @@ Distance velocity_distance(const BinnedState& p, const BinnedState& c,
       max = std::sqrt(d2);
       // error of |a - c| along its own direction
       max_se = d2 > 0 ? std::sqrt(d2sig2 / d2) : std::sqrt(sig2);
-      const auto i = bin_index(p.grid, b);
-      for (int k = 0; k < 3; ++k) at[k] = centre(p.grid, k, i[k]);
+      const auto i = bin_index(grid, b);
+      for (int k = 0; k < 3; ++k) at[k] = centre(grid, k, i[k]);
     }
     ++n;
   }
   return finish(s_d2, s_sig2, s_d2sig2, n, std::max(max, 0.0), max_se, at);
+}
+} // namespace
+
+Distance temperature_distance(const BinnedState& p, const BinnedState& c,
+                              const std::vector<char>& interior, double scale) {
+  return field_distance(p.grid, p.temperature, p.temperature_se, c.temperature, 1, interior, scale);
+}
+
+Distance velocity_distance(const BinnedState& p, const BinnedState& c,
+                           const std::vector<char>& interior, double scale) {
+  if (!p.has_velocity() || !c.has_velocity()) return {};
+  return field_distance(p.grid, p.velocity, p.velocity_se, c.velocity, p.grid.dim, interior, scale);
 }
 
 WallFluidTemperature wall_fluid_temperature(const BinnedState& p, const std::vector<char>& interior,

@@ -497,16 +497,8 @@ template <int dim> void BoussinesqProblem<dim>::postprocess(ContinuumResult& res
 
 template <int dim>
 TimeSample BoussinesqProblem<dim>::sample(int step, int newton_iterations) const {
-  const detail::FlowIntegrals integrals =
-      detail::flow_integrals(dof_handler_, solution_, prm_, numbers_);
-  TimeSample s;
-  s.step = step;
-  s.time = step * dt_;
-  s.nusselt = integrals.nusselt;
-  s.kinetic_energy = integrals.kinetic_energy;
-  s.max_speed = integrals.max_speed;
-  s.newton_iterations = newton_iterations;
-  return s;
+  return detail::time_sample(detail::flow_integrals(dof_handler_, solution_, prm_, numbers_), step,
+                             dt_, newton_iterations);
 }
 
 template <int dim>

@@ -233,16 +233,9 @@ void DistributedBoussinesqProblem<dim>::march_in_time(const std::filesystem::pat
 template <int dim>
 TimeSample DistributedBoussinesqProblem<dim>::sample(int step, int newton_iterations) const {
   // Reads evaluation_point_ (the ghosted copy of the solution).
-  const detail::FlowIntegrals integrals =
-      detail::flow_integrals(dof_handler_, evaluation_point_, prm_, numbers_);
-  TimeSample s;
-  s.step = step;
-  s.time = step * dt_;
-  s.nusselt = integrals.nusselt;
-  s.kinetic_energy = integrals.kinetic_energy;
-  s.max_speed = integrals.max_speed;
-  s.newton_iterations = newton_iterations;
-  return s;
+  return detail::time_sample(
+      detail::flow_integrals(dof_handler_, evaluation_point_, prm_, numbers_), step, dt_,
+      newton_iterations);
 }
 
 template <int dim> void DistributedBoussinesqProblem<dim>::setup_dofs() {

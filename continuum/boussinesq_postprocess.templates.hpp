@@ -29,6 +29,19 @@ struct FlowIntegrals {
   double temperature_mean = 0; // (1/|Omega|) int T dV
 };
 
+// The time-series row of step `step` (time step dt) from its flow integrals.
+inline TimeSample time_sample(const FlowIntegrals& integrals, int step, double dt,
+                              int newton_iterations) {
+  TimeSample s;
+  s.step = step;
+  s.time = step * dt;
+  s.nusselt = integrals.nusselt;
+  s.kinetic_energy = integrals.kinetic_energy;
+  s.max_speed = integrals.max_speed;
+  s.newton_iterations = newton_iterations;
+  return s;
+}
+
 template <int dim> MPI_Comm communicator(const dealii::DoFHandler<dim>& dofs) {
   return dofs.get_triangulation().get_communicator();
 }

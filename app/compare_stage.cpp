@@ -320,7 +320,14 @@ int compare_stage(const CommandLine& cl) {
       j["nusselt_particle_minus_twin"] = q_particle / q0 - q / q0;
       j["nusselt_relative_difference"] = q_particle / q - 1;
       table["nusselt_" + t.name] = q / q0;
-      std::cout << "compare: " << t.name << " twin: Nu = " << q / q0 << " (own dT: " << nu_own
+      // The twin's own error: its heat flux's response to the measured coefficients' errors.
+      const double rel =
+          number(t.summary, {"coefficient_uncertainty", "heat_flux_relative_stderr"});
+      j["nusselt_stderr_from_coefficients"] = rel * q / q0;
+      table["nusselt_" + t.name + "_stderr"] = rel * q / q0;
+      std::cout << "compare: " << t.name << " twin: Nu = " << q / q0;
+      if (std::isfinite(rel)) std::cout << " +- " << rel * q / q0 << " (coefficients' errors)";
+      std::cout << " (own dT: " << nu_own
                 << "); particle / twin heat flux - 1 = " << q_particle / q - 1 << "\n";
     }
     j["rayleigh"] = number(t.summary, {"dimensionless", "rayleigh"});

@@ -17,8 +17,14 @@ namespace twinflow::app {
 namespace {
 // The transport stage's coefficients at the reference temperature feed the twin: measured ones
 // where asked for and present, else the estimate with the measured g(r).
-void coefficients_from_transport(const std::filesystem::path& run_dir, const std::string& source,
-                                 continuum::ContinuumParameters& p) {
+// The measured coefficients' standard errors (NaN for estimates): the twin's own uncertainty.
+struct CoefficientErrors {
+  double conductivity = std::nan(""), viscosity = std::nan("");
+};
+
+CoefficientErrors coefficients_from_transport(const std::filesystem::path& run_dir,
+                                              const std::string& source,
+                                              continuum::ContinuumParameters& p) {
   const auto file = run_dir / "transport" / "summary.json";
   if (!std::filesystem::exists(file))
     throw io::InputError(file.string() +
@@ -37,10 +43,43 @@ void coefficients_from_transport(const std::filesystem::path& run_dir, const std
               << ", from " << file.string() << ")\n";
     return v;
   };
-  p.viscosity.value_at_reference = pick("viscosity", "viscosity_poiseuille", "eta");
-  p.conductivity.value_at_reference = pick("conductivity", "conductivity_relaxation", "kappa");
+  p.viscosity.value_at_reference = pick("viscosity", "viscosity", "eta");
+  p.conductivity.value_at_reference = pick("conductivity", "conductivity", "kappa");
   p.heat_capacity = pick("heat_capacity_p_per_particle", "", "c_p");
   p.thermal_expansion = pick("thermal_expansion", "thermal_expansion", "alpha");
+  CoefficientErrors errors;
+  const auto stderr_of = [&](const char* key) {
+    const io::Json* m = measured ? measured->find(key) : nullptr;
+    return source == "measured" && m && m->is_number() ? m->number() : std::nan("");
+  };
+  errors.conductivity = stderr_of("conductivity_stderr");
+  errors.viscosity = stderr_of("viscosity_stderr");
+  return errors;
+}
+
+// The twin's heat flux as its coefficients move by their standard errors, one at a time (two
+// more solves, no files): the part of a particle-twin difference the coefficients can explain.
+io::Json coefficient_uncertainty(const continuum::ContinuumParameters& p,
+                                 const CoefficientErrors& errors, double heat_flux) {
+  io::Json j = io::Json::object();
+  double variance = 0;
+  const auto vary = [&](const char* name, double stderr_, auto member) {
+    if (!std::isfinite(stderr_) || stderr_ <= 0) return;
+    continuum::ContinuumParameters shifted = p;
+    (shifted.*member).value_at_reference += stderr_;
+    const continuum::ContinuumResult r = continuum::run(shifted, "");
+    const double change = r.nusselt * r.numbers.conduction_flux / heat_flux - 1;
+    io::Json c = io::Json::object();
+    c["value"] = (p.*member).value_at_reference;
+    c["stderr"] = stderr_;
+    c["heat_flux_relative_change"] = change; // linear response to +1 stderr
+    j[name] = c;
+    variance += change * change;
+  };
+  vary("conductivity", errors.conductivity, &continuum::ContinuumParameters::conductivity);
+  vary("viscosity", errors.viscosity, &continuum::ContinuumParameters::viscosity);
+  j["heat_flux_relative_stderr"] = std::sqrt(variance); // the two errors taken as independent
+  return j;
 }
 } // namespace
 
@@ -58,8 +97,9 @@ int continuum_twin(const CommandLine& cl, const std::string& stage_name) {
                      : std::filesystem::path(cl.out);
   const io::StageDirectory stage(run_dir, stage_name, cl.force);
   continuum::ContinuumParameters p = parameters.continuum;
+  CoefficientErrors coefficient_errors;
   if (c.registry().get("Continuum/Coefficients/Source") == "transport")
-    coefficients_from_transport(run_dir, parameters.transport.source, p);
+    coefficient_errors = coefficients_from_transport(run_dir, parameters.transport.source, p);
   // Under mpirun only the distributed (iterative) path shares the work; rank 0 writes the
   // summary and tables, the HDF5 fields are written collectively.
   const unsigned n_processes = dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD);
@@ -104,6 +144,16 @@ int continuum_twin(const CommandLine& cl, const std::string& stage_name) {
   summary["continuum_parameters"] = continuum::to_json(p);
   io::Json measured = continuum::to_json(result);
   for (const auto& [key, value] : measured.items()) summary[key] = value;
+  // (one process only: the shifted solves run on the root alone)
+  if (result.model == "boussinesq" && !p.transient() && n_processes == 1 &&
+      (std::isfinite(coefficient_errors.conductivity) ||
+       std::isfinite(coefficient_errors.viscosity))) {
+    summary["coefficient_uncertainty"] = coefficient_uncertainty(
+        p, coefficient_errors, result.nusselt * result.numbers.conduction_flux);
+    std::cout << "continuum: heat flux +- "
+              << 100 * summary["coefficient_uncertainty"]["heat_flux_relative_stderr"].number()
+              << "% from the measured coefficients' errors\n";
+  }
   summary["files"] = io::Json::array();
   for (const auto& f : files) summary["files"].push_back(f);
   summary["stage_wall_time_s"] =

@@ -48,13 +48,9 @@ StageInputs stage_inputs(const CommandLine& cl, std::initializer_list<const char
   s.inputs["parameters"] = parameters;
   s.inputs["upstream"] = io::Json::array();
   for (const auto& h : upstream_hashes) s.inputs["upstream"].push_back(h);
-  std::uint64_t h = 1469598103934665603ull; // FNV-1a 64
-  for (unsigned char ch : s.inputs.dump()) h = (h ^ ch) * 1099511628211ull;
+  s.hash = io::content_hash(s.inputs.dump());
   const io::Json provenance = io::provenance();
   s.inputs["twinflow_git_revision"] = *provenance.find("twinflow_git_revision");
-  std::ostringstream hex;
-  hex << std::hex << std::setw(16) << std::setfill('0') << h;
-  s.hash = hex.str();
   s.inputs["hash"] = s.hash;
   return s;
 }

@@ -82,8 +82,7 @@ Coefficients coefficients_from(const io::Json& summary, const std::string& sourc
     if (source == "measured" && std::isfinite(measured)) return measured;
     return grid::number_at(summary, std::string("results.estimated_measured_g.") + estimate_key);
   };
-  return {pick("viscosity", "viscosity_poiseuille"),
-          pick("conductivity", "conductivity_relaxation"),
+  return {pick("viscosity", "viscosity"), pick("conductivity", "conductivity"),
           grid::number_at(summary, "results.estimated_measured_g.heat_capacity_p_per_particle"),
           pick("thermal_expansion", "thermal_expansion")};
 }

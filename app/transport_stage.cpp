@@ -1,8 +1,10 @@
 // twinflow transport CASE: the fluid's coefficients at the case's state point, estimated from
 // theory (g = 1 and measured g(r)) and measured by short periodic particle runs, side by side.
 
+#include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <iostream>
 #include <sstream>
@@ -15,6 +17,74 @@
 namespace twinflow::app {
 
 namespace fs = std::filesystem;
+
+namespace {
+// What the transport stage's outputs depend on: the fluid (the Particle section, less the scene's
+// run lengths and walls), the dimension, the state point and the measurement settings; not the
+// scene's box, walls or gravity. Bump kMethod when a measurement changes.
+io::Json measurement_inputs(const Case& c, const particle::ParticleParameters& p,
+                            const TransportParameters& t) {
+  constexpr int kMethod = 2; // 2: kappa and eta from relaxation repeats
+  io::Json j = io::Json::object();
+  const io::Json resolved = c.registry().resolved_json();
+  for (const auto& [path, value] : resolved.items()) {
+    const bool fluid = path.rfind("Particle/", 0) == 0 && path.rfind("Particle/Walls/", 0) != 0 &&
+                       path != "Particle/Steps" && path != "Particle/Equilibration steps" &&
+                       path != "Particle/Initial velocities";
+    if (fluid) j[path] = value;
+  }
+  j["dimension"] = p.dim;
+  j["density"] = p.density;
+  j["temperature"] = p.temperature;
+  j["measure_flows"] = t.measure_flows;
+  j["flow_particles"] = t.flow_particles;
+  j["flow_repeats"] = t.flow_repeats;
+  j["method"] = kMethod;
+  return j;
+}
+
+// Bulk measurements are cached across run directories under the hash of their inputs, so sweeps
+// and reruns do not redo them: $TWINFLOW_CACHE/transport/HASH (default $XDG_CACHE_HOME/twinflow,
+// else ~/.cache/twinflow; TWINFLOW_CACHE=off disables it). Empty: no cache.
+fs::path cache_directory(const std::string& hash) {
+  const char* env = std::getenv("TWINFLOW_CACHE");
+  fs::path root;
+  if (env && *env) {
+    if (std::string(env) == "off") return {};
+    root = env;
+  } else if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg) {
+    root = fs::path(xdg) / "twinflow";
+  } else if (const char* home = std::getenv("HOME"); home && *home) {
+    root = fs::path(home) / ".cache" / "twinflow";
+  } else {
+    return {};
+  }
+  return root / "transport" / hash;
+}
+
+const char* kCachedFiles[] = {"coefficients.csv", "rdf.csv", "summary.json"};
+
+// Copies a cached result into the stage, with this case's name and parameters. False: no entry.
+bool restore_from_cache(const fs::path& entry, const io::StageDirectory& stage, const Case& c,
+                        const std::string& name) {
+  for (const char* f : kCachedFiles)
+    if (!fs::exists(entry / f)) return false;
+  io::Json summary = io::Json::parse(io::read_file(entry / "summary.json"));
+  io::Json cache = io::Json::object();
+  cache["entry"] = entry.string();
+  cache["made_by"] = *summary.find("provenance");
+  summary["cache"] = cache;
+  summary["case"] = name;
+  summary["provenance"] = io::provenance();
+  summary["parameters"] = c.registry().resolved_json();
+  stage.create();
+  io::write_file_atomically(stage.file("coefficients.csv"),
+                            io::read_file(entry / "coefficients.csv"));
+  io::write_file_atomically(stage.file("rdf.csv"), io::read_file(entry / "rdf.csv"));
+  io::write_file_atomically(stage.file("summary.json"), summary.dump());
+  return true;
+}
+} // namespace
 
 int transport_stage(const CommandLine& cl) {
   Case c;
@@ -43,6 +113,17 @@ int transport_stage(const CommandLine& cl) {
   p.heat_slabs.clear();
   const double edge = std::max(3 * p.largest_cutoff(), std::pow(4000 / p.density, 1.0 / p.dim));
   p.box = {{edge, edge, edge}};
+
+  const io::Json key_inputs = measurement_inputs(c, p, cp.transport);
+  const std::string key = io::content_hash(key_inputs.dump());
+  const fs::path cache = cache_directory(key);
+  if (!cache.empty() && restore_from_cache(cache, stage, c, cp.name)) {
+    std::cout << io::read_file(stage.file("coefficients.csv"))
+              << "transport: measurements reused from the cache (" << cache.string()
+              << "; TWINFLOW_CACHE=off recomputes)\noutputs: "
+              << fs::absolute(stage.path()).string() << "\n";
+    return 0;
+  }
   stage.create();
 
   const double nan = std::nan("");
@@ -53,17 +134,33 @@ int transport_stage(const CommandLine& cl) {
   const transport::Estimates with_g =
       transport::estimate(p, p.temperature, transport::PairDistribution::from_csv(m.rdf_csv));
   particle::Estimate kappa{nan, nan}, eta{nan, nan};
+  transport::RelaxationCoefficients flow;
   if (cp.transport.measure_flows) {
     // c_p per particle: the ideal fluid's for the ideal gas (estimate); with conservative forces
     // the same is an approximation (c_p - c_v from the measured equation of state is not yet
     // used), stated in the summary.
-    // Their own, smaller box: both runs last a few relaxation times of the box, ~ L^2.
+    // Their own, smaller box: the runs last a few relaxation times of the box, ~ L^2.
     particle::ParticleParameters flows = p;
     const double flow_edge = std::max(
         3 * p.largest_cutoff(), std::pow(cp.transport.flow_particles / p.density, 1.0 / p.dim));
     flows.box = {{flow_edge, flow_edge, flow_edge}};
-    kappa = transport::measure_conductivity_relaxation(flows, with_g, with_g.heat_capacity_p);
-    eta = transport::measure_viscosity_poiseuille(flows, with_g);
+    const int repeats = cp.transport.flow_repeats;
+    const auto flow_start = std::chrono::steady_clock::now();
+    flow = transport::measure_relaxation(
+        flows, with_g, with_g.heat_capacity_p, repeats,
+        [&](int done, const transport::RelaxationCoefficients& so_far) {
+          const double spent =
+              std::chrono::duration<double>(std::chrono::steady_clock::now() - flow_start).count();
+          const auto& run_k = so_far.conductivity.repeats.back();
+          const auto& run_e = so_far.viscosity.repeats.back();
+          std::printf("transport: relaxation run %d/%d (N = %ld, %ld steps): kappa %.4g +- %.2g, "
+                      "eta %.4g +- %.2g; %.0f s, ETA %.0f s\n",
+                      done, repeats, so_far.particles, so_far.steps, run_k.mean, run_k.stderr_,
+                      run_e.mean, run_e.stderr_, spent, spent / done * (repeats - done));
+          std::fflush(stdout);
+        });
+    kappa = flow.conductivity.value;
+    eta = flow.viscosity.value;
   }
 
   std::ostringstream table;
@@ -103,18 +200,34 @@ int transport_stage(const CommandLine& cl) {
   summary["results"]["estimated_measured_g"] = with_g.json();
   summary["results"]["measured"] = m.json();
   if (cp.transport.measure_flows) {
-    summary["results"]["measured"]["conductivity_relaxation"] = kappa.mean;
-    summary["results"]["measured"]["conductivity_relaxation_stderr"] = kappa.stderr_;
+    // The continuum twin reads "conductivity" and "viscosity" (app/continuum_stage.cpp).
+    summary["results"]["measured"]["conductivity"] = kappa.mean;
+    summary["results"]["measured"]["conductivity_stderr"] = kappa.stderr_;
+    summary["results"]["measured"]["viscosity"] = eta.mean;
+    summary["results"]["measured"]["viscosity_stderr"] = eta.stderr_;
+    io::Json method = io::Json::object();
+    method["method"] = "heat and transverse-momentum modes decaying in a periodic box (seed 004)";
+    method["particles"] = flow.particles;
+    method["steps"] = flow.steps;
+    method["conductivity"] = flow.conductivity.json();
+    method["viscosity"] = flow.viscosity.json();
+    summary["results"]["measured"]["relaxation"] = method;
     std::ostringstream note; // the ideal fluid's c_p = c_v + k + (d/2 + 1) k (000:(3.21))
     note << "kappa = rho c_p chi with the ideal fluid's c_p = " << with_g.heat_capacity_p
-         << " k per particle; the relaxation and Poiseuille boxes hold ~"
-         << cp.transport.flow_particles
-         << " particles (x2): in 2D their coefficients depend on the box (long-time tails)";
+         << " k per particle; the relaxation box holds ~" << cp.transport.flow_particles
+         << " particles (x2): in 2D its coefficients depend on the box (long-time tails). Errors: "
+            "the larger of the repeats' spread and the fits' own errors, over sqrt(repeats)";
     summary["results"]["measured"]["conductivity_note"] = note.str();
-    summary["results"]["measured"]["viscosity_poiseuille"] = eta.mean;
-    summary["results"]["measured"]["viscosity_poiseuille_stderr"] = eta.stderr_;
   }
+  summary["measurement_key"] = key;
   io::write_file_atomically(stage.file("summary.json"), summary.dump());
+  if (!cache.empty()) {
+    // Written last: an interrupted copy leaves no summary.json, so no entry.
+    fs::create_directories(cache);
+    io::write_file_atomically(cache / "inputs.json", key_inputs.dump());
+    for (const char* f : kCachedFiles)
+      io::write_file_atomically(cache / f, io::read_file(stage.file(f)));
+  }
   std::cout << table.str() << "outputs: " << fs::absolute(stage.path()).string() << "\n";
   return 0;
 }

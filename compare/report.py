@@ -595,10 +595,18 @@ def within_noise_sentence(name, distance):
 def nusselt_sentence(twin, twin_metrics, particle):
     difference = number(twin_metrics, "nusselt_particle_minus_twin")
     se = number(particle, "nusselt_stderr")
+    twin_se = number(twin_metrics, "nusselt_stderr_from_coefficients")
     if not finite(difference):
         return None
     text = (f"Nusselt number, {TWIN_LABEL[twin]}: particle − twin = {fmt(difference)}"
             f" ({fmt_percent(number(twin_metrics, 'nusselt_relative_difference'))} of the twin's)")
+    if finite(twin_se) and finite(se):
+        # The twin's error: its heat flux's response to the measured coefficients' errors.
+        both = math.hypot(se, twin_se)
+        over = abs(difference) / both
+        verdict = "within the errors" if over <= WITHIN_NOISE_STDERRS else "not within the errors"
+        return text + (f", {fmt(over, 3)} combined standard errors (particle {fmt(se, 2)}, twin "
+                       f"{fmt(twin_se, 2)} from its measured coefficients) — {verdict}.")
     if finite(se) and se > 0:
         over = abs(difference) / se
         verdict = "within noise" if over <= WITHIN_NOISE_STDERRS else "not within noise"
@@ -693,8 +701,11 @@ def report_run(run_dir, out_dir):
                  for t in twins])
         row("Nu particle ± stderr",
             [fmt_pm(number(particle, "nusselt"), number(particle, "nusselt_stderr"))] * len(twins))
-        row("Nu twin (heat flux / the nominal conduction flux, as the particle's)",
-            [fmt(number(metrics, "twins", t, "nusselt")) for t in twins])
+        row("Nu twin ± stderr from its measured coefficients (heat flux / the nominal "
+            "conduction flux, as the particle's)",
+            [fmt_pm(number(metrics, "twins", t, "nusselt"),
+                    number(metrics, "twins", t, "nusselt_stderr_from_coefficients"))
+             for t in twins])
         row("Nu twin (its own dT)", [fmt(number(metrics, "twins", t, "nusselt_own")) for t in twins])
         row("Nu particle − twin",
             [fmt(number(metrics, "twins", t, "nusselt_particle_minus_twin")) for t in twins])
@@ -714,7 +725,8 @@ def report_run(run_dir, out_dir):
         doc.paragraph(f"Within noise? A difference counts as within noise when the L2 exceeds the "
                       f"noise by at most {fmt(WITHIN_NOISE_STDERRS, 2)} of its standard errors (for "
                       f"Nu: when |Nu particle − Nu twin| is at most {fmt(WITHIN_NOISE_STDERRS, 2)} "
-                      "particle standard errors).")
+                      "standard errors: the particle's, combined with the twin's where its "
+                      "coefficients were measured).")
         doc.bullets(sentences)
 
     if finite(number(particle, "nusselt")):

@@ -1,6 +1,8 @@
 #include "io/files.hpp"
 
+#include <cstdint>
 #include <fstream>
+#include <iomanip>
 #include <sstream>
 
 #include "io/version.hpp"
@@ -41,6 +43,14 @@ StageDirectory::StageDirectory(const fs::path& run_dir, const std::string& stage
 
 void StageDirectory::create() const {
   fs::create_directories(path_);
+}
+
+std::string content_hash(const std::string& text) {
+  std::uint64_t h = 1469598103934665603ull; // FNV-1a 64
+  for (const unsigned char ch : text) h = (h ^ ch) * 1099511628211ull;
+  std::ostringstream hex;
+  hex << std::hex << std::setw(16) << std::setfill('0') << h;
+  return hex.str();
 }
 
 Json provenance() {

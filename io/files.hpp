@@ -35,4 +35,7 @@ private:
 // Fields every stage's summary.json carries: versions, git revision.
 Json provenance();
 
+// FNV-1a 64 of `text` as 16 hex digits: names results by their inputs (stage reuse, caches).
+std::string content_hash(const std::string& text);
+
 } // namespace twinflow::io

@@ -59,6 +59,7 @@ struct ParticleParameters {
 
   double temperature = 1.0;            // initial temperature; the fixed T of isothermal DPD
   double temperature_perturbation = 0; // initial theta = T (1 + A sin(2 pi x / Lx))
+  double shear_perturbation = 0;       // initial v_y += U sqrt(k T / m) sin(2 pi x / Lx)
   double poiseuille_force = 0;         // +F along x where y < Ly/2, -F above (reverse Poiseuille)
   InitialVelocities initial_velocities = InitialVelocities::Maxwell;
   InitialInternalEnergy initial_internal_energy = InitialInternalEnergy::Equilibrium;

@@ -46,6 +46,9 @@ Simulation<M>::Simulation(const M& model, const ParticleParameters& p)
       // Gaussian -> uniform through the normal CDF of g1: exact and cheap enough at start-up.
       state_.x[d][i] = p.box[d] * 0.5 * std::erfc(-g1 / std::sqrt(2.0));
       state_.v[d][i] = p.initial_velocities == InitialVelocities::Maxwell ? vscale * g2 : 0.0;
+      if (d == 1 && p.shear_perturbation != 0) // the shear relaxation scene's initial mode
+        state_.v[1][i] +=
+            p.shear_perturbation * vscale * std::sin(2 * M_PI * state_.x[0][i] / p.box[0]);
       mean[d] += state_.v[d][i] / n;
     }
   }

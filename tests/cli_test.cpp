@@ -216,3 +216,34 @@ TEST(Cli, RunComparesTheTwinsAndReusesUnchangedStages) {
   EXPECT_EQ(compare.code, 0) << compare.output;
   EXPECT_EQ(run("compare " + (dir / "no-such-run").string()).code, 2);
 }
+
+// The transport stage's measurements are cached across run directories by what they depend on:
+// another case directory with a different gravity and box reuses them (byte-identical table); a
+// different fluid does not.
+TEST(Cli, TransportReusesCachedMeasurementsAcrossRunDirectories) {
+  const std::string base = std::string(TWINFLOW_SOURCE_DIR) +
+                           "/cases/heated_cavity_2d.prm --threads 1"
+                           " --set 'Transport/Measure kappa and eta=false'";
+  const fs::path cache = fresh_dir("cache"), a = fresh_dir("cache_a"), b = fresh_dir("cache_b"),
+                 c = fresh_dir("cache_c");
+  const Result first =
+      twinflow::testing::run_twinflow("transport " + base + " --out " + a.string(), cache.string());
+  ASSERT_EQ(first.code, 0) << first.output;
+  EXPECT_EQ(first.output.find("from the cache"), std::string::npos) << first.output;
+  const Result second = twinflow::testing::run_twinflow(
+      "transport " + base + " --set 'Scene/Gravity=0, -0.05' --set 'Scene/Box size=30, 20' --out " +
+          b.string(),
+      cache.string());
+  ASSERT_EQ(second.code, 0) << second.output;
+  EXPECT_NE(second.output.find("reused from the cache"), std::string::npos) << second.output;
+  EXPECT_EQ(twinflow::io::read_file(a / "transport" / "coefficients.csv"),
+            twinflow::io::read_file(b / "transport" / "coefficients.csv"));
+  const auto summary =
+      twinflow::io::Json::parse(twinflow::io::read_file(b / "transport" / "summary.json"));
+  EXPECT_NE(summary.find("cache"), nullptr);
+  const Result other = twinflow::testing::run_twinflow(
+      "transport " + base + " --set 'Particle/Dissipation/sigma=2' --out " + c.string(),
+      cache.string());
+  ASSERT_EQ(other.code, 0) << other.output;
+  EXPECT_EQ(other.output.find("from the cache"), std::string::npos) << other.output;
+}

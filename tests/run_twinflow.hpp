@@ -14,8 +14,10 @@ struct Result {
   std::string output;
 };
 
-inline Result run_twinflow(const std::string& args) {
-  const std::string cmd = std::string(TWINFLOW_BINARY) + " " + args + " 2>&1";
+// The transport cache is off unless a test names one (tests measure, they do not reuse).
+inline Result run_twinflow(const std::string& args, const std::string& cache = "off") {
+  const std::string cmd =
+      "TWINFLOW_CACHE='" + cache + "' " + std::string(TWINFLOW_BINARY) + " " + args + " 2>&1";
   FILE* pipe = popen(cmd.c_str(), "r");
   std::string out;
   std::array<char, 4096> buf{};

@@ -1,6 +1,9 @@
 #pragma once
 // Coefficients measured by short periodic particle runs at the case's state point.
 
+#include <functional>
+#include <vector>
+
 #include "io/json.hpp"
 #include "particle/parameters.hpp"
 #include "particle/run.hpp"
@@ -21,16 +24,32 @@ struct Measured {
 // run. Five runs: the state point, T (1 +- h), rho (1 +- h).
 Measured measure(const particle::ParticleParameters& p, long steps, double h = 0.05);
 
-// kappa by seed 004's relaxation method: a sine heat mode along x in a periodic box twice as long
-// as `p`'s, run for about three decay times of the estimate; kappa = rho c_p chi with c_p per
-// particle given (the ideal fluid's, or from the measured equation of state).
-particle::Estimate measure_conductivity_relaxation(particle::ParticleParameters p,
-                                                   const Estimates& estimate, double cp);
-// eta by reverse Poiseuille flow: opposite body forces in the halves of a periodic box twice as
-// tall as `p`'s, sized for a peak speed ~0.1 of the thermal speed, run for five decay times of
-// the slowest start-up mode (half^2 / (pi^2 nu)) to steady state, and as long again sampled.
-particle::Estimate measure_viscosity_poiseuille(particle::ParticleParameters p,
-                                                const Estimates& estimate);
+// A coefficient measured by independent repeats (different seeds): the mean, and the standard
+// error of that mean from their spread, or from the fits' own errors when those are larger (a
+// spread of few repeats can come out small by chance).
+struct Repeated {
+  particle::Estimate value;
+  std::vector<particle::Estimate> repeats;  // each run's fit
+  double spread_stderr = 0, fit_stderr = 0; // sd / sqrt(M), and the fits' rms error / sqrt(M)
+  io::Json json() const;
+};
+
+Repeated summarise_repeats(const std::vector<particle::Estimate>& runs);
+
+struct RelaxationCoefficients {
+  Repeated conductivity, viscosity;
+  long particles = 0, steps = 0; // of each run
+};
+
+// kappa and eta by seed 004's relaxation method: a sine heat mode and a sine transverse
+// momentum mode along x in a periodic box twice as long as `p`'s, run for about three decay
+// times of the slower mode's estimate; kappa = rho c_p chi with c_p per particle given (the ideal
+// fluid's, or from the measured equation of state), eta = rho m nu. `repeats` runs with
+// different seeds; `report` is told after each.
+RelaxationCoefficients
+measure_relaxation(particle::ParticleParameters p, const Estimates& estimate, double cp,
+                   int repeats,
+                   const std::function<void(int done, const RelaxationCoefficients&)>& report = {});
 
 // D and its error from an MSD table (correlations.csv): least squares over the second half.
 particle::Estimate diffusion_from_msd(const std::string& correlations_csv, int dim);

@@ -51,6 +51,7 @@ CaseParameters Case::resolve(const std::string& filename) const {
   c.transport.measure_flows = registry_.get_bool("Transport/Measure kappa and eta");
   c.transport.temperature = registry_.get_double("Transport/Temperature");
   c.transport.flow_particles = registry_.get_double("Transport/Flow particles");
+  c.transport.flow_repeats = static_cast<int>(registry_.get_integer("Transport/Flow repeats"));
   c.compare.wall_layer = registry_.get_double("Compare/Wall layer");
   c.compare.calibration = registry_.get("Compare/Calibration");
   c.compare.rayleigh_control = registry_.get("Compare/Rayleigh control");
@@ -74,11 +75,15 @@ void declare_transport_and_compare(Registry& r) {
             "particle fluid's measured mean temperature unless the case or --set gives one.");
   r.declare("Transport/Flow particles", "4000", Double(100),
             "Particles in the square (cubic) base box of the kappa and eta runs, >= 100; the "
-            "relaxation run doubles it along x, the Poiseuille run along y. Their length grows "
-            "as the box edge squared: 1000 is ~16x faster than 4000 in 2D.");
+            "relaxation runs double it along x. Their length grows as the box edge squared: 1000 "
+            "is ~16x faster than 4000 in 2D.");
+  r.declare("Transport/Flow repeats", "4", Integer(1, 100),
+            "Independent relaxation runs (different seeds) for kappa and eta, 1-100; the error "
+            "stated is the larger of their spread and their fits' errors, over sqrt(repeats).");
   r.declare("Transport/Measure kappa and eta", "false", Bool(),
-            "Also measure kappa by thermal relaxation and eta by reverse Poiseuille flow (two "
-            "particle runs of several relaxation times each: minutes at seed 002's state point).");
+            "Also measure kappa and eta from a heat mode and a transverse momentum mode decaying "
+            "in a periodic box (seed 004's relaxation method; Transport/Flow repeats runs of "
+            "three decay times each: minutes at seed 002's state point).");
   r.declare("Compare/Calibration", "kapitza", Selection("kapitza|wall temperatures"),
             "The calibrated twin's thermal walls: kapitza: the nominal wall temperatures with a "
             "Kapitza (Robin) conductance h_K = q / jump per wall, from the particle wall's heat "

@@ -32,6 +32,7 @@ struct SceneParameters {
   double density = 3.0;
   double temperature = 1.0;
   double temperature_perturbation = 0; // relative amplitude of sin(2 pi x / Lx) at the start
+  double shear_perturbation = 0;       // v_y amplitude of sin(2 pi x / Lx), in sqrt(k T / m)
   double poiseuille_force = 0;         // reverse Poiseuille: +F x-hat for y < Ly/2, -F above
   std::array<double, 3> gravity{{0, 0, 0}};
   std::array<DirectionBoundary, 3> boundary;
@@ -42,9 +43,10 @@ struct SceneParameters {
 
 struct TransportParameters {
   std::string source = "estimated"; // estimated | measured
-  bool measure_flows = false;       // also kappa by relaxation and eta by reverse Poiseuille
+  bool measure_flows = false;       // also kappa and eta by the relaxation of sine modes
   double temperature = 0;           // state point; 0: the walls' mean, else Scene/Temperature
   double flow_particles = 4000;     // particles of the square/cubic base box of the flow runs
+  int flow_repeats = 4;             // independent relaxation runs (their spread is the error)
 };
 
 // Bounds of the stability map (twinflow stability).

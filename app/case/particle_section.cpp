@@ -109,6 +109,7 @@ ParticleParameters resolve_particle(const Registry& r, const SceneParameters& sc
   p.density = scene.density;
   p.temperature = scene.temperature;
   p.temperature_perturbation = scene.temperature_perturbation;
+  p.shear_perturbation = scene.shear_perturbation;
   p.poiseuille_force = scene.poiseuille_force;
   const std::string s = "Particle/";
   const std::string integrator = r.get(s + "Integrator");
@@ -185,6 +186,8 @@ ParticleParameters resolve_particle(const Registry& r, const SceneParameters& sc
                 (p.integrator != Integrator::Euler && p.dim >= 2 && !p.walls[1].present),
             "Scene/Reverse Poiseuille force",
             "0 with euler or walls along y (it needs a periodic y and ec-verlet or shardlow)");
+  r.require(p.shear_perturbation == 0 || (p.dim >= 2 && !p.walls[0].present && !p.walls[1].present),
+            "Scene/Shear perturbation", "0 unless the scene is 2D or 3D with periodic x and y");
   if (p.has_walls())
     r.require(p.integrator == Integrator::Shardlow, s + "Integrator",
               "shardlow in scenes with walls (walls in ec-verlet and euler are not implemented "

@@ -24,6 +24,11 @@ void declare_scene(Registry& r) {
             "Relative amplitude A of an initial temperature mode T (1 + A sin(2 pi x / Lx)) (the "
             "thermal relaxation scene; its decay gives chi and kappa); 0: uniform.",
             "0 <= A <= 0.9");
+  r.declare("Scene/Shear perturbation", "0", Double(0, 2),
+            "Amplitude U of an initial transverse velocity mode v_y = U sqrt(k T / m) "
+            "sin(2 pi x / Lx), in units of the thermal speed (the relaxation scene; its decay "
+            "gives nu and eta); 0: none. Needs 2D or 3D and a periodic x.",
+            "0 <= U <= 2");
   r.declare("Scene/Reverse Poiseuille force", "0", Double(),
             "Body force F per particle along x, +F where y < Ly/2 and -F above (the reverse "
             "Poiseuille flow that measures the viscosity from the two parabolic halves); 0: none. "
@@ -73,6 +78,7 @@ SceneParameters resolve_scene(const Registry& r) {
   s.temperature = r.get_double("Scene/Temperature");
   r.require(s.temperature > 0, "Scene/Temperature", kPositive);
   s.temperature_perturbation = r.get_double("Scene/Temperature perturbation");
+  s.shear_perturbation = r.get_double("Scene/Shear perturbation");
   s.poiseuille_force = r.get_double("Scene/Reverse Poiseuille force");
   const auto g = r.get_doubles("Scene/Gravity");
   for (std::size_t d = 0; d < g.size(); ++d) s.gravity[d] = g[d];

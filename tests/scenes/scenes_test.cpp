@@ -17,9 +17,10 @@ TEST(Scenes, WallsEquilibriumPressureIsRhoKT) {
   EXPECT_NEAR(t, 1.1, 0.02) << "relaxes towards the walls' temperature";
 }
 
-// The relaxing temperature mode decays; the fit's chi is positive with a finite error, and
-// the decay holds at the smaller box's faster rate.
-TEST(Scenes, ThermalRelaxationFitsADecayRate) {
+// The relaxing heat and transverse momentum modes decay; the fits' chi and nu are positive with
+// finite errors, and the decays hold at the smaller box's faster rates. eta = rho m nu near the
+// reverse-Poiseuille 1.54 of the same fluid (README), loosely: one short run, fit errors only.
+TEST(Scenes, ThermalRelaxationFitsHeatAndShearDecayRates) {
   const auto r = run_case("thermal_relaxation", "--threads 1 --set 'Scene/Box size=10, 5, 5' "
                                                 "--set Particle/Steps=5000");
   const double chi = number(r, "relaxation.chi"), se = number(r, "relaxation.chi_stderr");
@@ -27,6 +28,13 @@ TEST(Scenes, ThermalRelaxationFitsADecayRate) {
   EXPECT_LT(chi, 0.5);
   EXPECT_GT(se, 0);
   EXPECT_LT(se, 0.2 * chi);
+  const double nu = number(r, "shear_relaxation.nu");
+  const double nu_se = number(r, "shear_relaxation.nu_stderr");
+  EXPECT_GT(nu_se, 0);
+  EXPECT_LT(nu_se, 0.3 * nu);
+  EXPECT_NEAR(number(r, "shear_relaxation.viscosity"), 3 * nu, 1e-9 * nu); // rho m nu
+  EXPECT_GT(3 * nu, 0.5 * 1.54);
+  EXPECT_LT(3 * nu, 2.0 * 1.54);
 }
 
 // The continuum twin takes eta, kappa, c_p and alpha from the transport stage's summary when the

@@ -49,6 +49,8 @@ TEST(ScenesValidation, ThermalRelaxationKappa) {
   const auto r = run_case("thermal_relaxation", "");
   const double kappa = number(r, "relaxation.kappa_ideal_cp");
   const double se = number(r, "relaxation.kappa_ideal_cp_stderr");
-  std::cout << "kappa (relaxation) = " << kappa << " +- " << se << "\n";
+  std::cout << "kappa (relaxation) = " << kappa << " +- " << se
+            << "; eta (shear relaxation) = " << number(r, "shear_relaxation.viscosity") << " +- "
+            << number(r, "shear_relaxation.viscosity_stderr") << "\n";
   EXPECT_NEAR(kappa / 150, 1, 0.05);
 }

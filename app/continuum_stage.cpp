@@ -48,12 +48,29 @@ CoefficientErrors coefficients_from_transport(const std::filesystem::path& run_d
   p.heat_capacity = pick("heat_capacity_p_per_particle", "", "c_p");
   p.thermal_expansion = pick("thermal_expansion", "thermal_expansion", "alpha");
   CoefficientErrors errors;
-  const auto stderr_of = [&](const char* key) {
+  const auto measured_number = [&](const char* key) {
     const io::Json* m = measured ? measured->find(key) : nullptr;
     return source == "measured" && m && m->is_number() ? m->number() : std::nan("");
   };
-  errors.conductivity = stderr_of("conductivity_stderr");
-  errors.viscosity = stderr_of("viscosity_stderr");
+  errors.conductivity = measured_number("conductivity_stderr");
+  errors.viscosity = measured_number("viscosity_stderr");
+  // Measured power laws c (T / T_m)^n: rescaled to the twin's reference temperature.
+  const io::Json* state = results.find("state_point");
+  const double t_measured = state ? state->find("temperature")->number() : std::nan("");
+  const auto power_law = [&](continuum::PowerLaw& law, double& error, const char* key,
+                             const char* what) {
+    const double n = measured_number(key);
+    if (!std::isfinite(n) || !std::isfinite(t_measured)) return;
+    const double scale = std::pow(p.reference_temperature / t_measured, n);
+    law.exponent = n;
+    law.value_at_reference *= scale;
+    error *= scale;
+    std::cout << "continuum: " << what << "(T) = " << law.value_at_reference << " (T / "
+              << p.reference_temperature << ")^" << n << " (measured at T = " << t_measured
+              << ")\n";
+  };
+  power_law(p.conductivity, errors.conductivity, "conductivity_exponent", "kappa");
+  power_law(p.viscosity, errors.viscosity, "viscosity_exponent", "eta");
   return errors;
 }
 

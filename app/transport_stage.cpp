@@ -39,6 +39,7 @@ io::Json measurement_inputs(const Case& c, const particle::ParticleParameters& p
   j["measure_flows"] = t.measure_flows;
   j["flow_particles"] = t.flow_particles;
   j["flow_repeats"] = t.flow_repeats;
+  j["temperature_spread"] = t.temperature_spread;
   j["method"] = kMethod;
   return j;
 }
@@ -135,6 +136,12 @@ int transport_stage(const CommandLine& cl) {
       transport::estimate(p, p.temperature, transport::PairDistribution::from_csv(m.rdf_csv));
   particle::Estimate kappa{nan, nan}, eta{nan, nan};
   transport::RelaxationCoefficients flow;
+  // With a temperature spread s, also at T (1 -+ s): kappa(T) and eta(T) as power laws.
+  std::vector<double> temperatures{p.temperature};
+  const double spread = cp.transport.temperature_spread;
+  if (spread > 0)
+    temperatures = {p.temperature * (1 - spread), p.temperature, p.temperature * (1 + spread)};
+  std::vector<transport::RelaxationCoefficients> at_temperature;
   if (cp.transport.measure_flows) {
     // c_p per particle: the ideal fluid's for the ideal gas (estimate); with conservative forces
     // the same is an approximation (c_p - c_v from the measured equation of state is not yet
@@ -145,22 +152,41 @@ int transport_stage(const CommandLine& cl) {
         3 * p.largest_cutoff(), std::pow(cp.transport.flow_particles / p.density, 1.0 / p.dim));
     flows.box = {{flow_edge, flow_edge, flow_edge}};
     const int repeats = cp.transport.flow_repeats;
+    const int total = repeats * static_cast<int>(temperatures.size());
     const auto flow_start = std::chrono::steady_clock::now();
-    flow = transport::measure_relaxation(
-        flows, with_g, with_g.heat_capacity_p, repeats,
-        [&](int done, const transport::RelaxationCoefficients& so_far) {
-          const double spent =
-              std::chrono::duration<double>(std::chrono::steady_clock::now() - flow_start).count();
-          const auto& run_k = so_far.conductivity.repeats.back();
-          const auto& run_e = so_far.viscosity.repeats.back();
-          std::printf("transport: relaxation run %d/%d (N = %ld, %ld steps): kappa %.4g +- %.2g, "
-                      "eta %.4g +- %.2g; %.0f s, ETA %.0f s\n",
-                      done, repeats, so_far.particles, so_far.steps, run_k.mean, run_k.stderr_,
-                      run_e.mean, run_e.stderr_, spent, spent / done * (repeats - done));
-          std::fflush(stdout);
-        });
+    int done_before = 0;
+    for (const double t : temperatures) {
+      flows.temperature = t;
+      const transport::Estimates guess =
+          transport::estimate(flows, t, transport::PairDistribution::from_csv(m.rdf_csv));
+      at_temperature.push_back(transport::measure_relaxation(
+          flows, guess, guess.heat_capacity_p, repeats,
+          [&](int done, const transport::RelaxationCoefficients& so_far) {
+            const double spent =
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - flow_start)
+                    .count();
+            const int all = done_before + done;
+            const auto& run_k = so_far.conductivity.repeats.back();
+            const auto& run_e = so_far.viscosity.repeats.back();
+            std::printf("transport: relaxation at T = %.4g, run %d/%d (N = %ld, %ld steps): kappa "
+                        "%.4g +- %.2g, eta %.4g +- %.2g; %.0f s, ETA %.0f s\n",
+                        t, done, repeats, so_far.particles, so_far.steps, run_k.mean, run_k.stderr_,
+                        run_e.mean, run_e.stderr_, spent, spent / all * (total - all));
+            std::fflush(stdout);
+          }));
+      done_before += repeats;
+    }
+    flow = at_temperature[temperatures.size() / 2];
     kappa = flow.conductivity.value;
     eta = flow.viscosity.value;
+  }
+  transport::PowerLawFit kappa_law, eta_law;
+  if (at_temperature.size() > 1) {
+    std::vector<particle::Estimate> k, e;
+    for (const auto& a : at_temperature)
+      k.push_back(a.conductivity.value), e.push_back(a.viscosity.value);
+    kappa_law = transport::fit_power_law(temperatures, k, p.temperature);
+    eta_law = transport::fit_power_law(temperatures, e, p.temperature);
   }
 
   std::ostringstream table;
@@ -178,6 +204,17 @@ int transport_stage(const CommandLine& cl) {
   row("self_diffusion_D", ideal.diffusion, with_g.diffusion, m.diffusion.mean, m.diffusion.stderr_);
   row("viscosity_eta", ideal.viscosity, with_g.viscosity, eta.mean, eta.stderr_);
   row("conductivity_kappa", ideal.conductivity, with_g.conductivity, kappa.mean, kappa.stderr_);
+  if (at_temperature.size() > 1) {
+    for (std::size_t i = 0; i < temperatures.size(); ++i) {
+      const std::string at = "_at_T_" + std::to_string(temperatures[i]).substr(0, 6);
+      row(("viscosity_eta" + at).c_str(), nan, nan, at_temperature[i].viscosity.value.mean,
+          at_temperature[i].viscosity.value.stderr_);
+      row(("conductivity_kappa" + at).c_str(), nan, nan, at_temperature[i].conductivity.value.mean,
+          at_temperature[i].conductivity.value.stderr_);
+    }
+    row("viscosity_exponent_n_in_T^n", nan, nan, eta_law.exponent, eta_law.exponent_stderr);
+    row("conductivity_exponent_n_in_T^n", nan, nan, kappa_law.exponent, kappa_law.exponent_stderr);
+  }
   row("conductivity_kappa_002_eq22", ideal.conductivity_002_eq22, with_g.conductivity_002_eq22, nan,
       nan);
   row("thermal_expansion_alpha", ideal.expansion, with_g.expansion, m.expansion.mean,
@@ -196,6 +233,8 @@ int transport_stage(const CommandLine& cl) {
   summary["case"] = cp.name;
   summary["provenance"] = io::provenance();
   summary["parameters"] = c.registry().resolved_json();
+  summary["results"]["state_point"]["density"] = p.density;
+  summary["results"]["state_point"]["temperature"] = p.temperature;
   summary["results"]["estimated_g1"] = ideal.json();
   summary["results"]["estimated_measured_g"] = with_g.json();
   summary["results"]["measured"] = m.json();
@@ -212,6 +251,26 @@ int transport_stage(const CommandLine& cl) {
     method["conductivity"] = flow.conductivity.json();
     method["viscosity"] = flow.viscosity.json();
     summary["results"]["measured"]["relaxation"] = method;
+    if (at_temperature.size() > 1) {
+      // The continuum twin reads the exponents (app/continuum_stage.cpp).
+      io::Json law = io::Json::object();
+      law["reference_temperature"] = p.temperature;
+      law["temperatures"] = io::Json::array();
+      law["conductivity"] = io::Json::array();
+      law["viscosity"] = io::Json::array();
+      for (std::size_t i = 0; i < temperatures.size(); ++i) {
+        law["temperatures"].push_back(temperatures[i]);
+        law["conductivity"].push_back(at_temperature[i].conductivity.json());
+        law["viscosity"].push_back(at_temperature[i].viscosity.json());
+      }
+      law["conductivity_chi2_per_dof"] = kappa_law.chi2_per_dof;
+      law["viscosity_chi2_per_dof"] = eta_law.chi2_per_dof;
+      summary["results"]["measured"]["temperature_dependence"] = law;
+      summary["results"]["measured"]["conductivity_exponent"] = kappa_law.exponent;
+      summary["results"]["measured"]["conductivity_exponent_stderr"] = kappa_law.exponent_stderr;
+      summary["results"]["measured"]["viscosity_exponent"] = eta_law.exponent;
+      summary["results"]["measured"]["viscosity_exponent_stderr"] = eta_law.exponent_stderr;
+    }
     std::ostringstream note; // the ideal fluid's c_p = c_v + k + (d/2 + 1) k (000:(3.21))
     note << "kappa = rho c_p chi with the ideal fluid's c_p = " << with_g.heat_capacity_p
          << " k per particle; the relaxation box holds ~" << cp.transport.flow_particles

@@ -127,6 +127,33 @@ io::Json Repeated::json() const {
   return j;
 }
 
+PowerLawFit fit_power_law(const std::vector<double>& temperatures,
+                          const std::vector<Estimate>& values, double reference) {
+  // ln c = ln c_ref + n ln(T / T_ref), weights 1 / (stderr / c)^2.
+  double s = 0, sx = 0, sy = 0, sxx = 0, sxy = 0;
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    const double x = std::log(temperatures[i] / reference), y = std::log(values[i].mean);
+    const double w = std::pow(values[i].mean / values[i].stderr_, 2);
+    s += w, sx += w * x, sy += w * y, sxx += w * x * x, sxy += w * x * y;
+  }
+  const double det = s * sxx - sx * sx;
+  PowerLawFit f;
+  f.exponent = (s * sxy - sx * sy) / det;
+  const double intercept = (sxx * sy - sx * sxy) / det;
+  f.exponent_stderr = std::sqrt(s / det);
+  f.value = std::exp(intercept);
+  f.value_stderr = f.value * std::sqrt(sxx / det);
+  double chi2 = 0;
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    const double x = std::log(temperatures[i] / reference);
+    const double r = (std::log(values[i].mean) - intercept - f.exponent * x) * values[i].mean /
+                     values[i].stderr_;
+    chi2 += r * r;
+  }
+  f.chi2_per_dof = values.size() > 2 ? chi2 / (values.size() - 2) : std::nan("");
+  return f;
+}
+
 RelaxationCoefficients
 measure_relaxation(particle::ParticleParameters p, const Estimates& estimate, double cp,
                    int repeats,

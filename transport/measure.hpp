@@ -51,6 +51,14 @@ measure_relaxation(particle::ParticleParameters p, const Estimates& estimate, do
                    int repeats,
                    const std::function<void(int done, const RelaxationCoefficients&)>& report = {});
 
+// coefficient(T) = value (T / T_ref)^exponent through measured points, weighted least squares in
+// logs; errors from the points' errors (chi2_per_dof says whether they describe the scatter).
+struct PowerLawFit {
+  double value = 0, value_stderr = 0, exponent = 0, exponent_stderr = 0, chi2_per_dof = 0;
+};
+PowerLawFit fit_power_law(const std::vector<double>& temperatures,
+                          const std::vector<particle::Estimate>& values, double reference);
+
 // D and its error from an MSD table (correlations.csv): least squares over the second half.
 particle::Estimate diffusion_from_msd(const std::string& correlations_csv, int dim);
 

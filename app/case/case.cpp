@@ -52,6 +52,7 @@ CaseParameters Case::resolve(const std::string& filename) const {
   c.transport.temperature = registry_.get_double("Transport/Temperature");
   c.transport.flow_particles = registry_.get_double("Transport/Flow particles");
   c.transport.flow_repeats = static_cast<int>(registry_.get_integer("Transport/Flow repeats"));
+  c.transport.temperature_spread = registry_.get_double("Transport/Temperature spread");
   c.compare.wall_layer = registry_.get_double("Compare/Wall layer");
   c.compare.calibration = registry_.get("Compare/Calibration");
   c.compare.rayleigh_control = registry_.get("Compare/Rayleigh control");
@@ -80,6 +81,11 @@ void declare_transport_and_compare(Registry& r) {
   r.declare("Transport/Flow repeats", "4", Integer(1, 100),
             "Independent relaxation runs (different seeds) for kappa and eta, 1-100; the error "
             "stated is the larger of their spread and their fits' errors, over sqrt(repeats).");
+  r.declare("Transport/Temperature spread", "0", Double(0, 0.9),
+            "0: kappa and eta at the state point only, constant in the continuum twin. s > 0: "
+            "also measured at T (1 - s) and T (1 + s) (three times the cost) and handed to the "
+            "twin as power laws c (T / T_ref)^n fitted through the three (the walls' range: "
+            "seed 000's cavity spans 0.8-2.8). 0 <= s <= 0.9.");
   r.declare("Transport/Measure kappa and eta", "false", Bool(),
             "Also measure kappa and eta from a heat mode and a transverse momentum mode decaying "
             "in a periodic box (seed 004's relaxation method; Transport/Flow repeats runs of "

@@ -47,6 +47,7 @@ struct TransportParameters {
   double temperature = 0;           // state point; 0: the walls' mean, else Scene/Temperature
   double flow_particles = 4000;     // particles of the square/cubic base box of the flow runs
   int flow_repeats = 4;             // independent relaxation runs (their spread is the error)
+  double temperature_spread = 0;    // > 0: also at T (1 -+ spread), power laws kappa(T), eta(T)
 };
 
 // Bounds of the stability map (twinflow stability).

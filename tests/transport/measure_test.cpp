@@ -50,10 +50,29 @@ TEST(RelaxationMeasurement, HeatAndShearModesGiveCoefficientsWithRepeatErrors) {
   std::printf("kappa %.3f +- %.3f (estimate %.3f), eta %.3f +- %.3f (estimate %.3f); %ld "
               "particles, %ld steps\n",
               m.conductivity.value.mean, m.conductivity.value.stderr_, e.conductivity,
-              m.viscosity.value.mean, m.viscosity.value.stderr_, e.viscosity, m.particles,
-              m.steps);
+              m.viscosity.value.mean, m.viscosity.value.stderr_, e.viscosity, m.particles, m.steps);
   EXPECT_GT(m.conductivity.value.mean, e.conductivity / 3);
   EXPECT_LT(m.conductivity.value.mean, e.conductivity * 3);
   EXPECT_GT(m.viscosity.value.mean, e.viscosity / 3);
   EXPECT_LT(m.viscosity.value.mean, e.viscosity * 3);
+}
+
+// Points on an exact power law give back its value and exponent; the exponent's error follows
+// from the points' errors as for a straight line in logs (three points at x = -h, 0, h with
+// equal relative errors e: stderr = e / (h sqrt(2))).
+TEST(RepeatedMeasurement, PowerLawThroughThreeTemperatures) {
+  const double t_ref = 0.8, value = 16, n = -0.7, e = 0.05;
+  std::vector<double> t{0.56, 0.8, 1.04};
+  std::vector<Estimate> v;
+  for (const double ti : t) v.push_back({value * std::pow(ti / t_ref, n), e * value});
+  for (auto& p : v) p.stderr_ = e * p.mean;
+  const PowerLawFit f = fit_power_law(t, v, t_ref);
+  EXPECT_NEAR(f.exponent, n, 1e-12);
+  EXPECT_NEAR(f.value, value, 1e-12 * value);
+  EXPECT_NEAR(f.chi2_per_dof, 0, 1e-20);
+  // Unequal spacing in logs: check against the weighted-line formula directly.
+  double sx = 0, sxx = 0;
+  for (const double ti : t) sx += std::log(ti / t_ref), sxx += std::pow(std::log(ti / t_ref), 2);
+  const double w = 1 / (e * e), det = w * w * (3 * sxx - sx * sx);
+  EXPECT_NEAR(f.exponent_stderr, std::sqrt(3 * w / det), 1e-12);
 }

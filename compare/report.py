@@ -789,6 +789,8 @@ def report_run(run_dir, out_dir):
                           ". The fraction explained is the part of each gap that this change "
                           "removes; a negative fraction means it made the gap larger.")
 
+    continuum_accuracy(doc, summaries, twins)
+
     # Figures.
     doc.heading("Figures")
     if bins and bins.rows and bins.has("T_particle"):
@@ -820,6 +822,41 @@ def report_run(run_dir, out_dir):
                    "(metrics.json).")
         floor_text(doc, series, metrics, twins, fields, particle, summaries)
     write_documents(doc, out_dir)
+
+
+def continuum_accuracy(doc, summaries, twins):
+    """The twins' own errors beside the particle's: discretisation (Nu against mesh level; the
+    last change bounds the error of a converging sequence) and the measured coefficients'."""
+    rows = []
+    for twin in twins:
+        for level in lookup(summaries[twin], "results", "mesh_study") or []:
+            cells = "×".join(str(int(c)) for c in (lookup(level, "cells") or []))
+            change = number(level, "change_in_nusselt")
+            rows.append([TWIN_LABEL[twin], fmt(number(level, "level"), 2), cells,
+                         fmt(number(level, "nusselt"), 7),
+                         fmt(change, 2) if number(level, "level") > 0 else "–",
+                         fmt(number(level, "wall_time_s"), 3)])
+    if not rows:
+        return
+    doc.heading("The continuum twins' own errors")
+    doc.paragraph("Mesh study (continuum*/summary.json, results.mesh_study): each level halves the "
+                  "cells; the change in Nu from the level before bounds the discretisation error "
+                  "of the finest level when the changes fall geometrically.")
+    doc.table(["twin", "level", "cells", "Nu (own dT)", "change", "wall s"], rows)
+    sentences = []
+    for twin in twins:
+        u = lookup(summaries[twin], "coefficient_uncertainty")
+        if not u:
+            continue
+        parts = [f"{name} {fmt_pm(number(u, name, 'value'), number(u, name, 'stderr'))} moves the "
+                 f"heat flux by {fmt_percent(number(u, name, 'heat_flux_relative_change'))} per "
+                 "standard error" for name in ("conductivity", "viscosity") if lookup(u, name)]
+        sentences.append(f"{TWIN_LABEL[twin]}: " + "; ".join(parts) + "; together ± "
+                         f"{fmt_percent(number(u, 'heat_flux_relative_stderr'))}.")
+    if sentences:
+        doc.paragraph("The measured coefficients' errors (transport stage, from the spread of "
+                      "repeated runs), carried through two more solves of each twin:")
+        doc.bullets(sentences)
 
 
 def parameter_differences(nominal_summary, calibrated_summary):
@@ -1067,6 +1104,62 @@ def draw_sources(ax, table, groups, x_axis, x_column, sources):
     return handles
 
 
+def pareto_front(points):
+    """Indices of the points no other point beats in both cost and error (ties kept)."""
+    front = []
+    for i, (c, e) in enumerate(points):
+        if not any((c2 <= c and e2 <= e) and (c2 < c or e2 < e) for c2, e2 in points):
+            front.append(i)
+    return sorted(front, key=lambda i: points[i][0])
+
+
+def figure_pareto(out_dir, done, keys, doc):
+    """Error against cost over the sweep's points (integrator, dt, N, ...): which settings buy the
+    least error for their particle wall time. Error: temperature L2 to the calibrated twin (the
+    nominal twin's when there is none)."""
+    import matplotlib.pyplot as plt
+    twin = next((t for t in ("calibrated", "nominal") if any(
+        finite(to_float(r.get(f"temperature_l2_{t}"))) for r in done)), None)
+    if twin is None:
+        return None
+    rows = [r for r in done if finite(to_float(r.get(f"temperature_l2_{twin}")))
+            and finite(to_float(r.get("wall_seconds_particle")))]
+    if len(rows) < 2:
+        return None
+    points = [(to_float(r["wall_seconds_particle"]), to_float(r[f"temperature_l2_{twin}"]))
+              for r in rows]
+    front = pareto_front(points)
+    labels = [", ".join(f"{k.split('/')[-1]} {plain(r.get(k))}" for k in keys) or plain(
+        r.get("point")) for r in rows]
+    fig, ax = plt.subplots(figsize=(7.6, 4.8), layout="constrained")
+    for i, ((c, e), r) in enumerate(zip(points, rows)):
+        se = to_float(r.get(f"temperature_l2_{twin}_stderr"))
+        ax.errorbar([c], [e], yerr=[se] if finite(se) else None, fmt="o",
+                    color=COLOUR["calibrated" if i in front else "noise"], ms=6, capsize=2.5)
+        same = sum(1 for p in points[:i] if p == (c, e))  # stack the labels of equal points
+        ax.annotate(labels[i], (c, e), textcoords="offset points", xytext=(5, 4 - 9 * same),
+                    fontsize=7)
+    ax.step([points[i][0] for i in front], [points[i][1] for i in front], where="post",
+            color=COLOUR["calibrated"], lw=1.2, label="Pareto front")
+    noise = [to_float(r.get("temperature_l2_noise")) for r in rows]
+    ax.plot([p[0] for p in points], noise, "x", color=COLOUR["noise"], label="noise (each point)")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel("particle stage wall-clock time [s]")
+    ax.set_ylabel(f"temperature L2 / dT to the {TWIN_LABEL[twin]}")
+    ax.set_title("error against cost", fontsize=10)
+    ax.grid(alpha=0.3, which="both")
+    ax.legend(fontsize=8)
+    name = save_figure(fig, out_dir, "pareto.png")
+    doc.paragraph("Pareto front (no other point has both less particle wall time and a smaller "
+                  f"temperature L2 to the {TWIN_LABEL[twin]}): "
+                  + "; ".join(f"{labels[i]} ({fmt(points[i][0], 3)} s, L2 {fmt(points[i][1], 3)})"
+                              for i in front) + ".")
+    return (name, f"Temperature L2 to the {TWIN_LABEL[twin]} against the particle stage's wall "
+                  "time, one point per sweep point (labels: the varied keys); filled: on the Pareto "
+                  "front; crosses: each point's noise level, the floor no run length removes.")
+
+
 def report_sweep(sweep_dir, out_dir):
     import matplotlib.pyplot as plt
 
@@ -1194,6 +1287,9 @@ def report_sweep(sweep_dir, out_dir):
         finish(ax, handles, "wall-clock time [s]", f"cost per stage against {x_label}")
         figures.append((save_figure(fig, out_dir, "cost.png"),
                         "Wall-clock seconds per stage and per point (the point's child process)."))
+        pareto = None if by_rayleigh else figure_pareto(out_dir, done, keys, doc)
+        if pareto:
+            figures.append(pareto)
 
     doc.heading("Points")
     columns = [("point", "point"), ("status", "status")] + [(k, k) for k in keys]

@@ -78,7 +78,8 @@ expect_report sweep_rayleigh nusselt_vs_rayleigh.png errors_vs_rayleigh.png cost
 expect_text sweep_rayleigh "de Vahl Davis"
 expect_text sweep_rayleigh "the particle run went unstable at step 812"
 expect_report sweep_two_keys nusselt_vs_particle_time_step.png \
-  errors_vs_particle_time_step.png cost.png
+  errors_vs_particle_time_step.png cost.png pareto.png
+expect_text sweep_two_keys "Pareto front (no other point"
 expect_report stability_two_keys stability_map.png
 expect_text stability_two_keys "negative_internal_energy"
 expect_report stability_time_step stability_map.png

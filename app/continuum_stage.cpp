@@ -35,42 +35,48 @@ CoefficientErrors coefficients_from_transport(const std::filesystem::path& run_d
   const io::Json& results = *summary.find("results");
   const io::Json& estimate = *results.find("estimated_measured_g");
   const io::Json* measured = results.find("measured");
+  bool used_measured = false;
   auto pick = [&](const char* estimate_key, const char* measured_key, const char* what) {
     const io::Json* m = measured ? measured->find(measured_key) : nullptr;
     const bool use = source == "measured" && m && m->is_number() && std::isfinite(m->number());
     const double v = use ? m->number() : estimate.find(estimate_key)->number();
     std::cout << "continuum: " << what << " = " << v << " (" << (use ? "measured" : "estimated")
               << ", from " << file.string() << ")\n";
+    used_measured = use;
     return v;
   };
-  p.viscosity.value_at_reference = pick("viscosity", "viscosity", "eta");
-  p.conductivity.value_at_reference = pick("conductivity", "conductivity", "kappa");
-  p.heat_capacity = pick("heat_capacity_p_per_particle", "", "c_p");
-  p.thermal_expansion = pick("thermal_expansion", "thermal_expansion", "alpha");
-  CoefficientErrors errors;
   const auto measured_number = [&](const char* key) {
     const io::Json* m = measured ? measured->find(key) : nullptr;
-    return source == "measured" && m && m->is_number() ? m->number() : std::nan("");
+    return m && m->is_number() ? m->number() : std::nan("");
   };
-  errors.conductivity = measured_number("conductivity_stderr");
-  errors.viscosity = measured_number("viscosity_stderr");
-  // Measured power laws c (T / T_m)^n: rescaled to the twin's reference temperature.
+  // Measured power laws c (T / T_m)^n: rescaled to the twin's reference temperature, the error
+  // with the exponent's (sigma^2 = s^2 [sigma_c^2 + c^2 ln^2(T_ref / T_m) sigma_n^2]).
   const io::Json* state = results.find("state_point");
-  const double t_measured = state ? state->find("temperature")->number() : std::nan("");
-  const auto power_law = [&](continuum::PowerLaw& law, double& error, const char* key,
-                             const char* what) {
-    const double n = measured_number(key);
+  const io::Json* t_m = state ? state->find("measured_temperature") : nullptr;
+  const double t_measured = t_m ? t_m->number() : std::nan("");
+  const auto take = [&](continuum::PowerLaw& law, double& error, const char* key,
+                        const char* what) {
+    error = measured_number((std::string(key) + "_stderr").c_str());
+    const double n = measured_number((std::string(key) + "_exponent").c_str());
     if (!std::isfinite(n) || !std::isfinite(t_measured)) return;
-    const double scale = std::pow(p.reference_temperature / t_measured, n);
+    const double log_ratio = std::log(p.reference_temperature / t_measured);
+    const double scale = std::exp(n * log_ratio);
+    const double n_se = measured_number((std::string(key) + "_exponent_stderr").c_str());
+    error = scale * std::hypot(error, law.value_at_reference * log_ratio * n_se);
     law.exponent = n;
     law.value_at_reference *= scale;
-    error *= scale;
+    law.sutherland_temperature = 0; // the measured law replaces any Sutherland law of the case
     std::cout << "continuum: " << what << "(T) = " << law.value_at_reference << " (T / "
               << p.reference_temperature << ")^" << n << " (measured at T = " << t_measured
               << ")\n";
   };
-  power_law(p.conductivity, errors.conductivity, "conductivity_exponent", "kappa");
-  power_law(p.viscosity, errors.viscosity, "viscosity_exponent", "eta");
+  CoefficientErrors errors;
+  p.viscosity.value_at_reference = pick("viscosity", "viscosity", "eta");
+  if (used_measured) take(p.viscosity, errors.viscosity, "viscosity", "eta");
+  p.conductivity.value_at_reference = pick("conductivity", "conductivity", "kappa");
+  if (used_measured) take(p.conductivity, errors.conductivity, "conductivity", "kappa");
+  p.heat_capacity = pick("heat_capacity_p_per_particle", "", "c_p");
+  p.thermal_expansion = pick("thermal_expansion", "thermal_expansion", "alpha");
   return errors;
 }
 
@@ -84,8 +90,14 @@ io::Json coefficient_uncertainty(const continuum::ContinuumParameters& p,
     if (!std::isfinite(stderr_) || stderr_ <= 0) return;
     continuum::ContinuumParameters shifted = p;
     (shifted.*member).value_at_reference += stderr_;
-    const continuum::ContinuumResult r = continuum::run(shifted, "");
-    const double change = r.nusselt * r.numbers.conduction_flux / heat_flux - 1;
+    double change = std::nan("");
+    try {
+      const continuum::ContinuumResult r = continuum::run(shifted, "");
+      change = r.nusselt * r.numbers.conduction_flux / heat_flux - 1;
+    } catch (const std::exception& e) { // the twin itself converged: keep it, say what failed
+      std::cout << "continuum: the solve with " << name << " + 1 stderr failed (" << e.what()
+                << ")\n";
+    }
     io::Json c = io::Json::object();
     c["value"] = (p.*member).value_at_reference;
     c["stderr"] = stderr_;
@@ -161,10 +173,12 @@ int continuum_twin(const CommandLine& cl, const std::string& stage_name) {
   summary["continuum_parameters"] = continuum::to_json(p);
   io::Json measured = continuum::to_json(result);
   for (const auto& [key, value] : measured.items()) summary[key] = value;
-  // (one process only: the shifted solves run on the root alone)
-  if (result.model == "boussinesq" && !p.transient() && n_processes == 1 &&
-      (std::isfinite(coefficient_errors.conductivity) ||
-       std::isfinite(coefficient_errors.viscosity))) {
+  const bool has_errors =
+      std::isfinite(coefficient_errors.conductivity) || std::isfinite(coefficient_errors.viscosity);
+  if (has_errors && n_processes > 1)
+    std::cout << "continuum: the coefficients' effect on the heat flux is not computed under "
+                 "mpirun (its two extra solves run on one process)\n";
+  if (result.model == "boussinesq" && !p.transient() && n_processes == 1 && has_errors) {
     summary["coefficient_uncertainty"] = coefficient_uncertainty(
         p, coefficient_errors, result.nusselt * result.numbers.conduction_flux);
     std::cout << "continuum: heat flux +- "

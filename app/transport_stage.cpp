@@ -37,9 +37,11 @@ io::Json measurement_inputs(const Case& c, const particle::ParticleParameters& p
   j["density"] = p.density;
   j["temperature"] = p.temperature;
   j["measure_flows"] = t.measure_flows;
-  j["flow_particles"] = t.flow_particles;
-  j["flow_repeats"] = t.flow_repeats;
-  j["temperature_spread"] = t.temperature_spread;
+  if (t.measure_flows) {
+    j["flow_particles"] = t.flow_particles;
+    j["flow_repeats"] = t.flow_repeats;
+    j["temperature_spread"] = t.temperature_spread;
+  }
   j["method"] = kMethod;
   return j;
 }
@@ -65,12 +67,27 @@ fs::path cache_directory(const std::string& hash) {
 
 const char* kCachedFiles[] = {"coefficients.csv", "rdf.csv", "summary.json"};
 
-// Copies a cached result into the stage, with this case's name and parameters. False: no entry.
+// Copies a cached result into the stage, with this case's name and parameters. False: no entry
+// (or an unreadable one: the cache is a convenience, never a reason to fail).
 bool restore_from_cache(const fs::path& entry, const io::StageDirectory& stage, const Case& c,
                         const std::string& name) {
   for (const char* f : kCachedFiles)
     if (!fs::exists(entry / f)) return false;
-  io::Json summary = io::Json::parse(io::read_file(entry / "summary.json"));
+  io::Json summary;
+  try {
+    summary = io::Json::parse(io::read_file(entry / "summary.json"));
+  } catch (const std::exception& e) {
+    std::cerr << "transport: cache entry " << entry.string() << " unreadable (" << e.what()
+              << "): measuring\n";
+    return false;
+  }
+  const io::Json* made_by = summary.find("provenance");
+  const io::Json* revision = made_by ? made_by->find("twinflow_git_revision") : nullptr;
+  const io::Json now = io::provenance();
+  if (revision && revision->dump() != now.find("twinflow_git_revision")->dump())
+    std::cout << "transport: the cached measurements were made by twinflow " << revision->dump()
+              << " (this is " << now.find("twinflow_git_revision")->dump()
+              << "); --force or TWINFLOW_CACHE=off measures again\n";
   io::Json cache = io::Json::object();
   cache["entry"] = entry.string();
   cache["made_by"] = *summary.find("provenance");
@@ -108,6 +125,7 @@ int transport_stage(const CommandLine& cl) {
   // that starts at rest would otherwise measure at a lower temperature).
   p.initial_velocities = particle::InitialVelocities::Maxwell;
   p.temperature_perturbation = 0;
+  p.shear_perturbation = 0;
   p.poiseuille_force = 0;
   p.gravity = {{0, 0, 0}};
   for (auto& w : p.walls) w.present = false;
@@ -118,7 +136,8 @@ int transport_stage(const CommandLine& cl) {
   const io::Json key_inputs = measurement_inputs(c, p, cp.transport);
   const std::string key = io::content_hash(key_inputs.dump());
   const fs::path cache = cache_directory(key);
-  if (!cache.empty() && restore_from_cache(cache, stage, c, cp.name)) {
+  // --force measures again (and refreshes the entry).
+  if (!cache.empty() && !cl.force && restore_from_cache(cache, stage, c, cp.name)) {
     std::cout << io::read_file(stage.file("coefficients.csv"))
               << "transport: measurements reused from the cache (" << cache.string()
               << "; TWINFLOW_CACHE=off recomputes)\noutputs: "
@@ -155,8 +174,10 @@ int transport_stage(const CommandLine& cl) {
     const int total = repeats * static_cast<int>(temperatures.size());
     const auto flow_start = std::chrono::steady_clock::now();
     int done_before = 0;
-    for (const double t : temperatures) {
+    for (std::size_t i = 0; i < temperatures.size(); ++i) {
+      const double t = temperatures[i];
       flows.temperature = t;
+      flows.seed = p.seed + 104729 * i; // independent runs at each temperature
       const transport::Estimates guess =
           transport::estimate(flows, t, transport::PairDistribution::from_csv(m.rdf_csv));
       at_temperature.push_back(transport::measure_relaxation(
@@ -180,19 +201,28 @@ int transport_stage(const CommandLine& cl) {
     kappa = flow.conductivity.value;
     eta = flow.viscosity.value;
   }
+  // The relaxation runs' own temperatures (the state they measured), where known.
+  std::vector<double> measured_at = temperatures;
+  for (std::size_t i = 0; i < at_temperature.size(); ++i)
+    if (std::isfinite(at_temperature[i].temperature.value.mean))
+      measured_at[i] = at_temperature[i].temperature.value.mean;
+  const double state_temperature =
+      at_temperature.empty() ? p.temperature : measured_at[temperatures.size() / 2];
   transport::PowerLawFit kappa_law, eta_law;
   if (at_temperature.size() > 1) {
     std::vector<particle::Estimate> k, e;
     for (const auto& a : at_temperature)
       k.push_back(a.conductivity.value), e.push_back(a.viscosity.value);
-    kappa_law = transport::fit_power_law(temperatures, k, p.temperature);
-    eta_law = transport::fit_power_law(temperatures, e, p.temperature);
+    kappa_law = transport::fit_power_law(measured_at, k, state_temperature);
+    eta_law = transport::fit_power_law(measured_at, e, state_temperature);
   }
 
   std::ostringstream table;
   char line[256];
-  std::snprintf(line, sizeof line, "# state point: rho = %g, T = %g (%dD periodic box, N = %ld)\n",
-                p.density, p.temperature, p.dim, p.particle_count());
+  std::snprintf(line, sizeof line,
+                "# state point: rho = %g, T = %g (%dD periodic box, N = %ld); kappa and eta "
+                "measured at T = %.4g (the relaxation runs' own)\n",
+                p.density, p.temperature, p.dim, p.particle_count(), state_temperature);
   table << line
         << "coefficient,estimate_g1,estimate_measured_g,measured,measured_stderr,"
            "measured/estimate\n";
@@ -206,11 +236,12 @@ int transport_stage(const CommandLine& cl) {
   row("conductivity_kappa", ideal.conductivity, with_g.conductivity, kappa.mean, kappa.stderr_);
   if (at_temperature.size() > 1) {
     for (std::size_t i = 0; i < temperatures.size(); ++i) {
-      const std::string at = "_at_T_" + std::to_string(temperatures[i]).substr(0, 6);
-      row(("viscosity_eta" + at).c_str(), nan, nan, at_temperature[i].viscosity.value.mean,
-          at_temperature[i].viscosity.value.stderr_);
-      row(("conductivity_kappa" + at).c_str(), nan, nan, at_temperature[i].conductivity.value.mean,
-          at_temperature[i].conductivity.value.stderr_);
+      char at[32];
+      std::snprintf(at, sizeof at, "_at_T_%.4g", measured_at[i]);
+      row(("viscosity_eta" + std::string(at)).c_str(), nan, nan,
+          at_temperature[i].viscosity.value.mean, at_temperature[i].viscosity.value.stderr_);
+      row(("conductivity_kappa" + std::string(at)).c_str(), nan, nan,
+          at_temperature[i].conductivity.value.mean, at_temperature[i].conductivity.value.stderr_);
     }
     row("viscosity_exponent_n_in_T^n", nan, nan, eta_law.exponent, eta_law.exponent_stderr);
     row("conductivity_exponent_n_in_T^n", nan, nan, kappa_law.exponent, kappa_law.exponent_stderr);
@@ -235,6 +266,8 @@ int transport_stage(const CommandLine& cl) {
   summary["parameters"] = c.registry().resolved_json();
   summary["results"]["state_point"]["density"] = p.density;
   summary["results"]["state_point"]["temperature"] = p.temperature;
+  // The temperature the measured kappa and eta belong to (the relaxation runs' own).
+  summary["results"]["state_point"]["measured_temperature"] = state_temperature;
   summary["results"]["estimated_g1"] = ideal.json();
   summary["results"]["estimated_measured_g"] = with_g.json();
   summary["results"]["measured"] = m.json();
@@ -254,12 +287,12 @@ int transport_stage(const CommandLine& cl) {
     if (at_temperature.size() > 1) {
       // The continuum twin reads the exponents (app/continuum_stage.cpp).
       io::Json law = io::Json::object();
-      law["reference_temperature"] = p.temperature;
+      law["reference_temperature"] = state_temperature;
       law["temperatures"] = io::Json::array();
       law["conductivity"] = io::Json::array();
       law["viscosity"] = io::Json::array();
       for (std::size_t i = 0; i < temperatures.size(); ++i) {
-        law["temperatures"].push_back(temperatures[i]);
+        law["temperatures"].push_back(measured_at[i]);
         law["conductivity"].push_back(at_temperature[i].conductivity.json());
         law["viscosity"].push_back(at_temperature[i].viscosity.json());
       }
@@ -281,11 +314,16 @@ int transport_stage(const CommandLine& cl) {
   summary["measurement_key"] = key;
   io::write_file_atomically(stage.file("summary.json"), summary.dump());
   if (!cache.empty()) {
-    // Written last: an interrupted copy leaves no summary.json, so no entry.
-    fs::create_directories(cache);
-    io::write_file_atomically(cache / "inputs.json", key_inputs.dump());
-    for (const char* f : kCachedFiles)
-      io::write_file_atomically(cache / f, io::read_file(stage.file(f)));
+    // summary.json last: an interrupted copy leaves no entry. Best effort (read-only home, full
+    // disk): the stage's own results are already written.
+    try {
+      fs::create_directories(cache);
+      io::write_file_atomically(cache / "inputs.json", key_inputs.dump());
+      for (const char* f : kCachedFiles)
+        io::write_file_atomically(cache / f, io::read_file(stage.file(f)));
+    } catch (const std::exception& e) {
+      std::cerr << "transport: not cached (" << e.what() << ")\n";
+    }
   }
   std::cout << table.str() << "outputs: " << fs::absolute(stage.path()).string() << "\n";
   return 0;

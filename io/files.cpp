@@ -1,5 +1,8 @@
 #include "io/files.hpp"
 
+#include <unistd.h>
+
+#include <atomic>
 #include <cstdint>
 #include <fstream>
 #include <iomanip>
@@ -12,8 +15,11 @@ namespace twinflow::io {
 namespace fs = std::filesystem;
 
 void write_file_atomically(const fs::path& path, const std::string& content) {
+  // A name of its own per process and call: concurrent writers of one path (two runs filling
+  // the same cache entry) each rename a whole file.
+  static std::atomic<unsigned> calls{0};
   fs::path tmp = path;
-  tmp += ".tmp";
+  tmp += ".tmp." + std::to_string(::getpid()) + "." + std::to_string(calls++);
   {
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
     if (!out) throw std::runtime_error("cannot write " + tmp.string());

@@ -31,6 +31,7 @@ struct Repeated {
   particle::Estimate value;
   std::vector<particle::Estimate> repeats;  // each run's fit
   double spread_stderr = 0, fit_stderr = 0; // sd / sqrt(M), and the fits' rms error / sqrt(M)
+  int failed = 0;                           // repeats whose fit failed (left out)
   io::Json json() const;
 };
 
@@ -38,6 +39,7 @@ Repeated summarise_repeats(const std::vector<particle::Estimate>& runs);
 
 struct RelaxationCoefficients {
   Repeated conductivity, viscosity;
+  Repeated temperature;          // the runs' mean internal temperatures 1/<1/theta>
   long particles = 0, steps = 0; // of each run
 };
 

@@ -60,3 +60,45 @@ TEST(Scenes, ContinuumTakesCoefficientsFromTheTransportStage) {
   expected << "eta = " << eta << " (estimated";
   EXPECT_NE(r.output.find(expected.str()), std::string::npos) << r.output;
 }
+
+// Measured power laws reach the twin at its own reference temperature: kappa(T_m) (T_ref /
+// T_m)^n, with the error of both the value and the exponent carried along, and the twin's heat
+// flux response to those errors recorded. The transport summary is written by hand here, so the
+// expected numbers are independent of any particle run.
+TEST(Scenes, ContinuumRescalesMeasuredPowerLawsToItsReferenceTemperature) {
+  namespace fs = std::filesystem;
+  const auto dir = fresh_dir("scenes", "power_laws");
+  fs::create_directories(dir / "transport");
+  const double t_m = 0.8, kappa = 16, kappa_se = 1.0, n = -0.5, n_se = 0.2, eta = 1.2;
+  std::ostringstream s;
+  s << R"({"results": {"state_point": {"density": 4, "temperature": 0.8, "measured_temperature": )"
+    << t_m << R"(}, "estimated_measured_g": {"viscosity": 0.86, "conductivity": 8.75,
+    "heat_capacity_p_per_particle": 13, "thermal_expansion": 1.24}, "measured": {"viscosity": )"
+    << eta << R"(, "viscosity_stderr": 0.1, "conductivity": )" << kappa
+    << R"(, "conductivity_stderr": )" << kappa_se << R"(, "conductivity_exponent": )" << n
+    << R"(, "conductivity_exponent_stderr": )" << n_se << R"(, "thermal_expansion": 1.24}}})";
+  twinflow::io::write_file_atomically(dir / "transport" / "summary.json", s.str());
+  const Result r = run_twinflow("continuum " + case_path("heated_cavity_2d") +
+                                " --set Transport/Source=measured --set "
+                                "Continuum/Coefficients/Source=transport --out " +
+                                dir.string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  const auto summary =
+      twinflow::io::Json::parse(twinflow::io::read_file(dir / "continuum" / "summary.json"));
+  const auto& law = *summary.find("continuum_parameters")->find("conductivity");
+  const double t_ref =
+      summary.find("continuum_parameters")->find("reference_temperature")->number();
+  EXPECT_NEAR(law.find("exponent")->number(), n, 1e-12);
+  EXPECT_NEAR(law.find("value_at_reference")->number(), kappa * std::pow(t_ref / t_m, n),
+              1e-9 * kappa);
+  const auto& u = *summary.find("coefficient_uncertainty");
+  const double scale = std::pow(t_ref / t_m, n), log_ratio = std::log(t_ref / t_m);
+  EXPECT_NEAR(u.find("conductivity")->find("stderr")->number(),
+              scale * std::hypot(kappa_se, kappa * log_ratio * n_se), 1e-9);
+  EXPECT_NEAR(u.find("viscosity")->find("stderr")->number(), 0.1, 1e-12); // no exponent: as is
+  // More kappa carries more heat; the combined error is the two responses in quadrature.
+  const double dk = u.find("conductivity")->find("heat_flux_relative_change")->number();
+  const double de = u.find("viscosity")->find("heat_flux_relative_change")->number();
+  EXPECT_GT(dk, 0);
+  EXPECT_NEAR(u.find("heat_flux_relative_stderr")->number(), std::hypot(dk, de), 1e-12);
+}

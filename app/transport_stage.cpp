@@ -30,10 +30,12 @@ io::Json measurement_inputs(const Case& c, const particle::ParticleParameters& p
   for (const auto& [path, value] : resolved.items()) {
     const bool fluid = path.rfind("Particle/", 0) == 0 && path.rfind("Particle/Walls/", 0) != 0 &&
                        path != "Particle/Steps" && path != "Particle/Equilibration steps" &&
-                       path != "Particle/Initial velocities";
+                       path != "Particle/Initial velocities" &&
+                       path != "Particle/Initial internal energy";
     if (fluid) j[path] = value;
   }
   j["dimension"] = p.dim;
+  j["start"] = "equilibrium"; // bulk runs start at (c_v + k) T whatever the case says
   j["density"] = p.density;
   j["temperature"] = p.temperature;
   j["measure_flows"] = t.measure_flows;
@@ -122,8 +124,10 @@ int transport_stage(const CommandLine& cl) {
   if (walls > 0) p.temperature = wall_mean / walls;
   if (cp.transport.temperature > 0) p.temperature = cp.transport.temperature;
   // Bulk runs start in equilibrium at the state point, whatever the scene's own start (a case
-  // that starts at rest would otherwise measure at a lower temperature).
+  // that starts at rest, or with theta_i = T, would otherwise measure at a lower temperature:
+  // T (c_v + d/2) / (c_v + 1 + d/2), 8% low at c_v = 10).
   p.initial_velocities = particle::InitialVelocities::Maxwell;
+  p.initial_internal_energy = particle::InitialInternalEnergy::Equilibrium;
   p.temperature_perturbation = 0;
   p.shear_perturbation = 0;
   p.poiseuille_force = 0;

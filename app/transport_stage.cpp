@@ -258,6 +258,8 @@ int transport_stage(const CommandLine& cl) {
       m.pressure.stderr_);
   row("heat_capacity_cv_per_particle", ideal.heat_capacity_v, with_g.heat_capacity_v, nan, nan);
   row("heat_capacity_cp_per_particle", ideal.heat_capacity_p, with_g.heat_capacity_p, nan, nan);
+  row("heat_capacity_cp_minus_cv_per_particle", ideal.heat_capacity_p - ideal.heat_capacity_v,
+      with_g.heat_capacity_p - with_g.heat_capacity_v, m.cp_minus_cv.mean, m.cp_minus_cv.stderr_);
   row("prandtl", ideal.prandtl, with_g.prandtl, nan, nan);
   row("schmidt", ideal.schmidt, with_g.schmidt, nan, nan);
   io::write_file_atomically(stage.file("coefficients.csv"), table.str());

@@ -78,6 +78,12 @@ Measured measure(const particle::ParticleParameters& p, long steps, double h) {
   const double alpha = m.dp_dt.mean / (rho * m.dp_drho.mean); // physics.md
   m.expansion = {alpha, std::fabs(alpha) * std::hypot(m.dp_dt.stderr_ / m.dp_dt.mean,
                                                       m.dp_drho.stderr_ / m.dp_drho.mean)};
+  // c_p - c_v = T V alpha_p^2 / (N kappa_T) = T (dp/dT)^2 / (rho^2 (dp/drho)) per particle
+  // (thermodynamic identity; 1 k for the ideal gas).
+  const double gap =
+      m.temperature.mean * m.dp_dt.mean * m.dp_dt.mean / (rho * rho * m.dp_drho.mean);
+  m.cp_minus_cv = {gap, std::fabs(gap) * std::hypot(2 * m.dp_dt.stderr_ / m.dp_dt.mean,
+                                                    m.dp_drho.stderr_ / m.dp_drho.mean)};
   return m;
 }
 
@@ -93,6 +99,7 @@ io::Json Measured::json() const {
   put("thermal_expansion", expansion);
   put("dp_dT", dp_dt);
   put("dp_drho", dp_drho);
+  put("heat_capacity_cp_minus_cv", cp_minus_cv);
   return j;
 }
 

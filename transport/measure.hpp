@@ -16,6 +16,7 @@ struct Measured {
   particle::Estimate diffusion;      // from the MSD slope, 2 d D
   particle::Estimate expansion;      // alpha = (dp/dT)_rho / (rho (dp/drho)_T)
   particle::Estimate dp_dt, dp_drho; // equation-of-state derivatives
+  particle::Estimate cp_minus_cv;    // per particle, k = 1: 1 for the ideal gas
   std::string rdf_csv;
   io::Json json() const;
 };

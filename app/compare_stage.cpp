@@ -116,7 +116,13 @@ std::vector<std::string> calibrated_twin_overrides(const std::string& run_dir) {
   const auto interior =
       compare::interior_bins(run.fields.grid, run.walled, run.parameters.compare.wall_layer);
   std::vector<std::string> overrides;
-  const bool kapitza = run.parameters.compare.calibration == "kapitza";
+  // Kapitza walls exist in the Boussinesq twin only: a low-Mach twin is calibrated by its walls'
+  // temperatures.
+  const bool kapitza = run.parameters.compare.calibration == "kapitza" &&
+                       run.parameters.continuum.model == continuum::Model::Boussinesq;
+  if (run.parameters.compare.calibration == "kapitza" && !kapitza)
+    std::cout << "run: calibrated twin: Kapitza walls need the Boussinesq twin; this one is "
+                 "calibrated by its walls' temperatures\n";
   std::ostringstream conductances; // x lower, x upper, y lower, ...
   conductances << std::setprecision(8);
   const io::Json& walls = *run.summary.find("results");
@@ -289,7 +295,8 @@ int compare_stage(const CommandLine& cl) {
     io::Json j = io::Json::object();
     j["stage"] = t.stage;
     if (t.name == "calibrated")
-      j["calibration"] = run.parameters.compare.calibration == "kapitza"
+      j["calibration"] = run.parameters.compare.calibration == "kapitza" &&
+                                 run.parameters.continuum.model == continuum::Model::Boussinesq
                              ? "Kapitza walls (h_K = the particle wall's heat flux / its jump)"
                              : "walls at the fluid's wall temperatures";
     const auto T = compare::temperature_distance(final_state, t.state, interior, dT);

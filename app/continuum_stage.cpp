@@ -138,6 +138,12 @@ int continuum_twin(const CommandLine& cl, const std::string& stage_name) {
                          " MPI processes: only the iterative 3D Boussinesq path runs in parallel "
                          "(Continuum/Solver/Linear solver = iterative); run it on one process");
   const auto numbers = continuum::dimensionless_numbers(p);
+  if (root && c.registry().get("Continuum/Model") == "auto" && parameters.scene.has_walls())
+    std::cout << "continuum: Model = auto: "
+              << (p.model == continuum::Model::LowMach ? "low-Mach" : "Boussinesq")
+              << " (the thermal walls' epsilon " << thermal_wall_epsilon(parameters.scene)
+              << (p.model == continuum::Model::LowMach ? " > " : " <= ")
+              << c.registry().get_double("Continuum/Low-Mach threshold") << ")\n";
   if (root)
     std::cout << "continuum: "
               << (p.model == continuum::Model::Boussinesq ? "Boussinesq"

@@ -165,17 +165,24 @@ int transport_stage(const CommandLine& cl) {
   if (spread > 0)
     temperatures = {p.temperature * (1 - spread), p.temperature, p.temperature * (1 + spread)};
   std::vector<transport::RelaxationCoefficients> at_temperature;
+  // The relaxation runs' own, smaller box: they last a few relaxation times of the box, ~ L^2.
+  const double flow_edge = std::max(3 * p.largest_cutoff(),
+                                    std::pow(cp.transport.flow_particles / p.density, 1.0 / p.dim));
   if (cp.transport.measure_flows) {
     // c_p per particle: the ideal fluid's for the ideal gas (estimate); with conservative forces
-    // the same is an approximation (c_p - c_v from the measured equation of state is not yet
-    // used), stated in the summary.
-    // Their own, smaller box: the runs last a few relaxation times of the box, ~ L^2.
+    // the same is an approximation (the measured c_p - c_v is reported beside it).
     particle::ParticleParameters flows = p;
-    const double flow_edge = std::max(
-        3 * p.largest_cutoff(), std::pow(cp.transport.flow_particles / p.density, 1.0 / p.dim));
     flows.box = {{flow_edge, flow_edge, flow_edge}};
     const int repeats = cp.transport.flow_repeats;
     const int total = repeats * static_cast<int>(temperatures.size());
+    // The modes' wavelength is the doubled box edge; hydrodynamics needs it long against the
+    // interaction range (k rc << 1), else the coefficients are those of a finite wavenumber.
+    const double k_rc = 2 * M_PI / (2 * flow_edge) * p.largest_cutoff();
+    if (k_rc > 0.3)
+      std::cout << "transport: the relaxation modes have k rc = " << k_rc << " (wavelength "
+                << 2 * flow_edge / p.largest_cutoff()
+                << " cutoffs): coefficients at that finite wavenumber; more Transport/Flow "
+                   "particles lower it (k rc ~ N^(-1/d))\n";
     const auto flow_start = std::chrono::steady_clock::now();
     int done_before = 0;
     for (std::size_t i = 0; i < temperatures.size(); ++i) {
@@ -286,6 +293,7 @@ int transport_stage(const CommandLine& cl) {
     io::Json method = io::Json::object();
     method["method"] = "heat and transverse-momentum modes decaying in a periodic box (seed 004)";
     method["particles"] = flow.particles;
+    method["wavenumber_times_cutoff"] = 2 * M_PI / (2 * flow_edge) * p.largest_cutoff();
     method["steps"] = flow.steps;
     method["conductivity"] = flow.conductivity.json();
     method["viscosity"] = flow.viscosity.json();

@@ -98,6 +98,8 @@ void declare_particle(Registry&);
 particle::ParticleParameters resolve_particle(const Registry&, const SceneParameters&);
 void declare_continuum(Registry&);
 continuum::ContinuumParameters resolve_continuum(const Registry&, const SceneParameters&);
+// (T_max - T_min) / (T_max + T_min) over the scene's thermal walls; 0 without any.
+double thermal_wall_epsilon(const SceneParameters&);
 void declare_transport_and_compare(Registry&);
 
 } // namespace twinflow::app

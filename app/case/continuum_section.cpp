@@ -57,14 +57,30 @@ std::vector<std::array<double, 3>> points(const Registry& r, const std::string& 
 }
 } // namespace
 
+double thermal_wall_epsilon(const SceneParameters& scene) {
+  double lo = HUGE_VAL, hi = 0;
+  for (int d = 0; d < scene.dim; ++d)
+    for (int side = 0; side < 2; ++side)
+      if (!scene.boundary[d].periodic && scene.boundary[d].thermal[side]) {
+        lo = std::min(lo, scene.boundary[d].temperature[side]);
+        hi = std::max(hi, scene.boundary[d].temperature[side]);
+      }
+  return hi > 0 ? (hi - lo) / (hi + lo) : 0; // (T_h - T_c) / (T_h + T_c), Le Quere et al. 2005
+}
+
 void declare_continuum(Registry& r) {
   using namespace dealii::Patterns;
-  r.declare(s + "Model", "boussinesq", Selection("boussinesq|low-mach|heat-conduction"),
+  r.declare(s + "Model", "auto", Selection("auto|boussinesq|low-mach|heat-conduction"),
             "Equations of the continuum twin: Boussinesq natural convection (Taylor-Hood Q2/Q1 + "
             "Q2 temperature, Newton); low-Mach-number convection of a variable-density ideal gas "
             "in the closed box (n = P/(k T), P from the box's mass N = Scene density x volume, "
             "for large temperature differences; Thermal expansion is then 1/T_ref and the key is "
-            "ignored); or heat conduction without flow.");
+            "ignored); or heat conduction without flow. auto: low-mach when the thermal walls' "
+            "epsilon = (T_max - T_min) / (T_max + T_min) exceeds Low-Mach threshold (the "
+            "Boussinesq approximation is wrong to first order in epsilon), else boussinesq.");
+  r.declare(s + "Low-Mach threshold", "0.2", Double(0, 1),
+            "Model = auto: the thermal walls' epsilon above which the twin is low-Mach (0.2: "
+            "walls at T0 (1 -+ 0.2), a temperature ratio of 1.5).");
   r.declare(s + "Kapitza conductances", "", List(Double(0), 0, 6),
             "Kapitza (Robin) walls of the Boussinesq twin: h_K per wall in the order x lower, "
             "x upper, y lower, y upper, z lower, z upper (k T0 / (rc^(d-1) tau T0)); a thermal "
@@ -174,6 +190,8 @@ continuum::ContinuumParameters resolve_continuum(const Registry& r, const SceneP
   c.model = model == "heat-conduction" ? continuum::Model::HeatConduction
             : model == "low-mach"      ? continuum::Model::LowMach
                                        : continuum::Model::Boussinesq;
+  if (model == "auto" && thermal_wall_epsilon(scene) > r.get_double(s + "Low-Mach threshold"))
+    c.model = continuum::Model::LowMach;
   c.gravity = scene.gravity;
   for (int d = 0; d < 3; ++d) {
     const auto& from = scene.boundary[d];

@@ -59,6 +59,14 @@ TEST(Scenes, ContinuumTakesCoefficientsFromTheTransportStage) {
   std::ostringstream expected;
   expected << "eta = " << eta << " (estimated";
   EXPECT_NE(r.output.find(expected.str()), std::string::npos) << r.output;
+  // The ideal DPDE fluid's measured equation of state: alpha = 1/T and c_p - c_v = k, within
+  // 4 of their standard errors (propagated from the pressure runs' block errors).
+  const auto& m = *transport.find("results")->find("measured");
+  const double t = m.find("temperature_kinetic")->number();
+  EXPECT_NEAR(m.find("thermal_expansion")->number(), 1 / t,
+              4 * m.find("thermal_expansion_stderr")->number());
+  EXPECT_NEAR(m.find("heat_capacity_cp_minus_cv")->number(), 1.0,
+              4 * m.find("heat_capacity_cp_minus_cv_stderr")->number());
 }
 
 // Measured power laws reach the twin at its own reference temperature: kappa(T_m) (T_ref /

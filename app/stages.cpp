@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
+#include <map>
 #include <optional>
 #include <sstream>
 
@@ -33,6 +34,7 @@ fs::path run_directory(const CommandLine& cl, const CaseParameters& c) {
 struct StageInputs {
   io::Json inputs = io::Json::object();
   std::string hash;
+  std::map<std::string, std::string> defaults; // of the hashed parameters
 };
 
 StageInputs stage_inputs(const CommandLine& cl, std::initializer_list<const char*> sections,
@@ -44,7 +46,10 @@ StageInputs stage_inputs(const CommandLine& cl, std::initializer_list<const char
   const io::Json resolved = c.registry().resolved_json();
   for (const auto& [path, value] : resolved.items())
     for (const char* section : sections)
-      if (path.rfind(section, 0) == 0) parameters[path] = value;
+      if (path.rfind(section, 0) == 0) {
+        parameters[path] = value;
+        s.defaults[path] = c.registry().default_value(path);
+      }
   s.inputs["parameters"] = parameters;
   s.inputs["upstream"] = io::Json::array();
   for (const auto& h : upstream_hashes) s.inputs["upstream"].push_back(h);
@@ -55,13 +60,26 @@ StageInputs stage_inputs(const CommandLine& cl, std::initializer_list<const char
   return s;
 }
 
+// Inputs recorded before a parameter was added lack it: the same inputs if it has its default
+// (a new key does not invalidate hours of particle data), and all the others are equal.
+bool same_inputs(const io::Json& recorded, const StageInputs& s) {
+  const io::Json* then = recorded.find("parameters");
+  const io::Json* upstream = recorded.find("upstream");
+  if (!then || !upstream || upstream->dump() != s.inputs.find("upstream")->dump()) return false;
+  for (const auto& [path, value] : s.inputs.find("parameters")->items()) {
+    const io::Json* old = then->find(path);
+    if (old ? old->dump() != value.dump() : value.string() != s.defaults.at(path)) return false;
+  }
+  return true;
+}
+
 // The stage's earlier results are complete and were made from the same inputs.
 bool reusable(const fs::path& stage_dir, const StageInputs& s) {
   if (!fs::exists(stage_dir / "summary.json") || !fs::exists(stage_dir / "inputs.json"))
     return false;
   const io::Json recorded = io::Json::parse(io::read_file(stage_dir / "inputs.json"));
   const io::Json* h = recorded.find("hash");
-  if (!h || !h->is_string() || h->string() != s.hash) return false;
+  if (!h || !h->is_string() || (h->string() != s.hash && !same_inputs(recorded, s))) return false;
   const io::Json* then = recorded.find("twinflow_git_revision");
   const io::Json* now = s.inputs.find("twinflow_git_revision");
   if (then && now && then->is_string() && now->is_string() && then->string() != now->string())

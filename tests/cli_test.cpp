@@ -208,6 +208,27 @@ TEST(Cli, RunComparesTheTwinsAndReusesUnchangedStages) {
   EXPECT_NE(mesh.output.find("run: transport: inputs unchanged"), std::string::npos);
   EXPECT_EQ(mesh.output.find("run: continuum: inputs unchanged"), std::string::npos);
 
+  // A record made before a parameter existed lacks it: still the same inputs when the new
+  // parameter has its default (here: drop one from particle/inputs.json and spoil its hash).
+  {
+    auto inputs =
+        twinflow::io::Json::parse(twinflow::io::read_file(dir / "particle" / "inputs.json"));
+    twinflow::io::Json older = twinflow::io::Json::object();
+    for (const auto& [key, value] : inputs.find("parameters")->items())
+      if (key != "Scene/Temperature perturbation") older[key] = value;
+    inputs["parameters"] = older;
+    inputs["hash"] = "0000000000000000";
+    twinflow::io::write_file_atomically(dir / "particle" / "inputs.json", inputs.dump());
+    const Result old_record = run("run " + tiny + " --out " + dir.string());
+    ASSERT_EQ(old_record.code, 0) << old_record.output;
+    EXPECT_NE(old_record.output.find("run: particle: inputs unchanged"), std::string::npos)
+        << old_record.output;
+    const Result other =
+        run("run " + tiny + " --set 'Scene/Temperature perturbation=0.1' --out " + dir.string());
+    EXPECT_EQ(other.code, 2) << other.output; // not its default: a changed particle stage
+    EXPECT_NE(other.output.find("--force"), std::string::npos) << other.output;
+  }
+
   const Result changed = run("run " + tiny + " --seed 5 --out " + dir.string());
   EXPECT_EQ(changed.code, 2) << changed.output;
   EXPECT_NE(changed.output.find("--force"), std::string::npos) << changed.output;

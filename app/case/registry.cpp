@@ -204,6 +204,10 @@ void Registry::print_resolved(std::ostream& out) const {
                                  dealii::ParameterHandler::KeepDeclarationOrder);
 }
 
+const std::string& Registry::default_value(const std::string& path) const {
+  return entries_.at(path).default_value;
+}
+
 io::Json Registry::resolved_json() const {
   io::Json j = io::Json::object();
   for (const auto& path : order_) j[path] = get(path);

@@ -39,6 +39,7 @@ public:
   void print_documented(std::ostream& out) const;
   void print_resolved(std::ostream& out) const;
   io::Json resolved_json() const; // every parameter's value, by path
+  const std::string& default_value(const std::string& path) const; // as declared
 
 private:
   struct Entry {

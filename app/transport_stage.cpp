@@ -84,7 +84,8 @@ bool restore_from_cache(const fs::path& entry, const io::StageDirectory& stage, 
     return false;
   }
   const io::Json* made_by = summary.find("provenance");
-  const io::Json* revision = made_by ? made_by->find("twinflow_git_revision") : nullptr;
+  if (!made_by) return false; // not an entry this code wrote
+  const io::Json* revision = made_by->find("twinflow_git_revision");
   const io::Json now = io::provenance();
   if (revision && revision->dump() != now.find("twinflow_git_revision")->dump())
     std::cout << "transport: the cached measurements were made by twinflow " << revision->dump()
@@ -92,7 +93,7 @@ bool restore_from_cache(const fs::path& entry, const io::StageDirectory& stage, 
               << "); --force or TWINFLOW_CACHE=off measures again\n";
   io::Json cache = io::Json::object();
   cache["entry"] = entry.string();
-  cache["made_by"] = *summary.find("provenance");
+  cache["made_by"] = *made_by;
   summary["cache"] = cache;
   summary["case"] = name;
   summary["provenance"] = io::provenance();
@@ -155,8 +156,8 @@ int transport_stage(const CommandLine& cl) {
       transport::estimate(p, p.temperature, transport::PairDistribution::ideal());
   const long steps = 2000;
   const transport::Measured m = transport::measure(p, steps);
-  const transport::Estimates with_g =
-      transport::estimate(p, p.temperature, transport::PairDistribution::from_csv(m.rdf_csv));
+  const auto measured_g = transport::PairDistribution::from_csv(m.rdf_csv);
+  const transport::Estimates with_g = transport::estimate(p, p.temperature, measured_g);
   particle::Estimate kappa{nan, nan}, eta{nan, nan};
   transport::RelaxationCoefficients flow;
   // With a temperature spread s, also at T (1 -+ s): kappa(T) and eta(T) as power laws.
@@ -168,6 +169,9 @@ int transport_stage(const CommandLine& cl) {
   // The relaxation runs' own, smaller box: they last a few relaxation times of the box, ~ L^2.
   const double flow_edge = std::max(3 * p.largest_cutoff(),
                                     std::pow(cp.transport.flow_particles / p.density, 1.0 / p.dim));
+  // The modes' wavelength is the doubled box edge; hydrodynamics needs it long against the
+  // interaction range (k rc << 1), else the coefficients are those of a finite wavenumber.
+  const double k_rc = 2 * M_PI / (2 * flow_edge) * p.largest_cutoff();
   if (cp.transport.measure_flows) {
     // c_p per particle: the ideal fluid's for the ideal gas (estimate); with conservative forces
     // the same is an approximation (the measured c_p - c_v is reported beside it).
@@ -175,9 +179,6 @@ int transport_stage(const CommandLine& cl) {
     flows.box = {{flow_edge, flow_edge, flow_edge}};
     const int repeats = cp.transport.flow_repeats;
     const int total = repeats * static_cast<int>(temperatures.size());
-    // The modes' wavelength is the doubled box edge; hydrodynamics needs it long against the
-    // interaction range (k rc << 1), else the coefficients are those of a finite wavenumber.
-    const double k_rc = 2 * M_PI / (2 * flow_edge) * p.largest_cutoff();
     if (k_rc > 0.3)
       std::cout << "transport: the relaxation modes have k rc = " << k_rc << " (wavelength "
                 << 2 * flow_edge / p.largest_cutoff()
@@ -189,8 +190,7 @@ int transport_stage(const CommandLine& cl) {
       const double t = temperatures[i];
       flows.temperature = t;
       flows.seed = p.seed + 104729 * i; // independent runs at each temperature
-      const transport::Estimates guess =
-          transport::estimate(flows, t, transport::PairDistribution::from_csv(m.rdf_csv));
+      const transport::Estimates guess = transport::estimate(flows, t, measured_g);
       at_temperature.push_back(transport::measure_relaxation(
           flows, guess, guess.heat_capacity_p, repeats,
           [&](int done, const transport::RelaxationCoefficients& so_far) {
@@ -293,7 +293,7 @@ int transport_stage(const CommandLine& cl) {
     io::Json method = io::Json::object();
     method["method"] = "heat and transverse-momentum modes decaying in a periodic box (seed 004)";
     method["particles"] = flow.particles;
-    method["wavenumber_times_cutoff"] = 2 * M_PI / (2 * flow_edge) * p.largest_cutoff();
+    method["wavenumber_times_cutoff"] = k_rc;
     method["steps"] = flow.steps;
     method["conductivity"] = flow.conductivity.json();
     method["viscosity"] = flow.viscosity.json();
@@ -333,8 +333,9 @@ int transport_stage(const CommandLine& cl) {
     try {
       fs::create_directories(cache);
       io::write_file_atomically(cache / "inputs.json", key_inputs.dump());
-      for (const char* f : kCachedFiles)
-        io::write_file_atomically(cache / f, io::read_file(stage.file(f)));
+      io::write_file_atomically(cache / "coefficients.csv", table.str());
+      io::write_file_atomically(cache / "rdf.csv", m.rdf_csv);
+      io::write_file_atomically(cache / "summary.json", summary.dump());
     } catch (const std::exception& e) {
       std::cerr << "transport: not cached (" << e.what() << ")\n";
     }

@@ -169,9 +169,7 @@ Distance finish(double sum_d2, double sum_sigma2, double sum_d2_sigma2, long n, 
   r.max_at = max_at;
   return r;
 }
-} // namespace
 
-namespace {
 // The distance of fields with `components` values per bin (1: scalar, dim: vector, compared by
 // the norm of the difference); `a_se` may be empty.
 Distance field_distance(const io::Grid& grid, const std::vector<double>& a,

@@ -43,7 +43,7 @@ io::Json to_json(const ContinuumParameters& p) {
         if (b.fixed_temperature[side]) s["temperature"] = b.temperature[side];
         if (b.robin(side))
           s["kapitza_conductance"] = b.kapitza_conductance[side];
-        else
+        else if (!b.fixed_temperature[side])
           s["heat_flux_in"] = b.heat_flux[side];
         w[side ? "upper" : "lower"] = s;
       }

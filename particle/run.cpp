@@ -10,6 +10,7 @@
 
 #include "particle/archive.hpp"
 #include "particle/fields.hpp"
+#include "particle/line_fit.hpp"
 #include "particle/simulation.hpp"
 #include "particle/theory.hpp"
 
@@ -68,21 +69,6 @@ io::Snapshot snapshot(const BinnedFields& f, double time, double wall, long part
   add("flux_potential", f.flux_potential, f.dim);
   return s;
 }
-
-// Weighted least-squares line y = intercept + slope x (weights 1/se^2; errors from the weights).
-struct LineFit {
-  double sw = 0, sx = 0, sy = 0, sxx = 0, sxy = 0;
-  void add(double x, double y, double se) {
-    const double w = se > 0 ? 1 / (se * se) : 1;
-    sw += w, sx += w * x, sy += w * y, sxx += w * x * x, sxy += w * x * y;
-  }
-  double det() const { return sw * sxx - sx * sx; }
-  double slope() const { return (sw * sxy - sx * sy) / det(); }
-  double intercept() const { return (sxx * sy - sx * sxy) / det(); }
-  double slope_stderr() const { return std::sqrt(sw / det()); }
-  // Standard error of the line's value at x.
-  double value_stderr(double x) const { return std::sqrt((sxx - 2 * x * sx + x * x * sw) / det()); }
-};
 
 // Thermal walls at different temperatures along d, fields binned along d only: a line through
 // T_internal in the central 60% and the jump T_wall - T_line(wall) at each wall (Kapitza).
@@ -229,11 +215,10 @@ io::Json decay_fit(const ParticleParameters& p, const std::vector<double>& t,
     return j;
   }
   const double n = x.size();
-  double sx = 0, sy = 0, sxx = 0, sxy = 0;
-  for (std::size_t k = 0; k < x.size(); ++k)
-    sx += x[k], sy += y[k], sxx += x[k] * x[k], sxy += x[k] * y[k];
-  const double det = n * sxx - sx * sx;
-  const double slope = (n * sxy - sx * sy) / det, intercept = (sy - slope * sx) / n;
+  LineFit line; // unweighted: the error comes from the residuals below
+  for (std::size_t k = 0; k < x.size(); ++k) line.add(x[k], y[k]);
+  const double det = line.det();
+  const double slope = line.slope(), intercept = line.intercept();
   std::vector<double> res(x.size());
   double ss = 0;
   for (std::size_t k = 0; k < x.size(); ++k)

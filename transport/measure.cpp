@@ -4,6 +4,8 @@
 #include <sstream>
 #include <vector>
 
+#include "particle/line_fit.hpp"
+
 namespace twinflow::transport {
 
 using particle::Estimate;
@@ -146,34 +148,30 @@ io::Json Repeated::json() const {
 
 PowerLawFit fit_power_law(const std::vector<double>& temperatures,
                           const std::vector<Estimate>& values, double reference) {
-  // ln c = ln c_ref + n ln(T / T_ref), weights 1 / (stderr / c)^2: the weighted straight line
-  // of Numerical Recipes (3rd ed.) section 15.2, with its slope and intercept variances.
-  double s = 0, sx = 0, sy = 0, sxx = 0, sxy = 0;
+  // ln c = ln c_ref + n ln(T / T_ref), a straight line in logs weighted by (c / stderr)^2.
+  particle::LineFit line;
+  std::vector<std::size_t> used;
   for (std::size_t i = 0; i < values.size(); ++i) {
     if (!std::isfinite(values[i].mean) || !(values[i].stderr_ > 0)) continue;
-    const double x = std::log(temperatures[i] / reference), y = std::log(values[i].mean);
-    const double w = std::pow(values[i].mean / values[i].stderr_, 2);
-    s += w, sx += w * x, sy += w * y, sxx += w * x * x, sxy += w * x * y;
+    line.add(std::log(temperatures[i] / reference), std::log(values[i].mean),
+             values[i].stderr_ / values[i].mean);
+    used.push_back(i);
   }
-  const double det = s * sxx - sx * sx;
+  const double nan = std::nan("");
+  if (used.size() < 2) return {nan, nan, nan, nan, nan};
   PowerLawFit f;
-  f.exponent = (s * sxy - sx * sy) / det;
-  const double intercept = (sxx * sy - sx * sxy) / det;
-  f.exponent_stderr = std::sqrt(s / det);
-  f.value = std::exp(intercept);
-  f.value_stderr = f.value * std::sqrt(sxx / det);
+  f.exponent = line.slope();
+  f.exponent_stderr = line.slope_stderr();
+  f.value = std::exp(line.intercept());
+  f.value_stderr = f.value * line.value_stderr(0);
   double chi2 = 0;
-  std::size_t used = 0;
-  for (std::size_t i = 0; i < values.size(); ++i) {
-    if (!std::isfinite(values[i].mean) || !(values[i].stderr_ > 0)) continue;
-    ++used;
+  for (const std::size_t i : used) {
     const double x = std::log(temperatures[i] / reference);
-    const double r = (std::log(values[i].mean) - intercept - f.exponent * x) * values[i].mean /
-                     values[i].stderr_;
+    const double r = (std::log(values[i].mean) - line.intercept() - f.exponent * x) *
+                     values[i].mean / values[i].stderr_;
     chi2 += r * r;
   }
-  f.chi2_per_dof = used > 2 ? chi2 / static_cast<double>(used - 2) : std::nan("");
-  if (used < 2) f = {std::nan(""), std::nan(""), std::nan(""), std::nan(""), std::nan("")};
+  f.chi2_per_dof = used.size() > 2 ? chi2 / static_cast<double>(used.size() - 2) : nan;
   return f;
 }
 
@@ -210,8 +208,8 @@ measure_relaxation(particle::ParticleParameters p, const Estimates& estimate, do
       if (!v) return {nan, nan};
       return {scale * v->number(), scale * f->find(std::string(key) + "_stderr")->number()};
     };
-    kappa.push_back(fitted("relaxation", "chi", p.density * cp));        // kappa = rho c_p chi
-    eta.push_back(fitted("shear_relaxation", "nu", p.density * p.mass)); // eta = n m nu
+    kappa.push_back(fitted("relaxation", "chi", p.density * cp)); // kappa = rho c_p chi
+    eta.push_back(fitted("shear_relaxation", "viscosity", 1));    // eta = n m nu, by the fit
     // The run's own mean temperature: the decaying shear mode's kinetic energy, U^2 k T / 4 per
     // particle, ends as heat (+2% of T at c_v = 10 in 2D), and an NVE start settles on its own.
     // T_internal = 1/<1/theta> leaves the flow's kinetic energy out (the heat mode biases it low

@@ -43,6 +43,9 @@ void write_report(const std::filesystem::path& dir);
 // --set options that make the calibrated twin of a finished particle run in run_dir.
 std::vector<std::string> calibrated_twin_overrides(const std::string& run_dir);
 int transport_stage(const CommandLine&);
+// The transport measurement's version: part of its cache key and of its stage inputs in `run`,
+// bumped when a measurement changes (results of an older method are not reused).
+constexpr int kTransportMethod = 3; // 3: relaxation fit window from the noise (decay_fit.hpp)
 int bench(const CommandLine&);
 int run_all(const CommandLine&);
 int sweep(const CommandLine&);

@@ -220,6 +220,7 @@ int compare_stage(const CommandLine& cl) {
   metrics["interior_bins"] = double(n_interior);
   metrics["temperature_scale"] = dT;
   metrics["velocity_scale"] = compare_velocity ? speed_scale : std::nan("");
+  metrics["density_scale"] = scene.density; // the mean number density
   metrics["temperature_field"] = "T_kinetic (particle) against T (continuum), / temperature_scale";
 
   const io::Json& presults = *run.summary.find("results");
@@ -315,6 +316,14 @@ int compare_stage(const CommandLine& cl) {
       table["velocity_l2_noise"] = v.noise;
       std::cout << "; velocity L2 " << v.l2 << " +- " << v.l2_stderr << " (noise " << v.noise
                 << ")";
+    }
+    if (!t.state.density.empty()) { // the low-Mach twin's n(P, T) against the particles'
+      const auto n = compare::density_distance(final_state, t.state, interior, scene.density);
+      j["density"] = n.to_json();
+      table["density_l2_" + t.name] = n.l2;
+      table["density_l2_" + t.name + "_stderr"] = n.l2_stderr;
+      table["density_l2_noise"] = n.noise;
+      std::cout << "; density L2 " << n.l2 << " +- " << n.l2_stderr << " (noise " << n.noise << ")";
     }
     std::cout << "\n";
     const double nu_own = number(t.summary, {"results", "nusselt_volume_average"});

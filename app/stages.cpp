@@ -38,7 +38,7 @@ struct StageInputs {
 };
 
 StageInputs stage_inputs(const CommandLine& cl, std::initializer_list<const char*> sections,
-                         const std::vector<std::string>& upstream_hashes) {
+                         const std::vector<std::string>& upstream_hashes, int method = 0) {
   Case c;
   c.load(cl.target, cl.overrides);
   StageInputs s;
@@ -53,6 +53,7 @@ StageInputs stage_inputs(const CommandLine& cl, std::initializer_list<const char
   s.inputs["parameters"] = parameters;
   s.inputs["upstream"] = io::Json::array();
   for (const auto& h : upstream_hashes) s.inputs["upstream"].push_back(h);
+  if (method) s.inputs["method"] = method; // a changed measurement: not reused
   s.hash = io::content_hash(s.inputs.dump());
   const io::Json provenance = io::provenance();
   s.inputs["twinflow_git_revision"] = *provenance.find("twinflow_git_revision");
@@ -66,6 +67,9 @@ bool same_inputs(const io::Json& recorded, const StageInputs& s) {
   const io::Json* then = recorded.find("parameters");
   const io::Json* upstream = recorded.find("upstream");
   if (!then || !upstream || upstream->dump() != s.inputs.find("upstream")->dump()) return false;
+  const io::Json* method = recorded.find("method");
+  const io::Json* now = s.inputs.find("method");
+  if ((method ? method->dump() : "") != (now ? now->dump() : "")) return false;
   for (const auto& [path, value] : s.inputs.find("parameters")->items()) {
     const io::Json* old = then->find(path);
     if (old ? old->dump() != value.dump() : value.string() != s.defaults.at(path)) return false;
@@ -258,8 +262,8 @@ int run_all(const CommandLine& cl) {
                 << "'\n";
     }
   }
-  const StageInputs transport_inputs =
-      stage_inputs(later, {"Scene/", "Particle/", "Transport/"}, {particle_inputs.hash});
+  const StageInputs transport_inputs = stage_inputs(later, {"Scene/", "Particle/", "Transport/"},
+                                                    {particle_inputs.hash}, kTransportMethod);
   if (const int rc = run_or_reuse(run_dir / "transport", transport_inputs, false,
                                   [&] { return transport_stage(later); }))
     return rc;

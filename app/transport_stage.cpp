@@ -21,10 +21,9 @@ namespace fs = std::filesystem;
 namespace {
 // What the transport stage's outputs depend on: the fluid (the Particle section, less the scene's
 // run lengths and walls), the dimension, the state point and the measurement settings; not the
-// scene's box, walls or gravity. Bump kMethod when a measurement changes.
+// scene's box, walls or gravity; the method's version (kTransportMethod).
 io::Json measurement_inputs(const Case& c, const particle::ParticleParameters& p,
                             const TransportParameters& t) {
-  constexpr int kMethod = 2; // 2: kappa and eta from relaxation repeats
   io::Json j = io::Json::object();
   const io::Json resolved = c.registry().resolved_json();
   for (const auto& [path, value] : resolved.items()) {
@@ -44,7 +43,7 @@ io::Json measurement_inputs(const Case& c, const particle::ParticleParameters& p
     j["flow_repeats"] = t.flow_repeats;
     j["temperature_spread"] = t.temperature_spread;
   }
-  j["method"] = kMethod;
+  j["method"] = kTransportMethod;
   return j;
 }
 

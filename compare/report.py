@@ -372,18 +372,31 @@ def colour_bar(fig, ax, image, label):
     fig.colorbar(image, cax=ax.inset_axes([1.04, 0.0, 0.05, 1.0]), label=label)
 
 
-def figure_fields(out_dir, bins, geometry, twins, metrics):
+# The field maps: temperature (fields.png) and, beside a low-Mach twin, number density
+# (density.png); bins.csv columns <prefix>_particle and <prefix>_<twin>.
+FIELD_MAPS = {
+    "temperature": {"prefix": "T", "symbol": "T", "unit": "T0", "cmap": "plasma",
+                    "particle": "particle (DPDE), T_kinetic", "twin": ", T",
+                    "file": "fields.png"},
+    "density": {"prefix": "density", "symbol": "n", "unit": "rc^-d", "cmap": "viridis",
+                "particle": "particle (DPDE), n", "twin": ", n(P, T)", "file": "density.png"},
+}
+
+
+def figure_fields(out_dir, bins, geometry, twins, metrics, field="temperature"):
     import numpy as np
     import matplotlib.pyplot as plt
     from matplotlib.patches import Rectangle
 
+    spec = FIELD_MAPS[field]
+    prefix, symbol = spec["prefix"], spec["symbol"]
     a, b, xs, ys, grid, cut_text, layer = bin_plane(bins, geometry)
     cut = geometry.plane()[2]
     ex, ey = edges(xs), edges(ys)
     va, vb = f"v{AXES[a]}", f"v{AXES[b]}"
-    sources = [("particle", "particle (DPDE), T_kinetic")] + \
-        [(t, TWIN_LABEL[t] + ", T") for t in twins if bins.has(f"T_{t}")]
-    maps = {name: grid(f"T_{name}") for name, _ in sources}
+    sources = [("particle", spec["particle"])] + \
+        [(t, TWIN_LABEL[t] + spec["twin"]) for t in twins if bins.has(f"{prefix}_{t}")]
+    maps = {name: grid(f"{prefix}_{name}") for name, _ in sources}
     # The difference map against the calibrated twin when there is one, else the nominal.
     reference = next((t for t in ("calibrated", "nominal") if t in maps), None)
     t_low = min(np.nanmin(m) for m in maps.values())
@@ -420,8 +433,8 @@ def figure_fields(out_dir, bins, geometry, twins, metrics):
                                            linewidth=0))
 
     for ax, (name, title) in zip(axes, sources):
-        image = ax.pcolormesh(ex, ey, maps[name], cmap="plasma", vmin=t_low, vmax=t_high)
-        colour_bar(fig, ax, image, "T [T0]")
+        image = ax.pcolormesh(ex, ey, maps[name], cmap=spec["cmap"], vmin=t_low, vmax=t_high)
+        colour_bar(fig, ax, image, f"{symbol} [{spec['unit']}]")
         u, v = grid(f"{va}_{name}"), grid(f"{vb}_{name}")
         if arrow_scale and np.isfinite(u).any():
             X, Y = np.meshgrid(xs, ys)
@@ -437,21 +450,21 @@ def figure_fields(out_dir, bins, geometry, twins, metrics):
     for ax in axes[panels:]:
         ax.set_visible(False)
     if reference is None:
-        save_figure(fig, out_dir, "fields.png")
+        save_figure(fig, out_dir, spec["file"])
         return None, cut_text
     ax = axes[len(sources)]
     difference = maps["particle"] - maps[reference]
     limit = np.nanmax(np.abs(difference))
     limit = limit if finite(limit) and limit > 0 else 1.0
     image = ax.pcolormesh(ex, ey, difference, cmap="RdBu_r", vmin=-limit, vmax=limit)
-    colour_bar(fig, ax, image, f"T_particle − T_{reference} [T0]")
+    colour_bar(fig, ax, image, f"{symbol}_particle − {symbol}_{reference} [{spec['unit']}]")
     decorate(ax)
-    # Where the compare stage found the largest interior temperature difference.
-    at = lookup(metrics, "twins", reference, "temperature", "max_at") or []
+    # Where the compare stage found the largest interior difference.
+    at = lookup(metrics, "twins", reference, field, "max_at") or []
     if len(at) >= geometry.dim and (cut is None or at[cut] == layer):
         ax.plot([at[a]], [at[b]], "x", color="black", ms=10, mew=2)
     ax.set_title(f"particle − {TWIN_LABEL[reference]}", loc="left", fontsize=10)
-    save_figure(fig, out_dir, "fields.png")
+    save_figure(fig, out_dir, spec["file"])
     return reference, cut_text
 
 
@@ -676,7 +689,9 @@ def report_run(run_dir, out_dir):
         f"U = {fmt(number(metrics, 'velocity_scale'))} rc/tau (the nominal twin's largest speed). "
         "L2 and max distances below are in these units.",
         f"Fields: {lookup(metrics, 'temperature_field') or 'temperature'}.",
-    ])
+    ] + ([f"Density scale n0 = {fmt(number(metrics, 'density_scale'))} rc^-d (the mean number "
+          "density), for the low-Mach twin's n(P, T) against the particles' bin density."]
+         if any(lookup(metrics, "twins", t, "density") for t in twins) else []))
 
     # The metrics, one column per twin.
     table_rows = []
@@ -686,7 +701,7 @@ def report_run(run_dir, out_dir):
         def row(label, values):
             table_rows.append([label] + values)
 
-        for field, scale in (("temperature", "dT"), ("velocity", "U")):
+        for field, scale in (("temperature", "dT"), ("velocity", "U"), ("density", "n0")):
             if not any(lookup(metrics, "twins", t, field) for t in twins):
                 continue
             d = {t: lookup(metrics, "twins", t, field) or {} for t in twins}
@@ -715,7 +730,7 @@ def report_run(run_dir, out_dir):
         doc.table(["quantity"] + [TWIN_LABEL[t] for t in twins], table_rows)
         sentences = []
         for t in twins:
-            for field in ("temperature", "velocity"):
+            for field in ("temperature", "velocity", "density"):
                 distance = lookup(metrics, "twins", t, field)
                 if distance:
                     sentences.append(within_noise_sentence(f"{field}, {TWIN_LABEL[t]}", distance))
@@ -770,7 +785,7 @@ def report_run(run_dir, out_dir):
                 gap_rows.append([label, fmt(nominal_value), fmt(calibrated_value),
                                  fmt_percent(explained)])
 
-        for field, scale in (("temperature", "dT"), ("velocity", "U")):
+        for field, scale in (("temperature", "dT"), ("velocity", "U"), ("density", "n0")):
             gap(f"{field} L2 / {scale}", number(metrics, "twins", "nominal", field, "l2"),
                 number(metrics, "twins", "calibrated", field, "l2"))
             gap(f"{field} excess over noise / {scale}",
@@ -804,6 +819,13 @@ def report_run(run_dir, out_dir):
                    + difference + ". Arrows: bin velocities (one scale for all maps, key on the "
                    f"particle map). Hatched: the wall layer ({fmt(excluded)} rc) left out of the "
                    f"distances{where}. {UNITS_NOTE}.")
+    if bins and bins.rows and any(bins.has(f"density_{t}") for t in twins):
+        reference, _ = figure_fields(out_dir, bins, geometry, twins, metrics, "density")
+        doc.figure("density.png",
+                   "Bin-averaged number density: particle and the low-Mach twin's n(P, T) "
+                   "(thermodynamic pressure P from the closed cavity's mass) on one colour scale"
+                   + (f", and particle − {TWIN_LABEL[reference]}" if reference else "")
+                   + f". Arrows and hatching as above. {UNITS_NOTE}.")
     if profiles and profiles.rows:
         titles = figure_profiles(out_dir, profiles, geometry, metrics, twins, excluded)
         doc.figure("profiles.png",

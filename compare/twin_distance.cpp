@@ -101,12 +101,14 @@ BinnedState continuum_state(const io::Grid& grid, const std::filesystem::path& b
   const int t_column = column("T");
   if (t_column < 0) throw io::InputError(bins_csv.string() + ": no temperature column 'T'");
   const bool has_velocity = velocity_column[0] >= 0;
+  const int n_column = column("n"); // the low-Mach twin's number density
 
   BinnedState s;
   s.grid = grid;
   const long cells = grid.cell_count();
   s.temperature.assign(cells, std::nan(""));
   if (has_velocity) s.velocity.assign(cells * grid.dim, std::nan(""));
+  if (n_column >= 0) s.density.assign(cells, std::nan(""));
   long rows = 0;
   while (std::getline(in, line)) {
     if (line.empty() || line[0] == '#') continue;
@@ -126,6 +128,7 @@ BinnedState continuum_state(const io::Grid& grid, const std::filesystem::path& b
     if (has_velocity)
       for (int d = 0; d < grid.dim; ++d)
         s.velocity[b * grid.dim + d] = std::stod(v[velocity_column[d]]);
+    if (n_column >= 0) s.density[b] = std::stod(v[n_column]);
     ++rows;
   }
   if (rows != cells)
@@ -213,6 +216,12 @@ Distance velocity_distance(const BinnedState& p, const BinnedState& c,
                            const std::vector<char>& interior, double scale) {
   if (!p.has_velocity() || !c.has_velocity()) return {};
   return field_distance(p.grid, p.velocity, p.velocity_se, c.velocity, p.grid.dim, interior, scale);
+}
+
+Distance density_distance(const BinnedState& p, const BinnedState& c,
+                          const std::vector<char>& interior, double scale) {
+  if (c.density.empty()) return {};
+  return field_distance(p.grid, p.density, p.density_se, c.density, 1, interior, scale);
 }
 
 WallFluidTemperature wall_fluid_temperature(const BinnedState& p, const std::vector<char>& interior,
@@ -348,7 +357,10 @@ std::string bins_csv(const BinnedState& particle, const std::vector<char>& inter
   for (int d = 0; d < dim; ++d) out << (d ? "," : "") << kAxis[d];
   out << ",interior,density_particle,density_particle_se";
   write_state_header(out, "particle", particle, true);
-  for (const auto& [name, s] : continua) write_state_header(out, name, *s, false);
+  for (const auto& [name, s] : continua) {
+    write_state_header(out, name, *s, false);
+    if (!s->density.empty()) out << ",density_" << name;
+  }
   out << "\n";
   for (long b = 0; b < g.cell_count(); ++b) {
     const auto i = bin_index(g, b);
@@ -366,6 +378,7 @@ std::string bins_csv(const BinnedState& particle, const std::vector<char>& inter
       out << "," << s.temperature[b];
       if (s.has_velocity())
         for (int k = 0; k < dim; ++k) out << "," << s.velocity[b * dim + k];
+      if (!s.density.empty()) out << "," << s.density[b];
     }
     out << "\n";
   }

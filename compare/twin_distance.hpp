@@ -19,13 +19,14 @@ struct BinnedState {
   io::Grid grid;
   std::vector<double> temperature, temperature_se;
   std::vector<double> velocity, velocity_se; // empty if the twin has no flow
-  std::vector<double> density, density_se;   // particle only
+  std::vector<double> density, density_se;   // the particle's; the low-Mach twin's (no errors)
   bool has_velocity() const { return !velocity.empty(); }
 };
 
 // The particle run's binned averages of one snapshot (temperature = T_kinetic).
 BinnedState particle_state(const io::Grid& grid, const io::Snapshot& snapshot);
-// RUNDIR/<continuum stage>/bins.csv on the same grid (throws io::InputError if it does not fit).
+// RUNDIR/<continuum stage>/bins.csv on the same grid (throws io::InputError if it does not fit);
+// the density from its column "n" where there is one.
 BinnedState continuum_state(const io::Grid& grid, const std::filesystem::path& bins_csv);
 
 // Bins whose whole extent lies at least `wall_layer` from every wall; `walled[d]`: direction d
@@ -50,6 +51,10 @@ Distance temperature_distance(const BinnedState& particle, const BinnedState& co
                               const std::vector<char>& interior, double scale);
 Distance velocity_distance(const BinnedState& particle, const BinnedState& continuum,
                            const std::vector<char>& interior, double scale);
+
+// The number density's distance in units of `scale` (empty if the twin has no density field).
+Distance density_distance(const BinnedState& particle, const BinnedState& continuum,
+                          const std::vector<char>& interior, double scale);
 
 // The fluid's temperature at a wall (direction d, side 0: x_d = 0, 1: x_d = L_d), extrapolated
 // linearly from the first two bin layers beyond the wall layer and averaged over the interior

@@ -110,7 +110,7 @@ void BoussinesqProblem<dim>::march_in_time(const std::filesystem::path& dir,
   // On the finest mesh from the initial state; one Newton solve per step, from the last state.
   {
     ScopedTimer timer(times_.setup);
-    triangulation_.refine_global(prm_.refinements);
+    detail::refine_uniformly(triangulation_, prm_, prm_.refinements);
   }
   level_ = prm_.refinements;
   setup_dofs();
@@ -372,7 +372,7 @@ template <int dim> void BoussinesqProblem<dim>::normalize_pressure() {
 template <int dim> void BoussinesqProblem<dim>::refine_mesh_and_transfer() {
   ScopedTimer timer(times_.setup);
   dealii::SolutionTransfer<dim> transfer(dof_handler_);
-  triangulation_.set_all_refine_flags();
+  detail::flag_uniform_refinement(triangulation_, prm_);
   triangulation_.prepare_coarsening_and_refinement();
   const dealii::Vector<double> coarse_solution = solution_; // setup_dofs() resets solution_
   transfer.prepare_for_coarsening_and_refinement(coarse_solution);

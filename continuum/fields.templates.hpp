@@ -11,6 +11,7 @@
 #include <deal.II/grid/grid_generator.h>
 #include <deal.II/numerics/data_out.h>
 #include <deal.II/numerics/vector_tools.h>
+#include <functional>
 
 #include <algorithm>
 #include <chrono>
@@ -79,11 +80,35 @@ void add_periodicity(const dealii::DoFHandler<dim>& dofs, const ContinuumParamet
       dealii::DoFTools::make_periodicity_constraints(dofs, 2 * d, 2 * d + 1, d, constraints);
 }
 
+// A periodic direction given one coarse cell is taken as uniform (a thin periodic slice: the flow
+// does not vary along it); refinement leaves it one cell thick.
+inline bool uniform_direction(const ContinuumParameters& prm, int d) {
+  return prm.boundary[d].periodic && prm.cells[d] == 1;
+}
+
+// Refine every cell once in every direction but the uniform ones (set the flags only).
+template <int dim>
+void flag_uniform_refinement(dealii::Triangulation<dim>& tria, const ContinuumParameters& prm) {
+  dealii::RefinementCase<dim> cut = dealii::RefinementCase<dim>::no_refinement;
+  for (int d = 0; d < dim; ++d)
+    if (!uniform_direction(prm, d)) cut = cut | dealii::RefinementCase<dim>::cut_axis(d);
+  for (const auto& cell : tria.active_cell_iterators()) cell->set_refine_flag(cut);
+}
+
+template <int dim>
+void refine_uniformly(dealii::Triangulation<dim>& tria, const ContinuumParameters& prm, int times) {
+  for (int i = 0; i < times; ++i) {
+    flag_uniform_refinement(tria, prm);
+    tria.execute_coarsening_and_refinement();
+  }
+}
+
 template <int dim>
 std::array<unsigned, 3> current_cells(const dealii::Triangulation<dim>& tria,
                                       const ContinuumParameters& prm) {
   std::array<unsigned, 3> cells{{1, 1, 1}};
-  for (int d = 0; d < dim; ++d) cells[d] = prm.cells[d] << (tria.n_levels() - 1);
+  for (int d = 0; d < dim; ++d)
+    cells[d] = uniform_direction(prm, d) ? 1u : prm.cells[d] << (tria.n_levels() - 1);
   return cells;
 }
 
@@ -92,11 +117,15 @@ std::array<unsigned, 3> current_cells(const dealii::Triangulation<dim>& tria,
 // the sub-cell quadrature is iterated so that a cell straddling a bin face is split into pieces
 // no larger than a quarter bin (error of a non-aligned bin face O(h_sub / bin width)).
 // Cells not owned by this process are skipped and the sums added over `comm` (the distributed
-// solver); VectorType: dealii::Vector or a ghosted Trilinos vector.
+// solver); VectorType: dealii::Vector or a ghosted Trilinos vector. `derived` adds fields computed
+// from the components at each quadrature point (the low-Mach density n(P, T)), after the
+// components, named after them in `names`.
+using DerivedField = std::function<double(const dealii::Vector<double>& components)>;
 template <int dim, class VectorType>
 BinAverages bin_averages(const dealii::DoFHandler<dim>& dofs, const VectorType& solution,
                          const std::vector<std::string>& names, const ContinuumParameters& prm,
-                         const MPI_Comm comm = MPI_COMM_SELF) {
+                         const MPI_Comm comm = MPI_COMM_SELF,
+                         const std::vector<DerivedField>& derived = {}) {
   BinAverages out;
   out.names = names;
   unsigned n_bins = 1;
@@ -117,9 +146,10 @@ BinAverages bin_averages(const dealii::DoFHandler<dim>& dofs, const VectorType& 
                                   dealii::update_values | dealii::update_quadrature_points |
                                       dealii::update_JxW_values);
   const unsigned n_components = fe.n_components();
+  const unsigned n_fields = n_components + static_cast<unsigned>(derived.size());
   std::vector<dealii::Vector<double>> values(quadrature.size(),
                                              dealii::Vector<double>(n_components));
-  out.values.assign(n_components, std::vector<double>(n_bins, 0.0));
+  out.values.assign(n_fields, std::vector<double>(n_bins, 0.0));
   std::vector<double> volume(n_bins, 0.0);
   for (const auto& cell : dofs.active_cell_iterators()) {
     if (!cell->is_locally_owned()) continue;
@@ -137,10 +167,12 @@ BinAverages bin_averages(const dealii::DoFHandler<dim>& dofs, const VectorType& 
       volume[index] += fe_values.JxW(q);
       for (unsigned c = 0; c < n_components; ++c)
         out.values[c][index] += values[q][c] * fe_values.JxW(q);
+      for (unsigned k = 0; k < derived.size(); ++k)
+        out.values[n_components + k][index] += derived[k](values[q]) * fe_values.JxW(q);
     }
   }
   dealii::Utilities::MPI::sum(volume, comm, volume);
-  for (unsigned c = 0; c < n_components; ++c) {
+  for (unsigned c = 0; c < n_fields; ++c) {
     dealii::Utilities::MPI::sum(out.values[c], comm, out.values[c]);
     for (unsigned b = 0; b < n_bins; ++b) out.values[c][b] /= volume[b];
   }

@@ -94,7 +94,7 @@ ContinuumResult HeatConductionProblem<dim>::run(const std::filesystem::path& out
 
 template <int dim> void HeatConductionProblem<dim>::make_mesh() {
   detail::make_box_mesh(triangulation_, prm_);
-  triangulation_.refine_global(prm_.refinements);
+  detail::refine_uniformly(triangulation_, prm_, prm_.refinements);
 }
 
 template <int dim> void HeatConductionProblem<dim>::make_constraints(double pinned_temperature) {

@@ -565,7 +565,7 @@ template <int dim> void LowMachProblem<dim>::run_transient() {
   const auto start = std::chrono::steady_clock::now();
   {
     detail::ScopedTimer timer(times_.setup);
-    triangulation_.refine_global(prm_.refinements);
+    detail::refine_uniformly(triangulation_, prm_, prm_.refinements);
   }
   setup_dofs();
   // At rest and at T_ref, the walls at their temperatures from t = 0 on (Le Quere 2005's
@@ -620,7 +620,7 @@ template <int dim> void LowMachProblem<dim>::normalize_pressure() {
 template <int dim> void LowMachProblem<dim>::refine_mesh_and_transfer() {
   detail::ScopedTimer timer(times_.setup);
   dealii::SolutionTransfer<dim> transfer(dof_handler_);
-  triangulation_.set_all_refine_flags();
+  detail::flag_uniform_refinement(triangulation_, prm_);
   triangulation_.prepare_coarsening_and_refinement();
   const dealii::Vector<double> coarse_solution = solution_;
   transfer.prepare_for_coarsening_and_refinement(coarse_solution);
@@ -809,7 +809,12 @@ template <int dim> void LowMachProblem<dim>::postprocess(ContinuumResult& result
   for (int d = 0; d < dim; ++d) names.push_back(std::string("u_") + "xyz"[d]);
   names.push_back("p");
   names.push_back("T");
-  result.bins = detail::bin_averages(dof_handler_, solution_, names, prm_);
+  names.push_back("n"); // the number density n(P, T), compared with the particles'
+  const auto density = [&](const dealii::Vector<double>& v) {
+    return number_density(prm_.equation_of_state, P_, v(dim + 1)).n;
+  };
+  result.bins =
+      detail::bin_averages(dof_handler_, solution_, names, prm_, MPI_COMM_SELF, {density});
   detail::probe(dof_handler_, solution_, prm_, result);
   result.temperature_min = 1e300, result.temperature_max = -1e300;
   for (const auto i : dealii::DoFTools::extract_dofs(

@@ -201,7 +201,8 @@ io::Json to_json(const ContinuumResult& r) {
     io::Json o = io::Json::object();
     o["point"] = triple(r.probe_points[i], r.dim);
     io::Json values = io::Json::object();
-    for (std::size_t c = 0; c < r.bins.names.size(); ++c)
+    // the FE components only (the bins' derived fields come after them)
+    for (std::size_t c = 0; c < std::min(r.bins.names.size(), r.probe_values[i].size()); ++c)
       values[r.bins.names[c]] = r.probe_values[i][c];
     o["values"] = values;
     probes.push_back(o);

@@ -99,7 +99,7 @@ struct ContinuumResult {
   double temperature_min = 0, temperature_max = 0, temperature_mean = 0;
   BinAverages bins;
   std::vector<std::array<double, 3>> probe_points;
-  std::vector<std::vector<double>> probe_values; // [point][field], fields as in bins.names
+  std::vector<std::vector<double>> probe_values; // [point][component], as the first bins.names
   std::vector<std::string> files;                // written into the output folder
 };
 

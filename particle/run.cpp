@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "particle/archive.hpp"
+#include "particle/decay_fit.hpp"
 #include "particle/fields.hpp"
 #include "particle/line_fit.hpp"
 #include "particle/simulation.hpp"
@@ -190,53 +191,9 @@ io::Json slab_fit(const ParticleParameters& p, const BinnedFields& f) {
   return out;
 }
 
-// Seed 004's relaxation method: a mode of wavenumber k decays as exp(-D k^2 t) (D = chi for the
-// heat mode, nu for the transverse momentum mode). A least-squares line through ln a(t) while a
-// has fallen to between 80% and 10% of its first sample (after the fastest transients, before the
-// noise floor). The slope's error is the residuals' standard error, widened for their correlation
-// in time by sqrt((1 + r1)/(1 - r1)) (r1: lag-1 autocorrelation); it still understates the
-// spread across seeds (the mode's own noise decays at the fitted rate), which the transport stage
-// measures with repeats.
-io::Json decay_fit(const ParticleParameters& p, const std::vector<double>& t,
-                   const std::vector<double>& a, const char* diffusivity) {
-  const double a0 = a.front();
-  std::vector<double> x, y;
-  for (std::size_t k = 0; k < t.size(); ++k) {
-    if (a[k] > 0.8 * a0) continue;
-    if (a[k] < 0.1 * a0) break;
-    x.push_back(t[k]), y.push_back(std::log(a[k]));
-  }
-  io::Json j = io::Json::object();
-  const double wave = 2 * M_PI / p.box[0];
-  j["wavenumber"] = wave;
-  j["points"] = static_cast<long>(x.size());
-  if (x.size() < 5) {
-    j["note"] = "too few samples between 80% and 10% of the initial amplitude: run longer";
-    return j;
-  }
-  const double n = x.size();
-  LineFit line; // unweighted: the error comes from the residuals below
-  for (std::size_t k = 0; k < x.size(); ++k) line.add(x[k], y[k]);
-  const double det = line.det();
-  const double slope = line.slope(), intercept = line.intercept();
-  std::vector<double> res(x.size());
-  double ss = 0;
-  for (std::size_t k = 0; k < x.size(); ++k)
-    res[k] = y[k] - intercept - slope * x[k], ss += res[k] * res[k];
-  double c1 = 0;
-  for (std::size_t k = 1; k < res.size(); ++k) c1 += res[k] * res[k - 1];
-  const double r1 = std::clamp(c1 / ss, 0.0, 0.95);
-  const double slope_se = std::sqrt(ss / (n - 2) * n / det) * std::sqrt((1 + r1) / (1 - r1));
-  j["fit_from_time"] = x.front(), j["fit_to_time"] = x.back();
-  j["decay_rate"] = -slope, j["decay_rate_stderr"] = slope_se;
-  j[diffusivity] = -slope / (wave * wave); // a ~ exp(-D k^2 t), 004
-  j[std::string(diffusivity) + "_stderr"] = slope_se / (wave * wave);
-  return j;
-}
-
 io::Json heat_relaxation_fit(const ParticleParameters& p, const std::vector<double>& t,
                              const std::vector<double>& a) {
-  io::Json j = decay_fit(p, t, a, "chi");
+  io::Json j = decay_fit(2 * M_PI / p.box[0], t, a, "chi");
   if (!j.find("chi")) return j;
   // kappa = rho c_p chi with the ideal DPDE fluid's c_p = c_v + k + (d/2) k + k per particle
   // (physics.md); the transport stage converts chi itself, with the c_p of its estimate.
@@ -248,7 +205,7 @@ io::Json heat_relaxation_fit(const ParticleParameters& p, const std::vector<doub
 
 io::Json shear_relaxation_fit(const ParticleParameters& p, const std::vector<double>& t,
                               const std::vector<double>& a) {
-  io::Json j = decay_fit(p, t, a, "nu");
+  io::Json j = decay_fit(2 * M_PI / p.box[0], t, a, "nu");
   if (!j.find("nu")) return j;
   const double scale = p.density * p.mass; // eta = rho m nu
   j["viscosity"] = scale * j["nu"].number();

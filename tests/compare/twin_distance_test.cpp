@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <random>
 
 #include "compare/twin_distance.hpp"
@@ -104,4 +106,29 @@ TEST(TwinDistance, VelocityDistanceIsTheVectorNorm) {
   const auto d = compare::velocity_distance(p, c, interior, 0.1);
   EXPECT_NEAR(d.l2, 0.5, 1e-14);
   EXPECT_NEAR(d.max, 0.5, 1e-14);
+}
+
+// A low-Mach twin's bins.csv carries the number density in a column "n": it is read, and its
+// distance to the particles' density counts in units of the mean density; a twin without it
+// has no density distance.
+TEST(TwinDistance, DensityFromTheLowMachTwinsBins) {
+  const io::Grid g = grid_2d(2, 2, 1.0);
+  const auto path = std::filesystem::temp_directory_path() / "twinflow_density_bins.csv";
+  {
+    std::ofstream out(path);
+    out << "ix,iy,x_centre,y_centre,u_x,u_y,p,T,n\n";
+    for (long b = 0; b < 4; ++b)
+      out << b % 2 << "," << b / 2 << ",0,0,0,0,0,1," << 2.0 + 0.1 * b << "\n";
+  }
+  const auto c = compare::continuum_state(g, path);
+  ASSERT_EQ(c.density.size(), 4u);
+  EXPECT_DOUBLE_EQ(c.density[3], 2.3);
+  auto p = linear_state(g, 1.0, 0.0, 0);
+  for (long b = 0; b < 4; ++b) p.density.push_back(2.0 + 0.1 * b + 0.04); // 2% of n0 = 2 above
+  const auto interior = compare::interior_bins(g, {{false, false, false}}, 0.0);
+  const auto d = compare::density_distance(p, c, interior, 2.0);
+  EXPECT_NEAR(d.l2, 0.02, 1e-14);
+  EXPECT_EQ(d.bins, 4);
+  EXPECT_EQ(compare::density_distance(p, linear_state(g, 1.0, 0.0, 0), interior, 2.0).bins, 0);
+  std::filesystem::remove(path);
 }

@@ -34,6 +34,8 @@ struct NotImplemented : std::runtime_error {
 int check_case(const CommandLine&);
 int print_parameters(const CommandLine&);
 int particle_stage(const CommandLine&);
+// `twinflow particle`: particle_stage, and its inputs recorded for `run` to reuse.
+int particle_command(const CommandLine&);
 int continuum_stage(const CommandLine&);
 // The continuum twin into RUNDIR/<stage_name> ("continuum", "continuum_calibrated").
 int continuum_twin(const CommandLine&, const std::string& stage_name);
@@ -41,7 +43,9 @@ int compare_stage(const CommandLine&);
 // RUNDIR/report (or a sweep's / stability map's): figures and report.md/html.
 void write_report(const std::filesystem::path& dir);
 // --set options that make the calibrated twin of a finished particle run in run_dir.
-std::vector<std::string> calibrated_twin_overrides(const std::string& run_dir);
+// `overrides`: the command's --set options (its Transport/, Continuum/, Compare/ keys count).
+std::vector<std::string> calibrated_twin_overrides(const std::string& run_dir,
+                                                   const std::vector<std::string>& overrides);
 int transport_stage(const CommandLine&);
 // The transport measurement's version: part of its cache key and of its stage inputs in `run`,
 // bumped when a measurement changes (results of an older method are not reused).

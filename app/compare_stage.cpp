@@ -46,7 +46,7 @@ struct ParticleRun {
   std::array<bool, 3> walled{{false, false, false}};
 };
 
-ParticleRun load_particle_run(const fs::path& run_dir) {
+ParticleRun load_particle_run(const fs::path& run_dir, const std::vector<std::string>& overrides) {
   ParticleRun r;
   const fs::path dir = run_dir / "particle";
   r.summary =
@@ -54,8 +54,9 @@ ParticleRun load_particle_run(const fs::path& run_dir) {
                                           " (twinflow run CASE --out " + run_dir.string() + ")");
   Case c;
   const io::Json* case_name = r.summary.find("case");
-  r.parameters = c.load_resolved(*r.summary.find("parameters"),
-                                 case_name && case_name->is_string() ? case_name->string() : "");
+  r.parameters =
+      c.load_resolved(*r.summary.find("parameters"),
+                      case_name && case_name->is_string() ? case_name->string() : "", overrides);
   if (!fs::exists(dir / "fields.h5"))
     throw io::InputError((dir / "fields.h5").string() +
                          ": missing; the particle scene has no field bins to compare");
@@ -109,8 +110,9 @@ void write_report(const fs::path& dir) {
 // --set options of the calibrated twin: each thermal wall at the temperature the particle fluid
 // reaches at it (extrapolated from the bins beyond the wall layer), i.e. the measured
 // wall temperature jump taken out of the boundary condition.
-std::vector<std::string> calibrated_twin_overrides(const std::string& run_dir) {
-  const ParticleRun run = load_particle_run(run_dir);
+std::vector<std::string> calibrated_twin_overrides(const std::string& run_dir,
+                                                   const std::vector<std::string>& command) {
+  const ParticleRun run = load_particle_run(run_dir, command);
   const auto& snapshot = run.fields.snapshots.back();
   const compare::BinnedState particle = compare::particle_state(run.fields.grid, snapshot);
   const auto interior =
@@ -156,7 +158,7 @@ int compare_stage(const CommandLine& cl) {
   if (!fs::is_directory(run_dir))
     throw io::InputError(run_dir.string() + ": not a run directory (twinflow compare RUNDIR, "
                                             "where RUNDIR is the --out of twinflow run)");
-  const ParticleRun run = load_particle_run(run_dir);
+  const ParticleRun run = load_particle_run(run_dir, cl.overrides);
   const SceneParameters& scene = run.parameters.scene;
   const io::Grid& grid = run.fields.grid;
   const double wall_layer = run.parameters.compare.wall_layer;

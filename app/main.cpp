@@ -26,7 +26,7 @@ struct Command {
 
 const std::map<std::string, Command>& commands() {
   static const std::map<std::string, Command> table = {
-      {"particle", {"CASE      run the DPDE particle scene", app::particle_stage, true}},
+      {"particle", {"CASE      run the DPDE particle scene", app::particle_command, true}},
       {"transport",
        {"CASE      estimate and measure kappa, eta, alpha, c_p", app::transport_stage, true}},
       {"continuum", {"CASE      run the deal.II continuum twin", app::continuum_stage, true}},

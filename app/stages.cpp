@@ -227,6 +227,18 @@ int particle_stage(const CommandLine& cl) {
   return 0;
 }
 
+// `twinflow particle`: the stage alone, its inputs recorded as `run` records them, so that a
+// later `run` of the same case reuses the particle results.
+int particle_command(const CommandLine& cl) {
+  Case c;
+  const CaseParameters p = c.load(cl.target, cl.overrides);
+  const StageInputs inputs = stage_inputs(cl, {"Scene/", "Particle/"}, {});
+  const fs::path stage_dir = run_directory(cl, p) / "particle";
+  const int rc = particle_stage(cl);
+  if (rc == 0) io::write_file_atomically(stage_dir / "inputs.json", inputs.inputs.dump());
+  return rc;
+}
+
 // The particle scene, the fluid's coefficients, the continuum twins fed with them (nominal;
 // calibrated: the walls at the temperatures the particle fluid reaches there), the comparison.
 int run_all(const CommandLine& cl) {
@@ -277,7 +289,7 @@ int run_all(const CommandLine& cl) {
     return rc;
   if (walls && fs::exists(run_dir / "particle" / "fields.h5")) {
     CommandLine calibrated = later;
-    for (const auto& o : calibrated_twin_overrides(run_dir.string())) {
+    for (const auto& o : calibrated_twin_overrides(run_dir.string(), later.overrides)) {
       std::cout << "run: calibrated twin: --set '" << o << "'\n";
       calibrated.overrides.push_back(o);
     }

@@ -737,6 +737,16 @@ def report_run(run_dir, out_dir):
             s = nusselt_sentence(t, lookup(metrics, "twins", t), particle)
             if s:
                 sentences.append(s)
+        stratification = number(convection, "stratification_g_H_over_c2")
+        if any(lookup(metrics, "twins", t, "density") for t in twins) and finite(stratification):
+            # n ~ exp(-m g z / kT): across the height a linear profile of relative slope
+            # g H / c^2, whose rms over the box is that / sqrt(12). The low-Mach twin's
+            # thermodynamic pressure is uniform: it has no hydrostatic stratification.
+            sentences.append(
+                f"density: the particle fluid is stratified by gravity (g H / c^2 = "
+                f"{fmt(stratification, 3)}: n ~ exp(−m g z / kT)), which the low-Mach twin "
+                "leaves out (its thermodynamic pressure is uniform); that alone makes an rms "
+                f"density difference of ~{fmt(stratification / math.sqrt(12), 2)} n0.")
         doc.paragraph(f"Within noise? A difference counts as within noise when the L2 exceeds the "
                       f"noise by at most {fmt(WITHIN_NOISE_STDERRS, 2)} of its standard errors (for "
                       f"Nu: when |Nu particle − Nu twin| is at most {fmt(WITHIN_NOISE_STDERRS, 2)} "

@@ -79,8 +79,11 @@ public:
   Case();
   // Reads the file, applies --set overrides, checks every value: throws io::InputError.
   CaseParameters load(const std::string& filename, const std::vector<std::string>& overrides);
-  // The parameters a stage recorded in its summary.json ("parameters": path -> value).
-  CaseParameters load_resolved(const io::Json& resolved, const std::string& name);
+  // The parameters a stage recorded in its summary.json ("parameters": path -> value), with the
+  // later stages' --set options (Transport/, Continuum/, Compare/) over them: those sections
+  // may change without rerunning the particles.
+  CaseParameters load_resolved(const io::Json& resolved, const std::string& name,
+                               const std::vector<std::string>& overrides = {});
   // The two halves of load(): read() rejects unknown keys and values outside a key's pattern;
   // resolve() the values that do not fit together or the sections' ranges.
   void read(const std::string& filename, const std::vector<std::string>& overrides);

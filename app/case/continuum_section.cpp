@@ -131,7 +131,8 @@ void declare_continuum(Registry& r) {
   const std::string m = s + "Mesh/";
   r.declare(m + "Cells", "8", List(Integer(1, 4096), 1, 3),
             "Coarse cells: one value for the shortest box edge (others in proportion), or one per "
-            "direction.");
+            "direction. A periodic direction given 1 stays one cell thick through the "
+            "refinements: a thin periodic slice whose flow is uniform along it (e.g. 8, 1, 8).");
   r.declare(m + "Refinements", "2", Integer(0, 10),
             "Global refinements of the coarse mesh. Boussinesq solves on every level (nested "
             "iteration) and records the mesh study.");

@@ -236,6 +236,35 @@ TEST(Cli, RunComparesTheTwinsAndReusesUnchangedStages) {
   const Result compare = run("compare " + dir.string());
   EXPECT_EQ(compare.code, 0) << compare.output;
   EXPECT_EQ(run("compare " + (dir / "no-such-run").string()).code, 2);
+
+  // A later stage's --set reaches a reused particle run: the calibrated twin changes from
+  // Kapitza walls to the fluid's wall temperatures.
+  const Result calibration =
+      run("run " + tiny + " --set 'Compare/Calibration=wall temperatures' --out " + dir.string());
+  ASSERT_EQ(calibration.code, 0) << calibration.output;
+  EXPECT_NE(calibration.output.find("run: particle: inputs unchanged"), std::string::npos);
+  EXPECT_EQ(calibration.output.find("Kapitza conductances"), std::string::npos)
+      << calibration.output;
+  EXPECT_NE(calibration.output.find("Lower wall temperature="), std::string::npos)
+      << calibration.output;
+}
+
+// `twinflow particle` records its inputs as `run` does: a later `run` of the same case reuses it.
+TEST(Cli, RunReusesAParticleStageRunOnItsOwn) {
+  const std::string tiny = std::string(TWINFLOW_SOURCE_DIR) +
+                           "/cases/heated_cavity_2d.prm --threads 1"
+                           " --set 'Scene/Box size=10, 10' --set 'Scene/Density=1'"
+                           " --set 'Scene/Field bins=5, 5' --set 'Particle/Equilibration steps=100'"
+                           " --set 'Particle/Steps=200' --set 'Continuum/Mesh/Cells=4'"
+                           " --set 'Continuum/Mesh/Refinements=0'"
+                           " --set 'Transport/Measure kappa and eta=false'";
+  const fs::path dir = fresh_dir("particle_then_run");
+  const Result particle = run("particle " + tiny + " --out " + dir.string());
+  ASSERT_EQ(particle.code, 0) << particle.output;
+  EXPECT_TRUE(fs::exists(dir / "particle" / "inputs.json"));
+  const Result all = run("run " + tiny + " --out " + dir.string());
+  ASSERT_EQ(all.code, 0) << all.output;
+  EXPECT_NE(all.output.find("run: particle: inputs unchanged"), std::string::npos) << all.output;
 }
 
 // The transport stage's measurements are cached across run directories by what they depend on:

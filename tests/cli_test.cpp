@@ -168,14 +168,18 @@ TEST(Cli, InterruptedRunRestartsToIdenticalOutputs) {
 // `run` on a tiny cavity: every stage, then compare's metrics; the same command again reuses
 // every stage by its inputs hash; a changed continuum key reruns only the continuum twins; a
 // changed particle key needs --force; `compare` alone rewrites only compare/.
+// The default cavity shrunk to seconds: 10 x 10 rc at density 1, 5 x 5 bins, a 4 x 4 mesh.
+static std::string tiny_cavity(int equilibration, int steps, int refinements) {
+  return std::string(TWINFLOW_SOURCE_DIR) + "/cases/heated_cavity_2d.prm --threads 1" +
+         " --set 'Scene/Box size=10, 10' --set 'Scene/Density=1' --set 'Scene/Field bins=5, 5'" +
+         " --set 'Particle/Equilibration steps=" + std::to_string(equilibration) + "'" +
+         " --set 'Particle/Steps=" + std::to_string(steps) + "'" +
+         " --set 'Continuum/Mesh/Cells=4' --set 'Continuum/Mesh/Refinements=" +
+         std::to_string(refinements) + "' --set 'Transport/Measure kappa and eta=false'";
+}
+
 TEST(Cli, RunComparesTheTwinsAndReusesUnchangedStages) {
-  const std::string tiny = std::string(TWINFLOW_SOURCE_DIR) +
-                           "/cases/heated_cavity_2d.prm --threads 1"
-                           " --set 'Scene/Box size=10, 10' --set 'Scene/Density=1'"
-                           " --set 'Scene/Field bins=5, 5' --set 'Particle/Equilibration steps=200'"
-                           " --set 'Particle/Steps=400' --set 'Continuum/Mesh/Cells=4'"
-                           " --set 'Continuum/Mesh/Refinements=1'"
-                           " --set 'Transport/Measure kappa and eta=false'";
+  const std::string tiny = tiny_cavity(200, 400, 1);
   const fs::path dir = fresh_dir("reuse");
   const Result first = run("run " + tiny + " --out " + dir.string());
   ASSERT_EQ(first.code, 0) << first.output;
@@ -251,13 +255,7 @@ TEST(Cli, RunComparesTheTwinsAndReusesUnchangedStages) {
 
 // `twinflow particle` records its inputs as `run` does: a later `run` of the same case reuses it.
 TEST(Cli, RunReusesAParticleStageRunOnItsOwn) {
-  const std::string tiny = std::string(TWINFLOW_SOURCE_DIR) +
-                           "/cases/heated_cavity_2d.prm --threads 1"
-                           " --set 'Scene/Box size=10, 10' --set 'Scene/Density=1'"
-                           " --set 'Scene/Field bins=5, 5' --set 'Particle/Equilibration steps=100'"
-                           " --set 'Particle/Steps=200' --set 'Continuum/Mesh/Cells=4'"
-                           " --set 'Continuum/Mesh/Refinements=0'"
-                           " --set 'Transport/Measure kappa and eta=false'";
+  const std::string tiny = tiny_cavity(100, 200, 0);
   const fs::path dir = fresh_dir("particle_then_run");
   const Result particle = run("particle " + tiny + " --out " + dir.string());
   ASSERT_EQ(particle.code, 0) << particle.output;

@@ -80,18 +80,12 @@ void add_periodicity(const dealii::DoFHandler<dim>& dofs, const ContinuumParamet
       dealii::DoFTools::make_periodicity_constraints(dofs, 2 * d, 2 * d + 1, d, constraints);
 }
 
-// A periodic direction given one coarse cell is taken as uniform (a thin periodic slice: the flow
-// does not vary along it); refinement leaves it one cell thick.
-inline bool uniform_direction(const ContinuumParameters& prm, int d) {
-  return prm.boundary[d].periodic && prm.cells[d] == 1;
-}
-
 // Refine every cell once in every direction but the uniform ones (set the flags only).
 template <int dim>
 void flag_uniform_refinement(dealii::Triangulation<dim>& tria, const ContinuumParameters& prm) {
   dealii::RefinementCase<dim> cut = dealii::RefinementCase<dim>::no_refinement;
   for (int d = 0; d < dim; ++d)
-    if (!uniform_direction(prm, d)) cut = cut | dealii::RefinementCase<dim>::cut_axis(d);
+    if (!prm.uniform_along(d)) cut = cut | dealii::RefinementCase<dim>::cut_axis(d);
   for (const auto& cell : tria.active_cell_iterators()) cell->set_refine_flag(cut);
 }
 
@@ -108,7 +102,7 @@ std::array<unsigned, 3> current_cells(const dealii::Triangulation<dim>& tria,
                                       const ContinuumParameters& prm) {
   std::array<unsigned, 3> cells{{1, 1, 1}};
   for (int d = 0; d < dim; ++d)
-    cells[d] = uniform_direction(prm, d) ? 1u : prm.cells[d] << (tria.n_levels() - 1);
+    cells[d] = prm.uniform_along(d) ? 1u : prm.cells[d] << (tria.n_levels() - 1);
   return cells;
 }
 

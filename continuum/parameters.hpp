@@ -92,15 +92,25 @@ struct ContinuumParameters {
   // Mesh: `cells` coarse cells per direction, then `refinements` global refinements.
   std::array<unsigned, 3> cells{{8, 8, 8}};
   int refinements = 2; // the problem is solved on every level (nested iteration: mesh study)
+  // A periodic direction given one coarse cell is taken as uniform (a thin periodic slice: the
+  // flow does not vary along it); refinement leaves it one cell thick.
+  bool uniform_along(int d) const { return boundary[d].periodic && cells[d] == 1; }
+  bool thin_slice() const {
+    for (int d = 0; d < dim; ++d)
+      if (uniform_along(d)) return true;
+    return false;
+  }
 
   // Nonlinear solver
   double newton_tolerance = 1e-9; // on the relative update |dx| / |x|
   int max_newton_iterations = 25;
   double continuation_start_rayleigh = 1e4; // larger Ra is reached by steps of 10 from here
   LinearSolver linear_solver = LinearSolver::Automatic;
+  // Automatic: the direct solver in 2D and for a thin 3D slice (2D-sized), else iterative.
   bool uses_iterative_solver() const {
-    return model == Model::Boussinesq && (linear_solver == LinearSolver::Iterative ||
-                                          (linear_solver == LinearSolver::Automatic && dim == 3));
+    return model == Model::Boussinesq &&
+           (linear_solver == LinearSolver::Iterative ||
+            (linear_solver == LinearSolver::Automatic && dim == 3 && !thin_slice()));
   }
 
   // In time (mode Transient): the step is adjusted to end_time / round(end_time / time_step).

@@ -56,7 +56,7 @@ TEST(Cavity3D, PeriodicInZReproduces2D) {
   // with the de Vahl Davis value 2.2448 to 0.1% (16x16 Q2: 2D Nu is 2.24459, build-notes).
   const double rayleigh = 1e4;
   ContinuumParameters p3 = test_cases::cavity(3, rayleigh, 8, 1);
-  p3.cells = {{8, 8, 1}}; // z: 1 coarse cell, 2 after one refinement
+  p3.cells = {{8, 8, 1}}; // z: one cell, kept through the refinement (a thin slice)
   p3.linear_solver = LinearSolver::Direct;
   const ContinuumResult r3 = run(p3, "");
   const ContinuumResult r2 = run(test_cases::cavity(2, rayleigh, 8, 1), "");

@@ -97,6 +97,26 @@ void refine_uniformly(dealii::Triangulation<dim>& tria, const ContinuumParameter
   }
 }
 
+// Velocity components that no wall holds (along a periodic direction when every wall is
+// free-slip): the steady equations fix them only up to a uniform translation, which the closed
+// box's momentum (zero) would fix. Pin one value of each to zero (exact for flows uniform along
+// that direction, as a thin slice's).
+template <int dim>
+void pin_free_translations(const dealii::DoFHandler<dim>& dofs, const ContinuumParameters& prm,
+                           dealii::AffineConstraints<double>& constraints) {
+  for (int d = 0; d < dim; ++d)
+    if (!prm.boundary[d].periodic && prm.boundary[d].no_slip) return;
+  for (int d = 0; d < dim; ++d) {
+    if (!prm.boundary[d].periodic) continue;
+    const auto mask = dofs.get_fe().component_mask(dealii::FEValuesExtractors::Scalar(d));
+    for (const auto i : dealii::DoFTools::extract_dofs(dofs, mask))
+      if (!constraints.is_constrained(i)) {
+        constraints.add_line(i);
+        break;
+      }
+  }
+}
+
 template <int dim>
 std::array<unsigned, 3> current_cells(const dealii::Triangulation<dim>& tria,
                                       const ContinuumParameters& prm) {

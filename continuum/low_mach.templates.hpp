@@ -367,6 +367,7 @@ template <int dim> void LowMachProblem<dim>::make_constraints() {
     }
     if (!free_slip_walls.empty())
       dealii::VectorTools::compute_no_normal_flux_constraints(dof_handler_, 0, free_slip_walls, c);
+    detail::pin_free_translations(dof_handler_, prm_, c);
     // p is fixed only up to a constant; pin one value (its mass equation is the sum of the
     // others: conservative form).
     for (const auto i : dealii::DoFTools::extract_dofs(dof_handler_, fe_.component_mask(pressure)))

@@ -11,12 +11,12 @@
 #include <deal.II/grid/grid_generator.h>
 #include <deal.II/numerics/data_out.h>
 #include <deal.II/numerics/vector_tools.h>
-#include <functional>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <memory>
 
@@ -98,16 +98,16 @@ void refine_uniformly(dealii::Triangulation<dim>& tria, const ContinuumParameter
 }
 
 // Velocity components that no wall holds (along a periodic direction when every wall is
-// free-slip): the steady equations fix them only up to a uniform translation, which the closed
-// box's momentum (zero) would fix. Pin one value of each to zero (exact for flows uniform along
-// that direction, as a thin slice's).
+// free-slip): the equations fix them only up to a uniform translation, which the closed box's
+// momentum (zero) would fix. In a thin slice the flow is uniform along it, so one pinned value
+// is exact; other boxes keep the null space (a mean-zero condition would be needed there).
 template <int dim>
 void pin_free_translations(const dealii::DoFHandler<dim>& dofs, const ContinuumParameters& prm,
                            dealii::AffineConstraints<double>& constraints) {
   for (int d = 0; d < dim; ++d)
     if (!prm.boundary[d].periodic && prm.boundary[d].no_slip) return;
   for (int d = 0; d < dim; ++d) {
-    if (!prm.boundary[d].periodic) continue;
+    if (!prm.uniform_along(d)) continue;
     const auto mask = dofs.get_fe().component_mask(dealii::FEValuesExtractors::Scalar(d));
     for (const auto i : dealii::DoFTools::extract_dofs(dofs, mask))
       if (!constraints.is_constrained(i)) {

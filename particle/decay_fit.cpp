@@ -1,5 +1,6 @@
 #include "particle/decay_fit.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -42,6 +43,7 @@ io::Json decay_fit(double wave, const std::vector<double>& t, const std::vector<
       const double f = fitted(k);
       if (f < 3 * sigma) break;
       if (a[k] <= 0) continue;
+      // E ln(f + e) = ln f - sigma^2 / (2 f^2) + O(sigma^4) (Taylor); var ln a = sigma^2 / f^2
       line.add(t[k], std::log(a[k]) + sigma * sigma / (2 * f * f), sigma / f);
       used.push_back(k);
     }

@@ -41,14 +41,13 @@ template <int D> void CellGrid<D>::build_stencil() {
       for (int x = 0; x < n_[0]; ++x) slot_cell_.push_back(row * n_[0] + x);
     colour_begin_.push_back(colour_begin_.back() + static_cast<long>(list.size()));
   }
-  slot_range_.assign(slot_cell_.size(), SlotRange{});
+  row_range_.assign(slot_cell_.size() / n_[0], RowRange{});
 }
 
 template <int D> void CellGrid<D>::build_pairs(const State<D>& s, double rc) {
   const double rc2 = rc * rc;
   const std::size_t threads = static_cast<std::size_t>(std::max(1, omp_get_max_threads()));
   if (buffers_.size() < threads) buffers_.resize(threads);
-  const long slots = static_cast<long>(slot_cell_.size());
   // First guess of the pairs per thread, 10% above the uniform density's N rho V_D(rc) / 2, so
   // that a buffer is allocated once instead of grown through copies (peak memory).
   double volume = 1;
@@ -56,6 +55,7 @@ template <int D> void CellGrid<D>::build_pairs(const State<D>& s, double rc) {
   const double ball = D == 3 ? 4.18879020478639 * rc2 * rc : 3.141592653589793 * rc2;
   const double n = static_cast<double>(s.size());
   const auto guess = static_cast<std::size_t>(1.1 * 0.5 * n * n / volume * ball / threads) + 4096;
+  const long rows = static_cast<long>(row_range_.size()), nx = n_[0];
 #pragma omp parallel
   {
     const std::size_t t = static_cast<std::size_t>(omp_get_thread_num());
@@ -63,9 +63,13 @@ template <int D> void CellGrid<D>::build_pairs(const State<D>& s, double rc) {
     b.used = 0;
     if (b.i.size() < guess) b.i.resize(guess), b.j.resize(guess);
 #pragma omp for schedule(static)
-    for (long slot = 0; slot < slots; ++slot) {
-      slot_range_[slot].buffer = static_cast<std::uint32_t>(t);
-      build_cell(s, slot_cell_[slot], rc2, b, slot_range_[slot]);
+    for (long row = 0; row < rows; ++row) {
+      RowRange& r = row_range_[row];
+      r.buffer = t;
+      r.begin = b.used;
+      for (long slot = row * nx; slot < (row + 1) * nx; ++slot)
+        build_cell(s, slot_cell_[slot], rc2, b);
+      r.count = b.used - r.begin;
     }
   }
   pairs_valid_ = true;
@@ -73,18 +77,15 @@ template <int D> void CellGrid<D>::build_pairs(const State<D>& s, double rc) {
 
 template <int D> std::size_t CellGrid<D>::pair_count() const {
   std::size_t n = 0;
-  for (const auto& r : slot_range_) n += r.count;
+  for (const auto& r : row_range_) n += r.count;
   return n;
 }
 
-// The pairs (i, j) of cell c with i in c: j later in c, or in a half-shell neighbour cell.
-// Distances as in visit_cell (minimum image by nearbyint), the test vectorised over candidates.
-// Order: see the end.
+// The pairs (i, j) of cell c with i in c: j later in c, or in a half-shell neighbour cell,
+// appended to b. Distances as in visit_cell (minimum image by nearbyint), the test vectorised
+// over candidates. Order: see the end.
 template <int D>
-void CellGrid<D>::build_cell(const State<D>& s, int c, double rc2, PairBuffer& b,
-                             SlotRange& range) const {
-  range.begin = b.used;
-  range.count = 0;
+void CellGrid<D>::build_cell(const State<D>& s, int c, double rc2, PairBuffer& b) const {
   const std::size_t first = start_[c], ni = start_[c + 1] - first;
   if (ni == 0) return;
   std::array<int, D> idx;
@@ -93,28 +94,35 @@ void CellGrid<D>::build_cell(const State<D>& s, int c, double rc2, PairBuffer& b
     idx[d] = rem % n_[d];
     rem /= n_[d];
   }
-  auto& cand = b.cand;
-  cand.clear();
-  for (std::size_t i = first; i < first + ni; ++i) cand.push_back(static_cast<std::uint32_t>(i));
+  // Candidates: the cell's own particles first, then each neighbour cell's (contiguous ranges).
+  std::size_t begin[D == 2 ? 5 : 14], end[D == 2 ? 5 : 14], ranges = 0, nc = ni;
+  begin[ranges] = first, end[ranges++] = first + ni;
   for (const auto& offset : stencil_) {
     int nb = 0;
     bool outside = false, zero = true;
     for (int d = D - 1; d >= 0; --d) {
-      const int k = idx[d] + offset[d];
+      int k = idx[d] + offset[d];
       outside |= !periodic_[d] && (k < 0 || k >= n_[d]);
       zero &= offset[d] == 0;
-      nb = nb * n_[d] + (k + n_[d]) % n_[d];
+      k = k < 0 ? k + n_[d] : k >= n_[d] ? k - n_[d] : k; // wrap without a division
+      nb = nb * n_[d] + k;
     }
-    if (outside || zero) continue;
-    for (std::size_t j = start_[nb]; j < start_[nb + 1]; ++j)
-      cand.push_back(static_cast<std::uint32_t>(j));
+    if (outside || zero || start_[nb] == start_[nb + 1]) continue;
+    begin[ranges] = start_[nb], end[ranges++] = start_[nb + 1];
+    nc += start_[nb + 1] - start_[nb];
   }
-  const std::size_t nc = cand.size();
-  for (int d = 0; d < D; ++d) {
-    b.cx[d].resize(nc);
-    for (std::size_t k = 0; k < nc; ++k) b.cx[d][k] = s.x[d][cand[k]];
+  auto& cand = b.cand;
+  if (cand.size() < nc) {
+    cand.resize(nc + nc / 2);
+    for (int d = 0; d < D; ++d) b.cx[d].resize(nc + nc / 2);
+    b.r2.resize(nc + nc / 2);
   }
-  b.r2.resize(nc);
+  std::size_t k = 0;
+  for (std::size_t range = 0; range < ranges; ++range)
+    for (std::size_t j = begin[range]; j < end[range]; ++j, ++k) {
+      cand[k] = static_cast<std::uint32_t>(j);
+      for (int d = 0; d < D; ++d) b.cx[d][k] = s.x[d][j];
+    }
   const std::size_t need = b.used + ni * nc;
   if (b.i.size() < need) {
     const std::size_t grown = std::max(need, b.i.size() + b.i.size() / 4);
@@ -123,25 +131,35 @@ void CellGrid<D>::build_cell(const State<D>& s, int c, double rc2, PairBuffer& b
   std::uint32_t* out_i = b.i.data();
   std::uint32_t* out_j = b.j.data();
   std::size_t m = b.used;
-  double* r2 = b.r2.data();
-  b.count.assign(ni + 1, 0);
+  double* __restrict r2 = b.r2.data();
+  const double* __restrict x0 = b.cx[0].data();
+  const double* __restrict x1 = b.cx[1].data();
+  const double* __restrict x2 = b.cx[D - 1].data();
+  const double box0 = box_[0], box1 = box_[1], box2 = box_[D - 1];
+  const double inv0 = inv_box_[0], inv1 = inv_box_[1], inv2 = inv_box_[D - 1];
+  b.count.resize(ni + 1);
   for (std::size_t p = 0; p < ni; ++p) {
     b.count[p] = m;
-    for (std::size_t k = p + 1; k < nc; ++k) r2[k] = 0;
-    for (int d = 0; d < D; ++d) {
-      const double xi = b.cx[d][p], box = box_[d], inv_box = inv_box_[d];
-      const double* xj = b.cx[d].data();
-      for (std::size_t k = p + 1; k < nc; ++k) {
-        double r = xi - xj[k];
-        r -= box * std::nearbyint(r * inv_box);
-        r2[k] += r * r;
+    const double y0 = x0[p], y1 = x1[p], y2 = x2[p];
+    for (std::size_t q = p + 1; q < nc; ++q) {
+      double r = y0 - x0[q];
+      r -= box0 * std::nearbyint(r * inv0);
+      double sum = r * r;
+      r = y1 - x1[q];
+      r -= box1 * std::nearbyint(r * inv1);
+      sum += r * r;
+      if constexpr (D == 3) {
+        r = y2 - x2[q];
+        r -= box2 * std::nearbyint(r * inv2);
+        sum += r * r;
       }
+      r2[q] = sum;
     }
     const auto i = static_cast<std::uint32_t>(first + p);
-    for (std::size_t k = p + 1; k < nc; ++k) { // branch-free compaction
+    for (std::size_t q = p + 1; q < nc; ++q) { // branch-free compaction
       out_i[m] = i;
-      out_j[m] = cand[k];
-      m += r2[k] < rc2;
+      out_j[m] = cand[q];
+      m += r2[q] < rc2;
     }
   }
   b.count[ni] = m;
@@ -149,7 +167,7 @@ void CellGrid<D>::build_cell(const State<D>& s, int c, double rc2, PairBuffer& b
   // consecutive pairs rarely share a particle, so the sequential pair updates of the Shardlow
   // sweep overlap in the processor instead of waiting on each other.
   const std::size_t total = m - b.used;
-  b.tmp_i.resize(total), b.tmp_j.resize(total);
+  if (b.tmp_i.size() < total) b.tmp_i.resize(total + total / 2), b.tmp_j.resize(total + total / 2);
   std::size_t o = 0;
   for (std::size_t round = 0; o < total; ++round)
     for (std::size_t p = 0; p < ni; ++p)
@@ -157,9 +175,8 @@ void CellGrid<D>::build_cell(const State<D>& s, int c, double rc2, PairBuffer& b
         b.tmp_i[o] = out_i[b.count[p] + round];
         b.tmp_j[o++] = out_j[b.count[p] + round];
       }
-  std::copy(b.tmp_i.begin(), b.tmp_i.end(), out_i + b.used);
-  std::copy(b.tmp_j.begin(), b.tmp_j.end(), out_j + b.used);
-  range.count = static_cast<std::uint32_t>(total);
+  std::copy(b.tmp_i.begin(), b.tmp_i.begin() + total, out_i + b.used);
+  std::copy(b.tmp_j.begin(), b.tmp_j.begin() + total, out_j + b.used);
   b.used = m;
 }
 

@@ -113,22 +113,21 @@ public:
     return pairs_valid_;
   }
   std::size_t pair_count() const;
-  // Calls fn(i, j, count) with one cell's pairs (storage indices, in a fixed order: round-robin
-  // over the cell's particles, see build_cell). Colours in turn, cells of one colour in parallel,
-  // as in for_each_pair: a particle sees its pairs in one fixed order whatever the thread count.
+  // Calls fn(i, j, count) with one row of cells' pairs (storage indices, cell by cell along the
+  // row, each cell's in a fixed order: round-robin over its particles, see build_cell). A row is
+  // one block so that the per-pair loops run over hundreds of pairs, not a cell's ~20, and
+  // vectorise. Colours in turn, rows of one colour in parallel, as in for_each_pair: a particle
+  // sees its pairs in one fixed order whatever the thread count.
   template <class BlockFn> void for_each_pair_block(BlockFn&& fn) const {
     const int colours = static_cast<int>(colour_begin_.size()) - 1;
-    const long nx = n_[0];
     for (int colour = 0; colour < colours; ++colour) {
       const long first = colour_begin_[colour], last = colour_begin_[colour + 1];
 #pragma omp parallel for schedule(static)
       for (long unit = first; unit < last; ++unit) {
-        for (long slot = unit * nx; slot < (unit + 1) * nx; ++slot) {
-          const SlotRange& r = slot_range_[slot];
-          if (r.count == 0) continue;
-          const PairBuffer& b = buffers_[r.buffer];
-          fn(b.i.data() + r.begin, b.j.data() + r.begin, static_cast<std::size_t>(r.count));
-        }
+        const RowRange& r = row_range_[unit];
+        if (r.count == 0) continue;
+        const PairBuffer& b = buffers_[r.buffer];
+        fn(b.i.data() + r.begin, b.j.data() + r.begin, r.count);
       }
     }
   }
@@ -190,11 +189,10 @@ private:
     std::vector<std::size_t> count;  // scratch: first pair of each particle of the cell
     std::vector<std::uint32_t> tmp_i, tmp_j;
   };
-  struct SlotRange {
-    std::uint32_t buffer = 0, count = 0;
-    std::size_t begin = 0;
+  struct RowRange { // a row's pairs: buffers_[buffer].i/j[begin, begin + count)
+    std::size_t buffer = 0, begin = 0, count = 0;
   };
-  void build_cell(const State<D>& s, int c, double rc2, PairBuffer& b, SlotRange& range) const;
+  void build_cell(const State<D>& s, int c, double rc2, PairBuffer& b) const;
 
   std::array<double, D> box_, inv_side_, inv_box_;
   std::array<bool, D> periodic_;
@@ -205,7 +203,7 @@ private:
   std::vector<int> slot_cell_;              // cells in colour order, row by row (n_[0] per row)
   std::vector<long> colour_begin_;          // first row of each colour (index into the rows of
                                             // slot_cell_), and the end
-  std::vector<SlotRange> slot_range_;
+  std::vector<RowRange> row_range_;         // per row of slot_cell_
   std::vector<PairBuffer> buffers_;
   bool pairs_valid_ = false;
   std::vector<int> cell_, order_;

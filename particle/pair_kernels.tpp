@@ -11,10 +11,12 @@ namespace twinflow::particle {
 // Per-thread scratch of one block of pairs.
 template <int D> struct PairScratch {
   std::vector<double> e[D], dv[D], r, wd, wr, wh, swh, xi, zeta, a, b, c, ui, uj;
+  std::vector<std::uint32_t> i, j; // the block's pairs closer than the cutoff
   static PairScratch& get(std::size_t n) {
     static thread_local PairScratch s;
     if (s.r.size() < n) {
       const std::size_t size = n + n / 2 + 16;
+      s.i.resize(size), s.j.resize(size);
       for (int d = 0; d < D; ++d) s.e[d].resize(size), s.dv[d].resize(size);
       for (auto* v :
            {&s.r, &s.wd, &s.wr, &s.wh, &s.swh, &s.xi, &s.zeta, &s.a, &s.b, &s.c, &s.ui, &s.uj})
@@ -41,10 +43,12 @@ template <class T> struct Columns {
   T* operator[](int d) const { return d == 0 ? c0 : d == 1 ? c1 : c2; }
 };
 
-// Unit vectors e_ij = (x_i - x_j)/r_ij (minimum image) and distances of a block.
+// Unit vectors e_ij = (x_i - x_j)/r_ij (minimum image) and distances of a block. With a skin the
+// list also holds pairs beyond the cutoff: those are dropped (order kept) and I, J then point to
+// the scratch's copy of the rest. Returns the number of pairs left.
 template <class M>
-void Simulation<M>::pair_geometry(const std::uint32_t* I, const std::uint32_t* J, std::size_t n,
-                                  PairScratch<D>& s) const {
+std::size_t Simulation<M>::pair_geometry(const std::uint32_t*& I, const std::uint32_t*& J,
+                                         std::size_t n, PairScratch<D>& s) const {
   const double b0 = grid_.image_box(0), b1 = grid_.image_box(1), b2 = grid_.image_box(D - 1);
   const double i0 = grid_.inv_box(0), i1 = grid_.inv_box(1), i2 = grid_.inv_box(D - 1);
   const Columns<const double> x(state_.x);
@@ -65,6 +69,19 @@ void Simulation<M>::pair_geometry(const std::uint32_t* I, const std::uint32_t* J
     for (int d = 0; d < D; ++d) e[d][k] = dx[d] * inv_r;
     r[k] = rk;
   }
+  if (skin_ == 0) return n;
+  const double rc = model_.rc;
+  std::uint32_t* __restrict ci = s.i.data();
+  std::uint32_t* __restrict cj = s.j.data();
+  std::size_t m = 0;
+  for (std::size_t k = 0; k < n; ++k) { // branch-free compaction, in place for e and r
+    const double rk = r[k];
+    ci[m] = I[k], cj[m] = J[k], r[m] = rk;
+    for (int d = 0; d < D; ++d) e[d][m] = e[d][k];
+    m += rk < rc;
+  }
+  I = ci, J = cj;
+  return m;
 }
 
 // Gathers u_i, u_j (DPDE) and, with velocities, v_i - v_j of a block into the scratch.
@@ -95,7 +112,7 @@ template <class M> void Simulation<M>::conservative_blocks() {
     double* pot = carried_.potential.data();
     grid_.for_each_pair_block([&](const std::uint32_t* I, const std::uint32_t* J, std::size_t n) {
       auto& s = PairScratch<D>::get(n);
-      pair_geometry(I, J, n, s);
+      n = pair_geometry(I, J, n, s);
       pair_gather(I, J, n, s, false);
       double* __restrict fc = s.a.data();
       double* __restrict phi = s.b.data();
@@ -137,7 +154,7 @@ template <class M> void Simulation<M>::force_blocks(const PairNoise& noise) {
   const std::uint32_t* id = state_.id.data();
   grid_.for_each_pair_block([&](const std::uint32_t* I, const std::uint32_t* J, std::size_t n) {
     auto& s = PairScratch<D>::get(n);
-    pair_geometry(I, J, n, s);
+    n = pair_geometry(I, J, n, s);
     pair_gather(I, J, n, s, true);
     noise.gaussians(n, I, J, id, s.xi.data(), s.zeta.data());
     fr.w.eval(n, s.r.data(), s.wd.data(), s.wr.data());
@@ -191,7 +208,7 @@ template <class M> void Simulation<M>::force_blocks(const PairNoise& noise) {
 // per half (Lisal et al. 2011; LAMMPS fix shardlow). Pairs in list order: each update sees the
 // previous ones, and the colouring keeps them exact in parallel.
 template <class M> void Simulation<M>::shardlow_sweep(const PairNoise& noise) {
-  if (!grid_.has_pairs()) grid_.build_pairs(state_, model_.rc);
+  if (!grid_.has_pairs()) update_neighbours(true);
   const auto fr = model_.friction;
   const auto heat = model_.heat;
   const double dt = dt_, sqrt_dt = sqrt_dt_, m = model_.mass, inv_m = 1 / m;
@@ -202,7 +219,7 @@ template <class M> void Simulation<M>::shardlow_sweep(const PairNoise& noise) {
   const std::uint32_t* id = state_.id.data();
   grid_.for_each_pair_block([&](const std::uint32_t* I, const std::uint32_t* J, std::size_t n) {
     auto& s = PairScratch<D>::get(n);
-    pair_geometry(I, J, n, s);
+    n = pair_geometry(I, J, n, s);
     noise.gaussians(n, I, J, id, s.xi.data(), s.zeta.data());
     fr.w.eval(n, s.r.data(), s.wd.data(), s.wr.data());
     if constexpr (M::Heat::active) heat.w.eval(n, s.r.data(), s.wh.data(), s.swh.data());

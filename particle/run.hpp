@@ -48,6 +48,7 @@ RunOutput run_particles(const ParticleParameters& p, const RunControl& control =
 struct BenchResult {
   long particles = 0;
   double seconds = 0, particle_steps_per_second = 0, bytes_per_particle = 0;
+  double steps_per_list = 0; // timed steps per pair-list build
 };
 // Times `steps` steps after set-up (set-up excluded).
 BenchResult bench_particles(const ParticleParameters& p, long steps);

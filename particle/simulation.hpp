@@ -58,8 +58,10 @@ public:
   // Momentum along each wall's inward normal given to the fluid since the start (repulsion,
   // friction and noise, reflections): its rate per area is the pressure on the wall.
   const std::array<double, 6>& wall_momentum_in() const { return wall_momentum_in_; }
-  // Re-sorts after the state was changed from outside (tests permute it; restart loads it).
-  void resort() { grid_.sort(state_, carried_); }
+  // Re-sorts and lists the pairs anew after the state was changed from outside (tests permute
+  // it).
+  void resort() { update_neighbours(true); }
+  long pair_list_builds() const { return list_builds_; }
   void prepare(); // forces at the current state (call after changing the state)
 
   // Everything a restart needs, listed once (particle/archive.hpp). Scratch arrays are not in
@@ -68,11 +70,15 @@ public:
     a("x", state_.x), a("v", state_.v), a("u", state_.u), a("id", state_.id);
     a("force", carried_.f), a("heat_rate", carried_.q), a("potential", carried_.potential);
     a("step", step_), a("wall_energy_in", wall_energy_in_), a("wall_crossings", crossings_);
-    a("wall_momentum_in", wall_momentum_in_);
+    a("wall_momentum_in", wall_momentum_in_), a("x_listed", x_listed_);
     if constexpr (A::loading) {
       if (state_.id.size() != carried_.q.size() || state_.x[0].size() != state_.id.size())
         throw std::invalid_argument("checkpoint: particle arrays of different lengths");
-      grid_.sort(state_, carried_); // already in (cell, id) order: rebuilds the cell index only
+      // Stored in (cell, id) order of the positions the pair list was built from: the sort
+      // rebuilds the cell index only, and the list is the one the run had.
+      const bool listed = !x_listed_[0].empty();
+      grid_.sort(state_, carried_, listed ? &x_listed_ : nullptr);
+      if (listed) grid_.build_pairs(x_listed_, state_.size(), list_cutoff_);
     }
   }
 
@@ -84,14 +90,15 @@ private:
   PairForce pair_force(const PairNoise& noise, std::size_t i, std::size_t j, const double* dx,
                        double r2, const std::array<std::vector<double>, D>& v) const;
 
+  void update_neighbours(bool force);
   void step_ec_verlet();
   void step_euler();
   void step_shardlow();
   void conservative_pass(bool with_velocity_terms); // ec-verlet / VV force evaluation
   void potential_pass();
   // Pair passes over the grid's pair list (pair_kernels.tpp).
-  void pair_geometry(const std::uint32_t* i, const std::uint32_t* j, std::size_t n,
-                     PairScratch<D>& s) const;
+  std::size_t pair_geometry(const std::uint32_t*& i, const std::uint32_t*& j, std::size_t n,
+                            PairScratch<D>& s) const;
   void pair_gather(const std::uint32_t* i, const std::uint32_t* j, std::size_t n, PairScratch<D>& s,
                    bool velocities) const;
   void conservative_blocks();
@@ -112,6 +119,9 @@ private:
   State<D> state_;
   Carried<D> carried_;
   CellGrid<D> grid_;
+  double skin_ = 0, list_cutoff_ = 1;           // the pair list holds pairs closer than rc + skin
+  std::array<std::vector<double>, D> x_listed_; // positions the list was built from (skin > 0)
+  long list_builds_ = 0;
   long step_ = 0;
   double dt_, sqrt_dt_, inv_sqrt_dt_;
   std::array<std::vector<double>, D> v_old_;

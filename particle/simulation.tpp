@@ -2,6 +2,11 @@
 
 namespace twinflow::particle {
 
+// The pair list's skin: euler walks the cells every step and keeps none.
+inline double list_skin(const ParticleParameters& p) {
+  return p.integrator == Integrator::Euler ? 0.0 : p.neighbour_skin;
+}
+
 template <class M>
 Simulation<M>::Simulation(const M& model, const ParticleParameters& p)
     : model_(model), p_(p), grid_(
@@ -10,13 +15,15 @@ Simulation<M>::Simulation(const M& model, const ParticleParameters& p)
                                   for (int d = 0; d < D; ++d) box[d] = p.box[d];
                                   return box;
                                 }(),
-                                model.rc,
+                                model.rc + list_skin(p),
                                 [&] {
                                   std::array<bool, D> periodic;
                                   for (int d = 0; d < D; ++d) periodic[d] = !p.walls[d].present;
                                   return periodic;
                                 }()),
       wall_friction_(model.friction), wall_heat_(model.heat) {
+  skin_ = list_skin(p);
+  list_cutoff_ = model.rc + skin_;
   has_external_ = p.has_walls();
   for (int d = 0; d < D; ++d) has_external_ |= p.gravity[d] != 0;
   has_external_ |= p.poiseuille_force != 0;
@@ -67,8 +74,36 @@ Simulation<M>::Simulation(const M& model, const ParticleParameters& p)
   }
   carried_.q.assign(n, 0.0);
   carried_.potential.assign(n, 0.0);
-  grid_.sort(state_, carried_);
+  update_neighbours(true);
   prepare();
+}
+
+// Verlet list: the pairs closer than rc + skin, kept while every particle is within skin/2 of
+// where it was when they were listed (then no pair closer than rc is missing); otherwise the
+// particles are re-sorted and listed anew. The decision depends on the positions alone, so the
+// rebuild steps are the same for any thread count, and a checkpoint holds the listed positions.
+template <class M> void Simulation<M>::update_neighbours(bool force) {
+  if (!force && skin_ > 0 && grid_.has_pairs()) {
+    grid_.wrap(state_);
+    const long n = static_cast<long>(state_.size());
+    double largest = 0; // max |x_i - x_listed_i|^2, minimum image
+#pragma omp parallel for schedule(static) reduction(max : largest)
+    for (long i = 0; i < n; ++i) {
+      double r2 = 0;
+      for (int d = 0; d < D; ++d) {
+        double r = state_.x[d][i] - x_listed_[d][i];
+        r -= grid_.image_box(d) * std::nearbyint(r * grid_.inv_box(d));
+        r2 += r * r;
+      }
+      largest = std::max(largest, r2);
+    }
+    if (largest < 0.25 * skin_ * skin_) return;
+  }
+  grid_.sort(state_, carried_);
+  ++list_builds_;
+  if (p_.integrator == Integrator::Euler) return; // walks the cells (for_each_pair) instead
+  grid_.build_pairs(state_, list_cutoff_);
+  if (skin_ > 0) x_listed_ = state_.x;
 }
 
 template <class M> void Simulation<M>::prepare() {
@@ -122,7 +157,6 @@ template <class M> void Simulation<M>::conservative_pass(bool with_velocity_term
   std::fill(carried_.potential.begin(), carried_.potential.end(), 0.0);
   (void)n;
   const PairNoise noise(p_.seed, static_cast<std::uint64_t>(step_), PairNoise::Pair);
-  if (with_velocity_terms || M::Conservative::active) grid_.build_pairs(state_, model_.rc);
   if (with_velocity_terms)
     force_blocks(noise);
   else
@@ -332,7 +366,7 @@ template <class M> void Simulation<M>::step_ec_verlet() {
     if constexpr (M::has_energy) // 002:(A2); + P_i(t) is the first half of (A5)'s -[P(t+dt) - P(t)]
       state_.u[i] += 0.5 * dt_ * carried_.q[i] - m2 * (k_half - k_old) + carried_.potential[i];
   }
-  grid_.sort(state_, carried_);
+  update_neighbours(false);
   conservative_pass(true); // F, q, P at t + dt from r(t+dt), v(t+dt/2), u(t+dt/2)
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
@@ -405,7 +439,7 @@ template <class M> void Simulation<M>::step_euler() {
   if constexpr (M::has_energy)
     if (p_.energy_offset)
       for (std::size_t i = 0; i < n; ++i) state_.u[i] += carried_.potential[i];
-  grid_.sort(state_, carried_);
+  update_neighbours(true);
   potential_pass();
   if constexpr (M::has_energy)
     if (p_.energy_offset)
@@ -440,7 +474,7 @@ template <class M> void Simulation<M>::step_shardlow() {
       if (offset) state_.u[i] += carried_.potential[i] - m2 * (k_half - k_old);
   }
   if (p_.has_walls()) reflect_at_walls();
-  grid_.sort(state_, carried_);
+  update_neighbours(false);
   if (kicks) {
     conservative_pass(false);
 #pragma omp parallel for schedule(static)

@@ -44,7 +44,7 @@ template <int D> void CellGrid<D>::build_stencil() {
   row_range_.assign(slot_cell_.size() / n_[0], RowRange{});
 }
 
-template <int D> void CellGrid<D>::build_pairs(const State<D>& s, double rc) {
+template <int D> void CellGrid<D>::build_pairs(const Positions& x, std::size_t count, double rc) {
   const double rc2 = rc * rc;
   const std::size_t threads = static_cast<std::size_t>(std::max(1, omp_get_max_threads()));
   if (buffers_.size() < threads) buffers_.resize(threads);
@@ -53,7 +53,7 @@ template <int D> void CellGrid<D>::build_pairs(const State<D>& s, double rc) {
   double volume = 1;
   for (int d = 0; d < D; ++d) volume *= box_[d];
   const double ball = D == 3 ? 4.18879020478639 * rc2 * rc : 3.141592653589793 * rc2;
-  const double n = static_cast<double>(s.size());
+  const double n = static_cast<double>(count);
   const auto guess = static_cast<std::size_t>(1.1 * 0.5 * n * n / volume * ball / threads) + 4096;
   const long rows = static_cast<long>(row_range_.size()), nx = n_[0];
 #pragma omp parallel
@@ -68,7 +68,7 @@ template <int D> void CellGrid<D>::build_pairs(const State<D>& s, double rc) {
       r.buffer = t;
       r.begin = b.used;
       for (long slot = row * nx; slot < (row + 1) * nx; ++slot)
-        build_cell(s, slot_cell_[slot], rc2, b);
+        build_cell(x, slot_cell_[slot], rc2, b);
       r.count = b.used - r.begin;
     }
   }
@@ -85,7 +85,7 @@ template <int D> std::size_t CellGrid<D>::pair_count() const {
 // appended to b. Distances as in visit_cell (minimum image by nearbyint), the test vectorised
 // over candidates. Order: see the end.
 template <int D>
-void CellGrid<D>::build_cell(const State<D>& s, int c, double rc2, PairBuffer& b) const {
+void CellGrid<D>::build_cell(const Positions& x, int c, double rc2, PairBuffer& b) const {
   const std::size_t first = start_[c], ni = start_[c + 1] - first;
   if (ni == 0) return;
   std::array<int, D> idx;
@@ -121,7 +121,7 @@ void CellGrid<D>::build_cell(const State<D>& s, int c, double rc2, PairBuffer& b
   for (std::size_t range = 0; range < ranges; ++range)
     for (std::size_t j = begin[range]; j < end[range]; ++j, ++k) {
       cand[k] = static_cast<std::uint32_t>(j);
-      for (int d = 0; d < D; ++d) b.cx[d][k] = s.x[d][j];
+      for (int d = 0; d < D; ++d) b.cx[d][k] = x[d][j];
     }
   const std::size_t need = b.used + ni * nc;
   if (b.i.size() < need) {
@@ -180,20 +180,29 @@ void CellGrid<D>::build_cell(const State<D>& s, int c, double rc2, PairBuffer& b
   b.used = m;
 }
 
-template <int D> void CellGrid<D>::sort(State<D>& s, Carried<D>& carried) {
+template <int D> void CellGrid<D>::wrap(State<D>& s) const {
+  const long count = static_cast<long>(s.size());
+#pragma omp parallel for schedule(static)
+  for (long i = 0; i < count; ++i)
+    for (int d = 0; d < D; ++d) {
+      if (!periodic_[d]) continue;
+      double& x = s.x[d][i];
+      x -= box_[d] * std::floor(x * inv_box_[d]);
+      if (x >= box_[d]) x = 0; // -tiny wraps to box exactly
+    }
+}
+
+template <int D> void CellGrid<D>::sort(State<D>& s, Carried<D>& carried, const Positions* key) {
   const std::size_t n = s.size();
   pairs_valid_ = false;
   cell_.resize(n);
   std::fill(start_.begin(), start_.end(), 0);
   const long count = static_cast<long>(n);
+  wrap(s);
+  const Positions& x = key ? *key : s.x;
   for (long i = 0; i < count; ++i) {
     double pos[D];
-    for (int d = 0; d < D; ++d) {
-      double& xd = s.x[d][i];
-      xd -= box_[d] * std::floor(xd * inv_box_[d]); // no-op in wall directions (inv_box_ = 0)
-      if (periodic_[d] && xd >= box_[d]) xd = 0;    // -tiny wraps to box exactly
-      pos[d] = xd;
-    }
+    for (int d = 0; d < D; ++d) pos[d] = x[d][i];
     cell_[i] = cell_of(pos);
   }
   for (std::size_t i = 0; i < n; ++i) ++start_[cell_[i] + 1];

@@ -1,7 +1,7 @@
 #pragma once
 // Particle state (structure of arrays) and the one neighbour loop: linked cells, re-sorted by
-// (cell, id) every step so that the pair order, and hence every result, depends only on the
-// positions and ids, not on storage order or thread count.
+// (cell, id) whenever the pair list is rebuilt, so that the pair order, and hence every result,
+// depends only on the positions and ids, not on storage order or thread count.
 
 #include <algorithm>
 #include <array>
@@ -78,8 +78,12 @@ public:
     return c;
   }
 
-  // Wraps positions into the box and sorts every per-particle array by (cell, id).
-  void sort(State<D>& s, Carried<D>& carried);
+  // Wraps positions into the box and sorts every per-particle array by (cell, id), the cell of
+  // each particle taken from `key` (positions in storage order) if given, else from s.x.
+  using Positions = std::array<std::vector<double>, D>;
+  void sort(State<D>& s, Carried<D>& carried, const Positions* key = nullptr);
+  // Wraps positions in periodic directions into [0, box) (keeps the storage order).
+  void wrap(State<D>& s) const;
 
   // Minimum-image separation x_i - x_j.
   void separation(const State<D>& s, std::size_t i, std::size_t j, double* dx) const {
@@ -108,7 +112,10 @@ public:
   // ---- The pair list: every pair closer than rc once, stored per cell (the cell of the
   // particle i), built after a sort from the positions alone, so that its content and order do
   // not depend on the thread count. sort() invalidates it.
-  void build_pairs(const State<D>& s, double rc);
+  void build_pairs(const State<D>& s, double rc) {
+    build_pairs(s.x, s.size(), rc);
+  }
+  void build_pairs(const Positions& x, std::size_t n, double rc);
   bool has_pairs() const {
     return pairs_valid_;
   }
@@ -192,7 +199,7 @@ private:
   struct RowRange { // a row's pairs: buffers_[buffer].i/j[begin, begin + count)
     std::size_t buffer = 0, begin = 0, count = 0;
   };
-  void build_cell(const State<D>& s, int c, double rc2, PairBuffer& b) const;
+  void build_cell(const Positions& x, int c, double rc2, PairBuffer& b) const;
 
   std::array<double, D> box_, inv_side_, inv_box_;
   std::array<bool, D> periodic_;

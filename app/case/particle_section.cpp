@@ -24,6 +24,10 @@ void declare_particle(Registry& r) {
       "energy (002 Appendix A), which makes them conserve energy exactly with conservative "
       "forces too. ec-verlet always does this.");
   r.declare(p + "Time step", "0.005", Double(), "Time step dt (units of tau), > 0.", kPositive);
+  r.declare(p + "Neighbour skin", "0.2", Double(),
+            "ec-verlet and shardlow list the pairs closer than the cutoff + skin and keep the "
+            "list until a particle has moved skin/2 (a performance setting: the physics is the "
+            "same for any skin). 0: a new list every step. In [0, 1).");
   r.declare(p + "Equilibration steps", "0", Integer(0),
             "Steps run before averages start (not sampled).");
   r.declare(p + "Steps", "1000", Integer(0), "Sampled steps after equilibration.");
@@ -119,6 +123,8 @@ ParticleParameters resolve_particle(const Registry& r, const SceneParameters& sc
   p.energy_offset = r.get_bool(s + "Energy offset");
   p.dt = r.get_double(s + "Time step");
   r.require(p.dt > 0 && std::isfinite(p.dt), s + "Time step", kPositive);
+  p.neighbour_skin = r.get_double(s + "Neighbour skin");
+  r.require(p.neighbour_skin >= 0 && p.neighbour_skin < 1, s + "Neighbour skin", "in [0, 1)");
   p.equilibration_steps = r.get_integer(s + "Equilibration steps");
   p.steps = r.get_integer(s + "Steps");
   p.seed = static_cast<std::uint64_t>(r.get_integer(s + "Seed"));

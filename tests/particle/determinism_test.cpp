@@ -94,3 +94,43 @@ TEST(Noise, PhiloxIsRandom123AndGaussiansAreStandard) {
   EXPECT_NEAR(m[3], 0, 5 * std::sqrt(15.0) * se);
   EXPECT_NEAR(m[4], 3, 5 * std::sqrt(96.0) * se);
 }
+
+// The Verlet list (pairs within rc + skin, kept until a particle has moved skin/2) misses no pair
+// closer than rc: after every step, the potential energy summed over the list equals an O(N^2)
+// sum over all pairs, while the list is rebuilt only every few steps.
+// (A constant a0: the potential then depends on positions alone.)
+TEST(Neighbours, SkinListMissesNoPairBetweenRebuilds) {
+  using Constant = Model<3, ConstantRepulsion, ConstantSigma, InverseSeed002Heat>;
+  for (const auto integrator : {Integrator::EcVerlet, Integrator::Shardlow}) {
+    auto p = seed002(integrator, 0.01);
+    p.box = {{9, 9, 6}};
+    p.conservative = ConservativeForce::Constant;
+    p.neighbour_skin = 0.2;
+    const auto s002 = seed002_model(p);
+    Simulation<Constant> sim(
+        Constant{ConstantRepulsion{p.a0, 1, 1}, s002.friction, s002.heat, 1, p.cv, 1}, p);
+    const auto& s = sim.state();
+    const auto& model = sim.model();
+    const long builds = sim.pair_list_builds();
+    const int steps = 60;
+    for (int k = 0; k < steps; ++k) {
+      sim.step();
+      double brute = 0;
+      for (std::size_t i = 0; i < s.size(); ++i)
+        for (std::size_t j = i + 1; j < s.size(); ++j) {
+          double dx[3], r2 = 0;
+          sim.grid().separation(s, i, j, dx);
+          for (int d = 0; d < 3; ++d) r2 += dx[d] * dx[d];
+          if (r2 >= 1) continue;
+          double f, phi;
+          model.conservative.eval(std::sqrt(r2), 1, 1, f, phi);
+          brute += phi;
+        }
+      ASSERT_NEAR(sim.potential_energy(), brute, 1e-10 * std::fabs(brute))
+          << to_string(integrator) << " step " << k;
+    }
+    const long rebuilt = sim.pair_list_builds() - builds;
+    EXPECT_LT(rebuilt, steps / 2) << "the list is kept across steps";
+    EXPECT_GT(rebuilt, 0) << "and rebuilt when particles have moved";
+  }
+}

@@ -59,6 +59,7 @@ ParticleParameters bench_case(int dim, std::array<double, 3> box, const Scene& s
   p.heat = s.heat ? HeatLaw::Inverse : HeatLaw::None;
   p.heat_coefficient = HeatCoefficient::Constant;
   p.kappa0 = 40;
+  p.initial_internal_energy = InitialInternalEnergy::Theta; // the deck's theta_i = T0
   return p;
 }
 

@@ -50,7 +50,7 @@ steps_for() { python3 -c "print(max(20, int(round(float('$PS') / $1))))"; }
 ours() { # N scene integrator threads steps -> "particle-steps/s peak-RSS-kB"
   "$TW" bench --force -o "$OUT/twinflow" --set "Bench/N=$1" --set "Bench/Scenes=$2" \
     --set "Bench/Integrators=$3" --set "Bench/Threads=$4" --set "Bench/Steps=$5" |
-    awk -F'|' '/^\| 3 \|/ {gsub(/ /, "", $7); gsub(/ /, "", $8); print $7, $8}'
+    awk -F'|' '/^\| 3 \|/ {gsub(/ /, "", $8); gsub(/ /, "", $10); print $8, $10}'
 }
 
 lammps() { # N ranks steps -> "particle-steps/s peak-RSS-kB"
@@ -112,7 +112,7 @@ do_thermo() {
     "$TW" bench --force -o "$OUT/twinflow" --threads 2 --set Bench/N=6000 \
       --set Bench/Scenes=a0=15+heat --set "Bench/Integrators=$integ" --set Bench/Threads=2 \
       --set Bench/Thermo=2000 | awk -F'|' -v i="$integ" '/^\| 3 \|/ {
-        print "thermo ours:" i " |" $8 "|" $9 "|" $10 "|" $11}' | tee -a "$RAW"
+        print "thermo ours:" i " |" $9 "|" $10 "|" $11 "|" $12}' | tee -a "$RAW"
   done
   if [ $HAVE_LMP = 1 ]; then
     log=$OUT/lammps_thermo.log

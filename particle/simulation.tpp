@@ -84,14 +84,15 @@ Simulation<M>::Simulation(const M& model, const ParticleParameters& p)
 // rebuild steps are the same for any thread count, and a checkpoint holds the listed positions.
 template <class M> void Simulation<M>::update_neighbours(bool force) {
   if (!force && skin_ > 0 && grid_.has_pairs()) {
-    grid_.wrap(state_);
     const long n = static_cast<long>(state_.size());
     double largest = 0; // max |x_i - x_listed_i|^2, minimum image
 #pragma omp parallel for schedule(static) reduction(max : largest)
     for (long i = 0; i < n; ++i) {
       double r2 = 0;
       for (int d = 0; d < D; ++d) {
-        double r = state_.x[d][i] - x_listed_[d][i];
+        double& x = state_.x[d][i];
+        x = grid_.wrapped(x, d);
+        double r = x - x_listed_[d][i];
         r -= grid_.image_box(d) * std::nearbyint(r * grid_.inv_box(d));
         r2 += r * r;
       }
@@ -368,7 +369,8 @@ template <class M> void Simulation<M>::step_ec_verlet() {
   }
   update_neighbours(false);
   conservative_pass(true); // F, q, P at t + dt from r(t+dt), v(t+dt/2), u(t+dt/2)
-#pragma omp parallel for schedule(static)
+  bool bad = false;        // a non-finite velocity or non-positive energy (check_energies)
+#pragma omp parallel for schedule(static) reduction(|| : bad)
   for (std::size_t i = 0; i < n; ++i) {
     double k_half = 0, k_new = 0;
     for (int d = 0; d < D; ++d) {
@@ -376,10 +378,13 @@ template <class M> void Simulation<M>::step_ec_verlet() {
       v[d][i] += half * carried_.f[d][i]; // 002:(A4)
       k_new += v[d][i] * v[d][i];
     }
-    if constexpr (M::has_energy) // 002:(A5)
+    if constexpr (M::has_energy) { // 002:(A5)
       state_.u[i] += 0.5 * dt_ * carried_.q[i] - m2 * (k_new - k_half) - carried_.potential[i];
+      bad = bad || !(state_.u[i] > 0) || !std::isfinite(state_.u[i]);
+    }
+    bad = bad || !std::isfinite(k_new);
   }
-  check_energies("ec-verlet step");
+  if (bad) check_energies("ec-verlet step");
 }
 
 // Explicit first-order update: 001 eqs. (1)-(2) (isothermal); 000:(2.23)-(2.25) / 003:(15)-(17)
@@ -512,21 +517,22 @@ template <class M> double Simulation<M>::potential_energy() const {
 }
 
 template <class M> void Simulation<M>::check_energies(const char* where) const {
-  const std::size_t n = state_.size();
+  const long n = static_cast<long>(state_.size());
   bool bad = false;
-  for (std::size_t i = 0; i < n; ++i) {
+#pragma omp parallel for schedule(static) reduction(|| : bad)
+  for (long i = 0; i < n; ++i) {
     double s = 0;
     for (int d = 0; d < D; ++d) s += state_.v[d][i];
-    if constexpr (M::has_energy) bad |= !(state_.u[i] > 0) || !std::isfinite(state_.u[i]);
-    bad |= !std::isfinite(s);
+    if constexpr (M::has_energy) bad = bad || !(state_.u[i] > 0) || !std::isfinite(state_.u[i]);
+    bad = bad || !std::isfinite(s);
   }
   if (!bad) return;
-  for (std::size_t i = 0; i < n; ++i) {
+  for (long i = 0; i < n; ++i) { // the first bad particle, in storage order
     double s = 0;
     for (int d = 0; d < D; ++d) s += state_.v[d][i];
     bool bad_i = !std::isfinite(s);
     if constexpr (M::has_energy) bad_i |= !(state_.u[i] > 0) || !std::isfinite(state_.u[i]);
-    if (bad_i) fail(i, where);
+    if (bad_i) fail(static_cast<std::size_t>(i), where);
   }
 }
 

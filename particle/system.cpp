@@ -184,12 +184,7 @@ template <int D> void CellGrid<D>::wrap(State<D>& s) const {
   const long count = static_cast<long>(s.size());
 #pragma omp parallel for schedule(static)
   for (long i = 0; i < count; ++i)
-    for (int d = 0; d < D; ++d) {
-      if (!periodic_[d]) continue;
-      double& x = s.x[d][i];
-      x -= box_[d] * std::floor(x * inv_box_[d]);
-      if (x >= box_[d]) x = 0; // -tiny wraps to box exactly
-    }
+    for (int d = 0; d < D; ++d) s.x[d][i] = wrapped(s.x[d][i], d);
 }
 
 template <int D> void CellGrid<D>::sort(State<D>& s, Carried<D>& carried, const Positions* key) {

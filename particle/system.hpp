@@ -84,6 +84,11 @@ public:
   void sort(State<D>& s, Carried<D>& carried, const Positions* key = nullptr);
   // Wraps positions in periodic directions into [0, box) (keeps the storage order).
   void wrap(State<D>& s) const;
+  double wrapped(double x, int d) const {
+    if (!periodic_[d]) return x;
+    x -= box_[d] * std::floor(x * inv_box_[d]);
+    return x >= box_[d] ? 0 : x; // -tiny wraps to box exactly
+  }
 
   // Minimum-image separation x_i - x_j.
   void separation(const State<D>& s, std::size_t i, std::size_t j, double* dx) const {

@@ -138,7 +138,11 @@ std::vector<std::string> calibrated_twin_overrides(const std::string& run_dir,
         const double q = number(walls, {"walls", wall_name(d, side).c_str(), "heat_flux_in"});
         const double jump = b.temperature[side] - w.value;
         if (kapitza && std::isfinite(q) && q * jump > 0) {
-          h = q / jump;
+          // h_K = q / (T_wall - T_f), or for the inverse law q / (T_wall^2 (1/T_f - 1/T_wall))
+          const double Tw = b.temperature[side];
+          h = run.parameters.continuum.boundary[d].kapitza_inverse
+                  ? q / (Tw * Tw * (1 / w.value - 1 / Tw))
+                  : q / jump;
         } else if (std::isfinite(w.value)) { // no usable jump: the fluid's wall temperature
           std::ostringstream o;
           o << std::setprecision(10) << "Scene/" << kAxis[d] << " boundaries/"
@@ -298,10 +302,14 @@ int compare_stage(const CommandLine& cl) {
     io::Json j = io::Json::object();
     j["stage"] = t.stage;
     if (t.name == "calibrated")
-      j["calibration"] = run.parameters.compare.calibration == "kapitza" &&
-                                 run.parameters.continuum.model == continuum::Model::Boussinesq
-                             ? "Kapitza walls (h_K = the particle wall's heat flux / its jump)"
-                             : "walls at the fluid's wall temperatures";
+      j["calibration"] =
+          run.parameters.compare.calibration != "kapitza" ||
+                  run.parameters.continuum.model != continuum::Model::Boussinesq
+              ? "walls at the fluid's wall temperatures"
+          : run.parameters.continuum.boundary[0].kapitza_inverse
+              ? "Kapitza walls, inverse law (h_K T_w^2 (1/T_f - 1/T_w) = the particle wall's "
+                "heat flux)"
+              : "Kapitza walls (h_K = the particle wall's heat flux / its jump)";
     const auto T = compare::temperature_distance(final_state, t.state, interior, dT);
     j["temperature"] = T.to_json();
     table["temperature_l2_" + t.name] = T.l2;

@@ -6,7 +6,8 @@
 //   div u = 0
 //   n c_p (dT/dt + u . grad T) - div(kappa(T) grad T) = Q
 // eps(u) the symmetric gradient; flux walls add - int_Gamma q phi_T, Kapitza (Robin) walls
-// - int_Gamma h_K (T_wall - T) phi_T (Kapitza 1941: a jump T_wall - T = q / h_K at the wall).
+// - int_Gamma h_K (T_wall - T) phi_T (Kapitza 1941: a jump T_wall - T = q / h_K at the wall), or
+// its inverse law h_K T_wall^2 (1/T - 1/T_wall) (DirectionBoundary::kapitza_flux).
 // Residual R and its exact
 // Jacobian (Gateaux derivative) for Newton's method. Steady: no time derivatives. In time, a
 // multistep (BDF) derivative d/dt x ~ a0 x + h with the history h = sum_k a_k x^{n+1-k} of the
@@ -117,7 +118,7 @@ public:
       }
     }
     // Heat flux into the domain through flux walls, - int_Gamma q phi_T, and through Kapitza
-    // walls, q = h_K (T_wall - T) with its Jacobian h_K phi_T,j phi_T,i.
+    // walls, q(T) with its Jacobian -q'(T) phi_T,j phi_T,i.
     for (const auto& face : cell->face_iterators()) {
       if (!face->at_boundary()) continue;
       const int d = face->boundary_id() / 2, side = face->boundary_id() % 2;
@@ -129,14 +130,14 @@ public:
       if (robin) fe_face_values_[temperature].get_function_values(x, face_T_);
       for (unsigned q = 0; q < face_quadrature_.size(); ++q) {
         const double JxW = fe_face_values_.JxW(q);
-        const double h = b.kapitza_conductance[side];
-        const double flux_in = robin ? h * (b.temperature[side] - face_T_[q]) : b.heat_flux[side];
+        const double flux_in = robin ? b.kapitza_flux(side, face_T_[q]) : b.heat_flux[side];
+        const double dflux = robin ? b.kapitza_flux_derivative(side, face_T_[q]) : 0.0;
         for (unsigned i = 0; i < n_; ++i) {
           const double phi_i = fe_face_values_[temperature].value(i, q);
           cell_rhs(i) += flux_in * phi_i * JxW;
           if (robin && with_jacobian)
             for (unsigned j = 0; j < n_; ++j)
-              cell_matrix(i, j) += h * fe_face_values_[temperature].value(j, q) * phi_i * JxW;
+              cell_matrix(i, j) -= dflux * fe_face_values_[temperature].value(j, q) * phi_i * JxW;
         }
       }
     }

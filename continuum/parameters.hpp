@@ -59,6 +59,17 @@ struct DirectionBoundary {
   // Boussinesq only. (Last: aggregate initialisers of the fields above stay valid.)
   std::array<double, 2> kapitza_conductance{{0.0, 0.0}};
   bool robin(int side) const { return fixed_temperature[side] && kapitza_conductance[side] > 0; }
+  // Inverse law (the particle wall's own, physics.md): q = h T_wall^2 (1/T - 1/T_wall), the
+  // same h at T = T_wall, larger where the fluid is colder. Else linear: q = h (T_wall - T).
+  bool kapitza_inverse = false;
+  double kapitza_flux(int side, double T) const { // heat flux into the domain at fluid T
+    const double h = kapitza_conductance[side], Tw = temperature[side];
+    return kapitza_inverse ? h * Tw * Tw * (1 / T - 1 / Tw) : h * (Tw - T);
+  }
+  double kapitza_flux_derivative(int side, double T) const { // d(kapitza_flux)/dT
+    const double h = kapitza_conductance[side], Tw = temperature[side];
+    return kapitza_inverse ? -h * Tw * Tw / (T * T) : -h;
+  }
 };
 
 // A slab x_d in [lower, upper] that injects `power` (energy per time; < 0: a sink) uniformly:

@@ -87,6 +87,12 @@ void declare_continuum(Registry& r) {
             "wall with h_K > 0 takes the heat flux h_K (T_wall - T) instead of T = T_wall; 0 or "
             "absent: T = T_wall. `run`'s calibrated twin sets them from the particle walls' "
             "measured heat flux and temperature jump.");
+  r.declare(s + "Kapitza law", "linear", Selection("linear|inverse"),
+            "The heat flux into the fluid at a Kapitza wall: linear, h_K (T_wall - T); inverse, "
+            "h_K T_wall^2 (1/T - 1/T_wall), the particle wall's own law (physics.md: the "
+            "inverse heat law against a wall particle at T_wall), whose conductance grows where "
+            "the fluid is colder; the same h_K at T = T_wall. `run`'s calibrated twin sets h_K "
+            "for the law chosen here.");
   r.declare(s + "Mode", "steady", Selection("steady|transient"),
             "steady: the stationary state (Newton, with continuation in Ra and the mesh study "
             "over the refinement levels); transient: march in time from the initial state to "
@@ -215,6 +221,7 @@ continuum::ContinuumParameters resolve_continuum(const Registry& r, const SceneP
               "0 unless Continuum/Model = boussinesq");
     c.boundary[d].kapitza_conductance[side] = kapitza[w];
   }
+  for (auto& b : c.boundary) b.kapitza_inverse = r.get(s + "Kapitza law") == "inverse";
 
   // Same units as the particle twin: n from the scene, m from the particle section.
   c.number_density = scene.density;

@@ -116,3 +116,26 @@ TEST(KapitzaWalls, ConductionInSeriesIsExactAndLargeConductanceIsDirichlet) {
   std::printf("Nu: Dirichlet %.8f, h = 1e9 %.8f\n", nu_dirichlet, nu_stiff);
   EXPECT_NEAR(nu_stiff, nu_dirichlet, 1e-6 * nu_dirichlet);
 }
+
+// The inverse law, q = h T_w^2 (1/T - 1/T_w): in series without gravity the layer's end
+// temperatures T_0, T_1 solve q = h_0 T_w0^2 (1/T_0 - 1/T_w0) = kappa (T_0 - T_1) / H =
+// h_1 T_w1^2 (1/T_w1 - 1/T_1) (exact for Q2: linear T). Found here by bisection on T_0; the
+// Newton solve must reproduce it, which checks the boundary residual and its Jacobian.
+TEST(KapitzaWalls, InverseLawInSeriesIsExact) {
+  ContinuumParameters p = test_cases::cavity(2, 1e4, 8, 1);
+  p.gravity = {{0, 0, 0}};
+  p.boundary[0].kapitza_conductance = {{2.0, 4.0}};
+  p.boundary[0].kapitza_inverse = true;
+  const ContinuumResult r = run(p, "");
+  const double kappa = p.conductivity.value_at_reference, Tw0 = 1.5, Tw1 = 0.5;
+  const auto cold_end = [&](double q) { return 1 / (1 / Tw1 - q / (4.0 * Tw1 * Tw1)); };
+  double lo = Tw1, hi = Tw0; // T_0: the hot wall's flux minus the layer's changes sign once
+  for (int k = 0; k < 200; ++k) {
+    const double T0 = 0.5 * (lo + hi), q = 2.0 * Tw0 * Tw0 * (1 / T0 - 1 / Tw0);
+    (kappa * (T0 - cold_end(q)) > q ? hi : lo) = T0;
+  }
+  const double T0 = 0.5 * (lo + hi), q = 2.0 * Tw0 * Tw0 * (1 / T0 - 1 / Tw0);
+  EXPECT_NEAR(r.nusselt, q / kappa, 1e-8);
+  EXPECT_NEAR(r.temperature_max, T0, 1e-8);
+  EXPECT_NEAR(r.temperature_min, cold_end(q), 1e-8);
+}

@@ -44,6 +44,10 @@ io::Json measurement_inputs(const Case& c, const particle::ParticleParameters& p
     j["temperature_spread"] = t.temperature_spread;
   }
   j["method"] = kTransportMethod;
+  if (t.kappa_from_walls) { // the scene's walls and its box along them enter the measurement
+    j["kappa_from_walls"] = c.registry().resolved_json().dump();
+    j["wall_steps"] = t.wall_steps;
+  }
   return j;
 }
 
@@ -103,6 +107,95 @@ bool restore_from_cache(const fs::path& entry, const io::StageDirectory& stage, 
   io::write_file_atomically(stage.file("rdf.csv"), io::read_file(entry / "rdf.csv"));
   io::write_file_atomically(stage.file("summary.json"), summary.dump());
   return true;
+}
+// Transport/Kappa from walls: conduction between the scene's thermal walls of its heated
+// direction (theirs: temperatures, slip, Particle/Walls), periodic across, no gravity, ~4000
+// particles. kappa = the walls' mean heat flux / |slope| of the central 60% (particle/run.cpp's
+// wall_profile): Fourier's law over the scene's own temperature span.
+struct WallKappa {
+  particle::Estimate kappa{std::nan(""), std::nan("")};
+  io::Json json = io::Json::object();
+};
+WallKappa kappa_from_walls(const CaseParameters& cp, const particle::ParticleParameters& fluid,
+                           long steps) {
+  const SceneParameters& scene = cp.scene;
+  int heated = -1;
+  for (int d = 0; d < scene.dim && heated < 0; ++d) {
+    const auto& b = scene.boundary[d];
+    if (!b.periodic && b.thermal[0] && b.thermal[1] && b.temperature[0] != b.temperature[1])
+      heated = d;
+  }
+  if (heated < 0)
+    throw io::InputError("Transport/Kappa from walls = true needs two thermal walls at different "
+                         "temperatures in one direction of the scene");
+  particle::ParticleParameters w = cp.particle; // the scene's walls and fluid
+  w.temperature = fluid.temperature;
+  w.initial_velocities = particle::InitialVelocities::Maxwell;
+  w.initial_internal_energy = particle::InitialInternalEnergy::Equilibrium;
+  w.temperature_perturbation = 0, w.shear_perturbation = 0, w.poiseuille_force = 0;
+  w.gravity = {{0, 0, 0}};
+  w.heat_slabs.clear();
+  const double length = w.box[heated];
+  const double across = std::max(
+      3 * w.largest_cutoff(), std::pow(4000 / (w.density * length), 1.0 / std::max(1, w.dim - 1)));
+  for (int d = 0; d < w.dim; ++d) {
+    w.bins[d] = 1;
+    if (d == heated) continue;
+    w.walls[d].present = false;
+    w.box[d] = across;
+  }
+  w.bins[heated] = std::max(10, static_cast<int>(std::lround(2 * length / w.largest_cutoff())));
+  w.steps = steps;
+  w.equilibration_steps = steps / 5;
+  w.seed = fluid.seed + 7919;
+  const auto start = std::chrono::steady_clock::now();
+  std::printf("transport: kappa from the walls: %ld particles, %ld + %ld steps\n",
+              w.particle_count(), w.equilibration_steps, w.steps);
+  std::fflush(stdout);
+  const particle::RunOutput out = particle::run_particles(w);
+  auto at = [&](std::initializer_list<const char*> path) {
+    const io::Json* v = &out.summary;
+    for (const char* key : path) v = v && v->is_object() ? v->find(key) : nullptr;
+    return v && v->is_number() ? v->number() : std::nan("");
+  };
+  const char* names[3][2] = {
+      {"x_lower", "x_upper"}, {"y_lower", "y_upper"}, {"z_lower", "z_upper"}};
+  const double q_lo = at({"walls", names[heated][0], "heat_flux_in"});
+  const double q_up = at({"walls", names[heated][1], "heat_flux_in"});
+  const double se_q = 0.5 * std::hypot(at({"walls", names[heated][0], "heat_flux_in_stderr"}),
+                                       at({"walls", names[heated][1], "heat_flux_in_stderr"}));
+  const double q = 0.5 * (q_lo - q_up); // from the lower wall to the upper one
+  // Steady: both walls carry the same flow. Else the profile is still forming.
+  const double imbalance = (q_lo + q_up) / (2 * se_q);
+  if (std::fabs(imbalance) > 3)
+    std::printf("transport: kappa from the walls: the walls' heat flows differ by %.1f standard "
+                "errors (%.4g in, %.4g out): not yet steady; raise Transport/Wall steps\n",
+                std::fabs(imbalance), q_lo, -q_up);
+  const double slope = at({"wall_profile", "slope"}),
+               se_slope = at({"wall_profile", "slope_stderr"});
+  WallKappa r;
+  r.kappa.mean = -q / slope; // Fourier: q = -kappa dT/dx
+  r.kappa.stderr_ = std::fabs(r.kappa.mean) * std::hypot(se_q / q, se_slope / slope);
+  r.json["method"] = "conduction between the scene's thermal walls (Fourier's law)";
+  r.json["particles"] = w.particle_count();
+  r.json["box"] = io::Json::array();
+  for (int d = 0; d < w.dim; ++d) r.json["box"].push_back(w.box[d]);
+  r.json["steps"] = w.steps;
+  r.json["heat_flux"] = q, r.json["heat_flux_stderr"] = se_q;
+  r.json["heat_flux_walls"] = io::Json::array();
+  r.json["heat_flux_walls"].push_back(q_lo), r.json["heat_flux_walls"].push_back(-q_up);
+  r.json["wall_imbalance_over_stderr"] = imbalance;
+  r.json["slope"] = slope, r.json["slope_stderr"] = se_slope;
+  r.json["conductivity"] = r.kappa.mean, r.json["conductivity_stderr"] = r.kappa.stderr_;
+  r.json["T_internal"] = at({"T_internal"});
+  r.json["wall_profile"] = *out.summary.find("wall_profile");
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  r.json["seconds"] = seconds;
+  std::printf("transport: kappa from the walls = %.4g +- %.2g (flux %.4g +- %.2g, slope %.4g +- "
+              "%.2g); %.0f s\n",
+              r.kappa.mean, r.kappa.stderr_, q, se_q, slope, se_slope, seconds);
+  return r;
 }
 } // namespace
 
@@ -211,6 +304,11 @@ int transport_stage(const CommandLine& cl) {
     kappa = flow.conductivity.value;
     eta = flow.viscosity.value;
   }
+  WallKappa by_walls;
+  if (cp.transport.kappa_from_walls) {
+    by_walls = kappa_from_walls(cp, p, cp.transport.wall_steps);
+    kappa = by_walls.kappa;
+  }
   // The relaxation runs' own temperatures (the state they measured), where known.
   std::vector<double> measured_at = temperatures;
   for (std::size_t i = 0; i < at_temperature.size(); ++i)
@@ -283,10 +381,19 @@ int transport_stage(const CommandLine& cl) {
   summary["results"]["estimated_g1"] = ideal.json();
   summary["results"]["estimated_measured_g"] = with_g.json();
   summary["results"]["measured"] = m.json();
+  if (cp.transport.kappa_from_walls) {
+    summary["results"]["measured"]["conductivity"] = kappa.mean;
+    summary["results"]["measured"]["conductivity_stderr"] = kappa.stderr_;
+    summary["results"]["measured"]["walls"] = by_walls.json;
+  }
   if (cp.transport.measure_flows) {
     // The continuum twin reads "conductivity" and "viscosity" (app/continuum_stage.cpp).
     summary["results"]["measured"]["conductivity"] = kappa.mean;
     summary["results"]["measured"]["conductivity_stderr"] = kappa.stderr_;
+    if (cp.transport.kappa_from_walls)
+      summary["results"]["measured"]["conductivity_relaxation"] = flow.conductivity.value.mean,
+      summary["results"]["measured"]["conductivity_relaxation_stderr"] =
+          flow.conductivity.value.stderr_;
     summary["results"]["measured"]["viscosity"] = eta.mean;
     summary["results"]["measured"]["viscosity_stderr"] = eta.stderr_;
     io::Json method = io::Json::object();

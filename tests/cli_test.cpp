@@ -295,3 +295,33 @@ TEST(Cli, TransportReusesCachedMeasurementsAcrossRunDirectories) {
   ASSERT_EQ(other.code, 0) << other.output;
   EXPECT_EQ(other.output.find("from the cache"), std::string::npos) << other.output;
 }
+
+// Transport/Kappa from walls: kappa is the wall run's mean heat flux over its interior slope
+// (Fourier's law, recomputed here from the recorded numbers), the one the continuum twin reads;
+// a scene without two thermal walls at different temperatures is an input error (exit 2).
+TEST(Cli, KappaFromWallsIsFouriersLawOfTheWallRun) {
+  const std::string base =
+      std::string(TWINFLOW_SOURCE_DIR) +
+      "/cases/heated_cavity_2d.prm --threads 1 --set 'Scene/Density=2'"
+      " --set 'Transport/Measure kappa and eta=false'"
+      " --set 'Transport/Kappa from walls=true' --set 'Transport/Wall steps=3000'";
+  const fs::path dir = fresh_dir("kappa_walls");
+  const Result r =
+      twinflow::testing::run_twinflow("transport " + base + " --out " + dir.string(), "off");
+  ASSERT_EQ(r.code, 0) << r.output;
+  const auto summary =
+      twinflow::io::Json::parse(twinflow::io::read_file(dir / "transport" / "summary.json"));
+  const auto& measured = *summary.find("results")->find("measured");
+  const auto& walls = *measured.find("walls");
+  const double kappa = measured.find("conductivity")->number();
+  EXPECT_DOUBLE_EQ(kappa, -walls.find("heat_flux")->number() / walls.find("slope")->number());
+  EXPECT_GT(measured.find("conductivity_stderr")->number(), 0);
+  EXPECT_EQ(walls.find("particles")->number(), 4000); // 20 x 100 at density 2
+  const fs::path none = fresh_dir("kappa_walls_none");
+  const Result bad = twinflow::testing::run_twinflow(
+      "transport " + base + " --set 'Scene/x boundaries/Upper wall temperature=1.5' --out " +
+          none.string(),
+      "off");
+  EXPECT_EQ(bad.code, 2) << bad.output;
+  EXPECT_NE(bad.output.find("Kappa from walls"), std::string::npos) << bad.output;
+}

@@ -48,6 +48,8 @@ struct TransportParameters {
   double flow_particles = 4000;     // particles of the square/cubic base box of the flow runs
   int flow_repeats = 4;             // independent relaxation runs (their spread is the error)
   double temperature_spread = 0;    // > 0: also at T (1 -+ spread), power laws kappa(T), eta(T)
+  bool kappa_from_walls = false;    // kappa by conduction between the scene's thermal walls
+  long wall_steps = 100000;         // its sampled steps (after as many / 5 to settle)
 };
 
 // Bounds of the stability map (twinflow stability).

@@ -152,7 +152,9 @@ WallKappa kappa_from_walls(const CaseParameters& cp, const particle::ParticlePar
   std::printf("transport: kappa from the walls: %ld particles, %ld + %ld steps\n",
               w.particle_count(), w.equilibration_steps, w.steps);
   std::fflush(stdout);
-  const particle::RunOutput out = particle::run_particles(w);
+  particle::RunControl control;
+  control.progress = true; // a progress line with ETA on a terminal
+  const particle::RunOutput out = particle::run_particles(w, control);
   auto at = [&](std::initializer_list<const char*> path) {
     const io::Json* v = &out.summary;
     for (const char* key : path) v = v && v->is_object() ? v->find(key) : nullptr;
@@ -188,7 +190,7 @@ WallKappa kappa_from_walls(const CaseParameters& cp, const particle::ParticlePar
   r.json["slope"] = slope, r.json["slope_stderr"] = se_slope;
   r.json["conductivity"] = r.kappa.mean, r.json["conductivity_stderr"] = r.kappa.stderr_;
   r.json["T_internal"] = at({"T_internal"});
-  r.json["wall_profile"] = *out.summary.find("wall_profile");
+  if (const io::Json* profile = out.summary.find("wall_profile")) r.json["wall_profile"] = *profile;
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   r.json["seconds"] = seconds;

@@ -2,11 +2,18 @@
 // The twinflow subcommands. Each takes the parsed command line; bad input throws io::InputError.
 
 #include <filesystem>
+#include <initializer_list>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+namespace twinflow::io {
+class Json;
+}
+
 namespace twinflow::app {
+
+struct SceneParameters;
 
 struct CommandLine {
   std::string command;
@@ -22,6 +29,13 @@ struct CommandLine {
   std::vector<double> rayleigh;  // target Rayleigh numbers (sweep)
   int jobs = 0;                  // points run at once; 0: cores / threads per point
 };
+
+// Shared by the stages (app/compare_stage.cpp): a number at a path of nested JSON objects (NaN
+// where absent), a wall's name in the particle summary ("x_lower", ...), and the scene's heated
+// direction (the walled direction whose two thermal walls differ in temperature; -1: none).
+double number(const io::Json& j, std::initializer_list<const char*> path);
+std::string wall_name(int d, int side);
+int heated_direction(const SceneParameters& s);
 
 // Exit code of a run stopped by a signal or the wall-time limit after writing its checkpoint.
 constexpr int kExitInterrupted = 5;

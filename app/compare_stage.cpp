@@ -24,20 +24,6 @@ io::Json read_json(const fs::path& file, const std::string& hint) {
   return io::Json::parse(io::read_file(file));
 }
 
-double number(const io::Json& j, std::initializer_list<const char*> path) {
-  const io::Json* v = &j;
-  for (const char* key : path) {
-    v = v->is_object() ? v->find(key) : nullptr;
-    if (!v) return std::nan("");
-  }
-  return v->is_number() ? v->number() : std::nan("");
-}
-
-const char* kAxis = "xyz";
-std::string wall_name(int d, int side) {
-  return std::string(1, kAxis[d]) + (side ? "_upper" : "_lower");
-}
-
 // What compare needs of a finished particle run.
 struct ParticleRun {
   io::Json summary;
@@ -68,6 +54,22 @@ ParticleRun load_particle_run(const fs::path& run_dir, const std::vector<std::st
   return r;
 }
 
+} // namespace
+
+double number(const io::Json& j, std::initializer_list<const char*> path) {
+  const io::Json* v = &j;
+  for (const char* key : path) {
+    v = v->is_object() ? v->find(key) : nullptr;
+    if (!v) return std::nan("");
+  }
+  return v->is_number() ? v->number() : std::nan("");
+}
+
+static const char* kAxis = "xyz";
+std::string wall_name(int d, int side) {
+  return std::string(1, kAxis[d]) + (side ? "_upper" : "_lower");
+}
+
 // The heated direction: the walled direction whose two thermal walls differ in temperature.
 int heated_direction(const SceneParameters& s) {
   for (int d = 0; d < s.dim; ++d) {
@@ -84,8 +86,6 @@ struct ContinuumTwin {
   io::Json summary;
   compare::BinnedState state;
 };
-
-} // namespace
 
 // Figures and report.md/html by compare/report.py, with the first python3 that has matplotlib
 // (Debian's python3-matplotlib). A missing python is not an error of the run: it says so.

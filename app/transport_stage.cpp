@@ -44,8 +44,10 @@ io::Json measurement_inputs(const Case& c, const particle::ParticleParameters& p
     j["temperature_spread"] = t.temperature_spread;
   }
   j["method"] = kTransportMethod;
-  if (t.kappa_from_walls) { // the scene's walls and its box along them enter the measurement
-    j["kappa_from_walls"] = c.registry().resolved_json().dump();
+  if (t.kappa_from_walls) { // the scene and the particle walls enter the wall run
+    for (const auto& [path, value] : resolved.items())
+      if (path.rfind("Scene/", 0) == 0 || path.rfind("Particle/Walls/", 0) == 0) j[path] = value;
+    j["kappa_from_walls"] = true;
     j["wall_steps"] = t.wall_steps;
   }
   return j;
@@ -118,13 +120,7 @@ struct WallKappa {
 };
 WallKappa kappa_from_walls(const CaseParameters& cp, const particle::ParticleParameters& fluid,
                            long steps) {
-  const SceneParameters& scene = cp.scene;
-  int heated = -1;
-  for (int d = 0; d < scene.dim && heated < 0; ++d) {
-    const auto& b = scene.boundary[d];
-    if (!b.periodic && b.thermal[0] && b.thermal[1] && b.temperature[0] != b.temperature[1])
-      heated = d;
-  }
+  const int heated = heated_direction(cp.scene);
   if (heated < 0)
     throw io::InputError("Transport/Kappa from walls = true needs two thermal walls at different "
                          "temperatures in one direction of the scene");
@@ -155,17 +151,12 @@ WallKappa kappa_from_walls(const CaseParameters& cp, const particle::ParticlePar
   particle::RunControl control;
   control.progress = true; // a progress line with ETA on a terminal
   const particle::RunOutput out = particle::run_particles(w, control);
-  auto at = [&](std::initializer_list<const char*> path) {
-    const io::Json* v = &out.summary;
-    for (const char* key : path) v = v && v->is_object() ? v->find(key) : nullptr;
-    return v && v->is_number() ? v->number() : std::nan("");
-  };
-  const char* names[3][2] = {
-      {"x_lower", "x_upper"}, {"y_lower", "y_upper"}, {"z_lower", "z_upper"}};
-  const double q_lo = at({"walls", names[heated][0], "heat_flux_in"});
-  const double q_up = at({"walls", names[heated][1], "heat_flux_in"});
-  const double se_q = 0.5 * std::hypot(at({"walls", names[heated][0], "heat_flux_in_stderr"}),
-                                       at({"walls", names[heated][1], "heat_flux_in_stderr"}));
+  const auto lower = wall_name(heated, 0), upper = wall_name(heated, 1);
+  const double q_lo = number(out.summary, {"walls", lower.c_str(), "heat_flux_in"});
+  const double q_up = number(out.summary, {"walls", upper.c_str(), "heat_flux_in"});
+  const double se_q =
+      0.5 * std::hypot(number(out.summary, {"walls", lower.c_str(), "heat_flux_in_stderr"}),
+                       number(out.summary, {"walls", upper.c_str(), "heat_flux_in_stderr"}));
   const double q = 0.5 * (q_lo - q_up); // from the lower wall to the upper one
   // Steady: both walls carry the same flow. Else the profile is still forming.
   const double imbalance = (q_lo + q_up) / (2 * se_q);
@@ -173,8 +164,8 @@ WallKappa kappa_from_walls(const CaseParameters& cp, const particle::ParticlePar
     std::printf("transport: kappa from the walls: the walls' heat flows differ by %.1f standard "
                 "errors (%.4g in, %.4g out): not yet steady; raise Transport/Wall steps\n",
                 std::fabs(imbalance), q_lo, -q_up);
-  const double slope = at({"wall_profile", "slope"}),
-               se_slope = at({"wall_profile", "slope_stderr"});
+  const double slope = number(out.summary, {"wall_profile", "slope"}),
+               se_slope = number(out.summary, {"wall_profile", "slope_stderr"});
   WallKappa r;
   r.kappa.mean = -q / slope; // Fourier: q = -kappa dT/dx
   r.kappa.stderr_ = std::fabs(r.kappa.mean) * std::hypot(se_q / q, se_slope / slope);
@@ -189,7 +180,7 @@ WallKappa kappa_from_walls(const CaseParameters& cp, const particle::ParticlePar
   r.json["wall_imbalance_over_stderr"] = imbalance;
   r.json["slope"] = slope, r.json["slope_stderr"] = se_slope;
   r.json["conductivity"] = r.kappa.mean, r.json["conductivity_stderr"] = r.kappa.stderr_;
-  r.json["T_internal"] = at({"T_internal"});
+  r.json["T_internal"] = number(out.summary, {"T_internal"});
   if (const io::Json* profile = out.summary.find("wall_profile")) r.json["wall_profile"] = *profile;
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -8,6 +8,7 @@
 //   Bench/Integrators=shardlow,ec-verlet
 //   Bench/Threads=1,2         OpenMP thread counts
 //   Bench/Skin=0.2            pair-list skins (Particle/Neighbour skin; default its default)
+//   Bench/Noise=gaussian      pair noises: gaussian | uniform (Particle/Noise)
 //   Bench/Steps=200           timed steps (default max(5, 3e6 / N))
 //   Bench/Thermo=1000         instead of timing: equilibrate 1000 steps, then sample as many,
 //                             printing energy drift, T_kinetic, T_internal and pressure
@@ -90,6 +91,7 @@ struct Options {
                                       Integrator::Euler};
   std::vector<int> threads;
   std::vector<double> skins{ParticleParameters().neighbour_skin};
+  std::vector<bool> uniform_noise{false};
   bool sizes_given = false;
   long steps = 0;  // 0: max(5, 3e6 / N)
   long thermo = 0; // > 0: thermodynamics instead of timing
@@ -154,6 +156,12 @@ Options parse(const CommandLine& cl) {
           o.skins.push_back(std::stod(t));
           if (!(o.skins.back() >= 0 && o.skins.back() < 1)) throw bad("skins in [0, 1)");
         }
+      } else if (key == "Bench/Noise") {
+        o.uniform_noise.clear();
+        for (const auto& t : split(value)) {
+          if (t != "gaussian" && t != "uniform") throw bad("gaussian, uniform");
+          o.uniform_noise.push_back(t == "uniform");
+        }
       } else if (key == "Bench/Steps") {
         o.steps = std::stol(value);
         if (o.steps < 1) throw bad("steps >= 1");
@@ -162,7 +170,7 @@ Options parse(const CommandLine& cl) {
         if (o.thermo < 10) throw bad("steps >= 10");
       } else {
         throw bad("Bench/N, Bench/N2D, Bench/Scenes, Bench/Integrators, Bench/Threads, Bench/Skin, "
-                  "Bench/Steps, Bench/Thermo");
+                  "Bench/Noise, Bench/Steps, Bench/Thermo");
       }
     } catch (const std::logic_error&) { // stoi/stod
       throw bad("numbers");
@@ -179,62 +187,68 @@ int bench(const CommandLine& cl) {
   const Options o = parse(cl);
   std::ostringstream table;
   if (o.thermo > 0)
-    table << "| dim | N | scene | integrator | threads | skin | steps | max dE/E0 | T_kinetic | "
-             "T_internal | pressure |\n|---|---|---|---|---|---|---|---|---|---|---|\n";
+    table << "| dim | N | scene | integrator | threads | skin | noise | steps | max dE/E0 | "
+             "T_kinetic | T_internal | pressure "
+             "|\n|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   else
-    table << "| dim | N | scene | integrator | threads | skin | particle-steps/s | steps per "
-             "list | peak RSS kB |\n|---|---|---|---|---|---|---|---|---|\n";
+    table << "| dim | N | scene | integrator | threads | skin | noise | particle-steps/s | steps "
+             "per list | peak RSS kB |\n|---|---|---|---|---|---|---|---|---|---|\n";
   std::cout << table.str() << std::flush;
   io::Json rows = io::Json::array();
   for (const auto& size : o.sizes)
     for (const Scene* scene : o.scenes)
       for (const auto integrator : o.integrators)
         for (const int threads : o.threads)
-          for (const double skin : o.skins) {
-            omp_set_num_threads(threads);
-            auto p = bench_case(size.dim, size.box, *scene, integrator);
-            p.neighbour_skin = skin;
-            io::Json row = io::Json::object();
-            char line[512];
-            if (o.thermo > 0) {
-              p.equilibration_steps = o.thermo;
-              p.steps = o.thermo;
-              p.sample_interval = std::max(1L, o.thermo / 200);
-              const io::Json s = run_particles(p).summary;
-              auto num = [&](const char* k) { return s.find(k)->number(); };
-              const double drift = num("energy_relative_drift_max");
-              std::snprintf(line, sizeof line,
-                            "| %d | %ld | %s | %s | %d | %g | %ld | %.2e | %.5f +- %.5f | %.5f +- "
-                            "%.5f | %.4f +- %.4f |\n",
-                            size.dim, p.particle_count(), scene->name, to_string(integrator),
-                            threads, skin, 2 * o.thermo, drift, num("T_kinetic"),
-                            num("T_kinetic_stderr"), num("T_internal"), num("T_internal_stderr"),
-                            num("pressure"), num("pressure_stderr"));
-              row = s;
-            } else {
-              const long steps =
-                  o.steps > 0 ? o.steps : std::max(5L, 3000000L / p.particle_count());
-              const BenchResult r = bench_particles(p, steps);
-              std::snprintf(line, sizeof line,
-                            "| %d | %ld | %s | %s | %d | %g | %.3g | %.1f | %ld |\n", size.dim,
-                            r.particles, scene->name, to_string(integrator), threads, skin,
-                            r.particle_steps_per_second, r.steps_per_list, peak_rss_kb());
-              row["steps_per_list"] = r.steps_per_list;
-              row["N"] = r.particles;
-              row["steps"] = steps;
-              row["seconds"] = r.seconds;
-              row["particle_steps_per_second"] = r.particle_steps_per_second;
-              row["peak_rss_kb"] = peak_rss_kb();
+          for (const double skin : o.skins)
+            for (const bool uniform : o.uniform_noise) {
+              omp_set_num_threads(threads);
+              auto p = bench_case(size.dim, size.box, *scene, integrator);
+              p.neighbour_skin = skin;
+              p.uniform_noise = uniform;
+              const char* noise = uniform ? "uniform" : "gaussian";
+              io::Json row = io::Json::object();
+              char line[512];
+              if (o.thermo > 0) {
+                p.equilibration_steps = o.thermo;
+                p.steps = o.thermo;
+                p.sample_interval = std::max(1L, o.thermo / 200);
+                const io::Json s = run_particles(p).summary;
+                auto num = [&](const char* k) { return s.find(k)->number(); };
+                const double drift = num("energy_relative_drift_max");
+                std::snprintf(line, sizeof line,
+                              "| %d | %ld | %s | %s | %d | %g | %s | %ld | %.2e | %.5f +- %.5f | "
+                              "%.5f +- %.5f | %.4f +- %.4f |\n",
+                              size.dim, p.particle_count(), scene->name, to_string(integrator),
+                              threads, skin, noise, 2 * o.thermo, drift, num("T_kinetic"),
+                              num("T_kinetic_stderr"), num("T_internal"), num("T_internal_stderr"),
+                              num("pressure"), num("pressure_stderr"));
+                row = s;
+              } else {
+                const long steps =
+                    o.steps > 0 ? o.steps : std::max(5L, 3000000L / p.particle_count());
+                const BenchResult r = bench_particles(p, steps);
+                std::snprintf(line, sizeof line,
+                              "| %d | %ld | %s | %s | %d | %g | %s | %.3g | %.1f | %ld |\n",
+                              size.dim, r.particles, scene->name, to_string(integrator), threads,
+                              skin, noise, r.particle_steps_per_second, r.steps_per_list,
+                              peak_rss_kb());
+                row["steps_per_list"] = r.steps_per_list;
+                row["N"] = r.particles;
+                row["steps"] = steps;
+                row["seconds"] = r.seconds;
+                row["particle_steps_per_second"] = r.particle_steps_per_second;
+                row["peak_rss_kb"] = peak_rss_kb();
+              }
+              std::cout << line << std::flush;
+              table << line;
+              row["dim"] = size.dim;
+              row["scene"] = scene->name;
+              row["integrator"] = to_string(integrator);
+              row["threads"] = threads;
+              row["skin"] = skin;
+              row["noise"] = noise;
+              rows.push_back(row);
             }
-            std::cout << line << std::flush;
-            table << line;
-            row["dim"] = size.dim;
-            row["scene"] = scene->name;
-            row["integrator"] = to_string(integrator);
-            row["threads"] = threads;
-            row["skin"] = skin;
-            rows.push_back(row);
-          }
   stage.create();
   io::Json summary = io::Json::object();
   summary["stage"] = "bench";

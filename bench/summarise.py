@@ -24,24 +24,28 @@ med = lambda v: st.median(x[0] for x in v)
 fmt = lambda x: "%.3g" % x if x else "-"
 if perf:
     sizes = sorted({k[3] for k in perf})
-    cfg = [("ours", "shardlow", 1), ("ours", "shardlow", 2), ("ours", "ec-verlet", 1),
-           ("ours", "ec-verlet", 2), ("lammps", "shardlow", 1), ("lammps", "shardlow", 2)]
-    names = ["shardlow 1T", "shardlow 2T", "ec-verlet 1T", "ec-verlet 2T", "LAMMPS 1 rank",
-             "LAMMPS 2 ranks"]
+    variants = [v for v in ["shardlow", "shardlow+uniform", "ec-verlet", "ec-verlet+uniform"]
+                if any(k[0] == "ours" and k[1] == v for k in perf)]
+    cfg = [("ours", v, t) for v in variants for t in (1, 2)]
+    cfg += [("lammps", "shardlow", 1), ("lammps", "shardlow", 2)]
+    names = ["%s %dT" % (v, t) for v in variants for t in (1, 2)]
+    names += ["LAMMPS 1 rank", "LAMMPS 2 ranks"]
     reps = max(len(v) for v in perf.values())
     print("particle-steps/s, a0 = 15 + heat (median of %d; ratios against LAMMPS's best "
-          "configuration at that N)\n" % reps)
-    print("| N | " + " | ".join(names) + " | shardlow / LAMMPS | ec-verlet / LAMMPS |"
-          " 2-thread efficiency shardlow, ec-verlet |")
-    print("|---" * (len(names) + 4) + "|")
+          "configuration at that N; +uniform: Particle/Noise = uniform)\n" % reps)
+    print("| N | " + " | ".join(names) + " | " + " | ".join("%s / LAMMPS" % v for v in variants) +
+          " | 2-thread efficiency " + ", ".join(variants) + " |")
+    print("|---" * (len(names) + len(variants) + 2) + "|")
     for n in sizes:
         v = [med(perf[c + (n,)]) if perf.get(c + (n,)) else 0 for c in cfg]
-        best = max(v[4], v[5])
+        best = max(v[-2], v[-1])
         ratio = lambda x: "%.2fx" % (x / best) if best else "-"
         eff = lambda one, two: "%.0f%%" % (100 * two / (2 * one)) if one else "-"
-        print("| %d | %s | %s (%s) | %s (%s) | %s, %s |" % (
-            n, " | ".join(fmt(x) for x in v), ratio(v[1]), ratio(v[0]), ratio(v[3]),
-            ratio(v[2]), eff(v[0], v[1]), eff(v[2], v[3])))
+        ours = [(v[2 * k], v[2 * k + 1]) for k in range(len(variants))]
+        print("| %d | %s | %s | %s |" % (
+            n, " | ".join(fmt(x) for x in v),
+            " | ".join("%s (%s)" % (ratio(two), ratio(one)) for one, two in ours),
+            ", ".join(eff(one, two) for one, two in ours)))
     print("\n(ratios: 2 threads, in brackets 1 thread)\n")
     print("cost exponent b in time per step ~ N^b (least squares over N = %s):\n" %
           ", ".join(map(str, sizes)))

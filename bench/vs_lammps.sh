@@ -15,7 +15,8 @@
 # env: TWINFLOW (default build/app/twinflow), LMP (default /opt/lammps-dpd/build/lmp_dpd, built by
 #      ../shared/peers/lammps/build-lammps-dpd.sh; this script builds nothing), SIZES (default
 #      "6000 48000 384000"), REPS (default 3), PS (particle-steps per timed run, default 6e6),
-#      OUT (default bench/runs), OMP_WAIT_POLICY (default passive, see below)
+#      OUT (default bench/runs), OMP_WAIT_POLICY (default passive, see below), NOISES (ours'
+#      pair noises, default "gaussian uniform": Particle/Noise; LAMMPS draws Gaussians)
 set -euo pipefail
 HERE=$(cd "$(dirname "$0")" && pwd)
 ROOT=$(cd "$HERE/.." && pwd)
@@ -24,6 +25,7 @@ LMP=${LMP:-/opt/lammps-dpd/build/lmp_dpd}
 SIZES=${SIZES:-"6000 48000 384000"}
 REPS=${REPS:-3}
 PS=${PS:-6e6}
+NOISES=${NOISES:-"gaussian uniform"}
 OUT=${OUT:-$HERE/runs}
 MODES=("$@")
 [ ${#MODES[@]} -eq 0 ] && MODES=(perf scenes thermo)
@@ -47,11 +49,13 @@ RAW=$OUT/raw.txt # one line per measurement: kind key values
 edge() { python3 -c "print('%.10g' % round(($1 / 6.0) ** (1 / 3.0), 9))"; }
 steps_for() { python3 -c "print(max(20, int(round(float('$PS') / $1))))"; }
 
-ours() { # N scene integrator threads steps -> "particle-steps/s peak-RSS-kB"
+ours() { # N scene integrator threads steps noise -> "particle-steps/s peak-RSS-kB"
   "$TW" bench --force -o "$OUT/twinflow" --set "Bench/N=$1" --set "Bench/Scenes=$2" \
-    --set "Bench/Integrators=$3" --set "Bench/Threads=$4" --set "Bench/Steps=$5" |
-    awk -F'|' '/^\| 3 \|/ {gsub(/ /, "", $8); gsub(/ /, "", $10); print $8, $10}'
+    --set "Bench/Integrators=$3" --set "Bench/Threads=$4" --set "Bench/Steps=$5" \
+    --set "Bench/Noise=${6:-gaussian}" |
+    awk -F'|' '/^\| 3 \|/ {gsub(/ /, "", $9); gsub(/ /, "", $11); print $9, $11}'
 }
+label() { [ "$2" = gaussian ] && echo "$1" || echo "$1+$2"; } # integrator noise -> key
 
 lammps() { # N ranks steps -> "particle-steps/s peak-RSS-kB"
   local n=$1 ranks=$2 steps=$3 l log
@@ -76,9 +80,11 @@ do_perf() {
     for n in $SIZES; do
       s=$(steps_for "$n")
       for integ in shardlow ec-verlet; do
-        for t in 1 2; do
-          read -r ps rss <<<"$(ours "$n" a0=15+heat "$integ" "$t" "$s")"
-          echo "perf ours:$integ:$t:$n $ps $rss" | tee -a "$RAW"
+        for noise in $NOISES; do
+          for t in 1 2; do
+            read -r ps rss <<<"$(ours "$n" a0=15+heat "$integ" "$t" "$s" "$noise")"
+            echo "perf ours:$(label "$integ" "$noise"):$t:$n $ps $rss" | tee -a "$RAW"
+          done
         done
       done
       if [ $HAVE_LMP = 1 ]; then
@@ -109,10 +115,13 @@ do_scenes() {
 do_thermo() {
   echo "== thermo: N = 6000, 2000 steps equilibration + 2000 sampled, 2 threads / 1 rank"
   for integ in shardlow ec-verlet; do
-    "$TW" bench --force -o "$OUT/twinflow" --threads 2 --set Bench/N=6000 \
-      --set Bench/Scenes=a0=15+heat --set "Bench/Integrators=$integ" --set Bench/Threads=2 \
-      --set Bench/Thermo=2000 | awk -F'|' -v i="$integ" '/^\| 3 \|/ {
-        print "thermo ours:" i " |" $9 "|" $10 "|" $11 "|" $12}' | tee -a "$RAW"
+    for noise in $NOISES; do
+      "$TW" bench --force -o "$OUT/twinflow" --threads 2 --set Bench/N=6000 \
+        --set Bench/Scenes=a0=15+heat --set "Bench/Integrators=$integ" --set Bench/Threads=2 \
+        --set "Bench/Noise=$noise" --set Bench/Thermo=2000 |
+        awk -F'|' -v i="$(label "$integ" "$noise")" '/^\| 3 \|/ {
+          print "thermo ours:" i " |" $10 "|" $11 "|" $12 "|" $13}' | tee -a "$RAW"
+    done
   done
   if [ $HAVE_LMP = 1 ]; then
     log=$OUT/lammps_thermo.log

@@ -156,7 +156,7 @@ template <class M> void Simulation<M>::force_blocks(const PairNoise& noise) {
     auto& s = PairScratch<D>::get(n);
     n = pair_geometry(I, J, n, s);
     pair_gather(I, J, n, s, true);
-    noise.gaussians(n, I, J, id, s.xi.data(), s.zeta.data());
+    noise.pairs(n, I, J, id, s.xi.data(), s.zeta.data());
     fr.w.eval(n, s.r.data(), s.wd.data(), s.wr.data());
     if constexpr (M::Heat::active) heat.w.eval(n, s.r.data(), s.wh.data(), s.swh.data());
     double* __restrict fe = s.a.data();
@@ -220,7 +220,7 @@ template <class M> void Simulation<M>::shardlow_sweep(const PairNoise& noise) {
   grid_.for_each_pair_block([&](const std::uint32_t* I, const std::uint32_t* J, std::size_t n) {
     auto& s = PairScratch<D>::get(n);
     n = pair_geometry(I, J, n, s);
-    noise.gaussians(n, I, J, id, s.xi.data(), s.zeta.data());
+    noise.pairs(n, I, J, id, s.xi.data(), s.zeta.data());
     fr.w.eval(n, s.r.data(), s.wd.data(), s.wr.data());
     if constexpr (M::Heat::active) heat.w.eval(n, s.r.data(), s.wh.data(), s.swh.data());
     const double *wd = s.wd.data(), *wr = s.wr.data(), *xi = s.xi.data();

@@ -120,30 +120,39 @@ inline void box_muller(std::uint32_t a, std::uint32_t b, double& g1, double& g2)
   g1 = r * c2, g2 = r * s2q;
 }
 
-// Gaussian pair noise from Philox4x32-10 keyed by (seed, step, stream) with counter
-// (min id, max id): xi_ij = xi_ji and zeta_ij = -zeta_ji whoever computes the pair.
+// Unit-variance uniform on (-sqrt 3, sqrt 3) from one 32-bit word: the noise of Groot & Warren
+// (1997); the fluctuation-dissipation relations fix only the variance (000:(2.37), (2.38)).
+inline double uniform_unit(std::uint32_t a) {
+  return ((a + 0.5) * (2.0 / 4294967296.0) - 1) * 1.7320508075688772;
+}
+
+// Pair noise from Philox4x32-10 keyed by (seed, step, stream) with counter (min id, max id):
+// xi_ij = xi_ji and zeta_ij = -zeta_ji whoever computes the pair. Standard Gaussians, or
+// unit-variance uniforms (`uniform`) where the equilibrium allows it (tested).
 class PairNoise {
 public:
   enum Stream : std::uint32_t { Pair = 0, Initial = 1, Wall = 2 };
-  PairNoise(std::uint64_t seed, std::uint64_t step, Stream stream)
+  PairNoise(std::uint64_t seed, std::uint64_t step, Stream stream, bool uniform = false)
       : k0_(static_cast<std::uint32_t>(seed)), k1_(static_cast<std::uint32_t>(seed >> 32)),
         step_lo_(static_cast<std::uint32_t>(step)),
-        step_hi_(static_cast<std::uint32_t>((step >> 32) & 0xffff) | (stream << 16)) {}
+        step_hi_(static_cast<std::uint32_t>((step >> 32) & 0xffff) | (stream << 16)),
+        uniform_(uniform) {}
 
   // xi (symmetric) and zeta (antisymmetric, sign taken from i's side).
-  void gaussians(std::uint32_t id_i, std::uint32_t id_j, double& xi, double& zeta) const {
-    const bool i_first = id_i < id_j;
-    std::uint32_t r0, r1;
-    philox4x32_10(i_first ? id_i : id_j, i_first ? id_j : id_i, step_lo_, step_hi_, k0_, k1_, r0,
-                  r1);
-    box_muller(r0, r1, xi, zeta);
-    zeta = i_first ? zeta : -zeta;
+  void pair(std::uint32_t id_i, std::uint32_t id_j, double& xi, double& zeta) const {
+    if (uniform_)
+      draw<true>(id_i, id_j, xi, zeta);
+    else
+      draw<false>(id_i, id_j, xi, zeta);
   }
 
   // The same for a block of pairs (i[k], j[k]) of storage indices with ids `id`: vectorises.
-  void gaussians(std::size_t n, const std::uint32_t* i, const std::uint32_t* j,
-                 const std::uint32_t* id, double* xi, double* zeta) const {
-    for (std::size_t k = 0; k < n; ++k) gaussians(id[i[k]], id[j[k]], xi[k], zeta[k]);
+  void pairs(std::size_t n, const std::uint32_t* i, const std::uint32_t* j, const std::uint32_t* id,
+             double* xi, double* zeta) const {
+    if (uniform_)
+      for (std::size_t k = 0; k < n; ++k) draw<true>(id[i[k]], id[j[k]], xi[k], zeta[k]);
+    else
+      for (std::size_t k = 0; k < n; ++k) draw<false>(id[i[k]], id[j[k]], xi[k], zeta[k]);
   }
 
   // Two independent standard Gaussians for particle `id` (initial velocities and the like).
@@ -154,7 +163,20 @@ public:
   }
 
 private:
+  template <bool Uniform>
+  void draw(std::uint32_t id_i, std::uint32_t id_j, double& xi, double& zeta) const {
+    const bool i_first = id_i < id_j;
+    std::uint32_t r0, r1;
+    philox4x32_10(i_first ? id_i : id_j, i_first ? id_j : id_i, step_lo_, step_hi_, k0_, k1_, r0,
+                  r1);
+    if constexpr (Uniform)
+      xi = uniform_unit(r0), zeta = uniform_unit(r1);
+    else
+      box_muller(r0, r1, xi, zeta);
+    zeta = i_first ? zeta : -zeta;
+  }
   std::uint32_t k0_, k1_, step_lo_, step_hi_;
+  bool uniform_;
 };
 
 // ---- conservative force F^C = a_ij w_C e_ij, phi = a_ij rc/2 (1 - r/rc)^2 (physics.md)

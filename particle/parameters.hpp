@@ -57,6 +57,7 @@ struct ParticleParameters {
   // Pairs within largest_cutoff() + skin are listed; the list is kept until a particle has moved
   // skin/2 (ec-verlet, shardlow). 0: a new list every step.
   double neighbour_skin = 0.2;
+  bool uniform_noise = false; // pair noises uniform with unit variance instead of Gaussian
   long equilibration_steps = 0;
   long steps = 1000;
 

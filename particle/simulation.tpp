@@ -128,7 +128,7 @@ Simulation<M>::pair_force(const PairNoise& noise, std::size_t i, std::size_t j, 
     if (r < model_.conservative.rc)
       model_.conservative.eval(r, th_i, th_j, pf.conservative, pf.phi);
   double xi, zeta;
-  noise.gaussians(state_.id[i], state_.id[j], xi, zeta);
+  noise.pair(state_.id[i], state_.id[j], xi, zeta);
   const auto& fr = model_.friction;
   if (r < fr.w.rc) {
     double wd, wr, ev = 0;
@@ -157,7 +157,8 @@ template <class M> void Simulation<M>::conservative_pass(bool with_velocity_term
   std::fill(carried_.q.begin(), carried_.q.end(), 0.0);
   std::fill(carried_.potential.begin(), carried_.potential.end(), 0.0);
   (void)n;
-  const PairNoise noise(p_.seed, static_cast<std::uint64_t>(step_), PairNoise::Pair);
+  const PairNoise noise(p_.seed, static_cast<std::uint64_t>(step_), PairNoise::Pair,
+                        p_.uniform_noise);
   if (with_velocity_terms)
     force_blocks(noise);
   else
@@ -393,7 +394,8 @@ template <class M> void Simulation<M>::step_ec_verlet() {
 template <class M> void Simulation<M>::step_euler() {
   ++step_;
   const std::size_t n = state_.size();
-  const PairNoise noise(p_.seed, static_cast<std::uint64_t>(step_), PairNoise::Pair);
+  const PairNoise noise(p_.seed, static_cast<std::uint64_t>(step_), PairNoise::Pair,
+                        p_.uniform_noise);
   auto& v = state_.v;
   auto& dp = carried_.f;
   auto& q = carried_.q;
@@ -457,7 +459,8 @@ template <class M> void Simulation<M>::step_euler() {
 template <class M> void Simulation<M>::step_shardlow() {
   ++step_;
   const std::size_t n = state_.size();
-  const PairNoise noise(p_.seed, static_cast<std::uint64_t>(step_), PairNoise::Pair);
+  const PairNoise noise(p_.seed, static_cast<std::uint64_t>(step_), PairNoise::Pair,
+                        p_.uniform_noise);
   shardlow_sweep(noise); // pair_kernels.tpp
   if (p_.has_walls())
     wall_sweep(PairNoise(p_.seed, static_cast<std::uint64_t>(step_), PairNoise::Wall));

@@ -28,6 +28,12 @@ void declare_particle(Registry& r) {
             "ec-verlet and shardlow list the pairs closer than the cutoff + skin and keep the "
             "list until a particle has moved skin/2 (a performance setting: the physics is the "
             "same for any skin). 0: a new list every step. In [0, 1).");
+  r.declare(
+      p + "Noise", "gaussian", Selection("gaussian|uniform"),
+      "Distribution of the pair noises xi_ij (friction) and zeta_ij (heat): standard "
+      "Gaussians, or unit-variance uniforms on (-sqrt 3, sqrt 3) (Groot & Warren 1997), which "
+      "are cheaper and leave the equilibrium unchanged (tested: Maxwell velocities, Gamma law "
+      "of u, T_K = T_I). Wall noise stays Gaussian.");
   r.declare(p + "Equilibration steps", "0", Integer(0),
             "Steps run before averages start (not sampled).");
   r.declare(p + "Steps", "1000", Integer(0), "Sampled steps after equilibration.");
@@ -125,6 +131,7 @@ ParticleParameters resolve_particle(const Registry& r, const SceneParameters& sc
   r.require(p.dt > 0 && std::isfinite(p.dt), s + "Time step", kPositive);
   p.neighbour_skin = r.get_double(s + "Neighbour skin");
   r.require(p.neighbour_skin >= 0 && p.neighbour_skin < 1, s + "Neighbour skin", "in [0, 1)");
+  p.uniform_noise = r.get(s + "Noise") == "uniform";
   p.equilibration_steps = r.get_integer(s + "Equilibration steps");
   p.steps = r.get_integer(s + "Steps");
   p.seed = static_cast<std::uint64_t>(r.get_integer(s + "Seed"));

@@ -79,8 +79,8 @@ TEST(Noise, PhiloxIsRandom123AndGaussiansAreStandard) {
   double m[5] = {0, 0, 0, 0, 0};
   for (std::uint32_t k = 0; k < n; ++k) {
     double xi, zeta, xi2, zeta2;
-    noise.gaussians(k, k + 1000003u, xi, zeta);
-    noise.gaussians(k + 1000003u, k, xi2, zeta2);
+    noise.pair(k, k + 1000003u, xi, zeta);
+    noise.pair(k + 1000003u, k, xi2, zeta2);
     ASSERT_EQ(xi, xi2);
     ASSERT_EQ(zeta, -zeta2);
     for (const double g : {xi, zeta}) {
@@ -93,6 +93,33 @@ TEST(Noise, PhiloxIsRandom123AndGaussiansAreStandard) {
   EXPECT_NEAR(m[2], 1, 5 * std::sqrt(2.0) * se);
   EXPECT_NEAR(m[3], 0, 5 * std::sqrt(15.0) * se);
   EXPECT_NEAR(m[4], 3, 5 * std::sqrt(96.0) * se);
+}
+
+// The uniform pair noise (Particle/Noise = uniform): the same symmetry, mean 0, variance 1,
+// inside (-sqrt 3, sqrt 3), and its fourth moment 9/5 (a uniform's, not a Gaussian's 3;
+// E g^2n = 3^n / (2n + 1)).
+TEST(Noise, UniformPairNoiseHasUnitVariance) {
+  const PairNoise noise(42, 17, PairNoise::Pair, true);
+  const std::size_t n = 1 << 21;
+  double m[5] = {0, 0, 0, 0, 0}, largest = 0;
+  for (std::uint32_t k = 0; k < n; ++k) {
+    double xi, zeta, xi2, zeta2;
+    noise.pair(k, k + 1000003u, xi, zeta);
+    noise.pair(k + 1000003u, k, xi2, zeta2);
+    ASSERT_EQ(xi, xi2);
+    ASSERT_EQ(zeta, -zeta2);
+    for (const double g : {xi, zeta}) {
+      largest = std::max(largest, std::fabs(g));
+      double p = 1;
+      for (int e = 1; e <= 4; ++e) m[e] += (p *= g) / (2.0 * n);
+    }
+  }
+  const double se = 1 / std::sqrt(2.0 * n);
+  EXPECT_LT(largest, std::sqrt(3.0));
+  EXPECT_NEAR(m[1], 0, 5 * se);
+  EXPECT_NEAR(m[2], 1, 5 * std::sqrt(0.8) * se);        // Var(g^2) = 9/5 - 1
+  EXPECT_NEAR(m[3], 0, 5 * std::sqrt(27.0 / 7) * se);   // E g^6 = 3^3 / 7
+  EXPECT_NEAR(m[4], 1.8, 5 * std::sqrt(9 - 3.24) * se); // E g^8 = 3^4 / 9
 }
 
 // The Verlet list (pairs within rc + skin, kept until a particle has moved skin/2) misses no pair

@@ -194,6 +194,47 @@ TEST(Equilibrium, IdealDpdeEuler) {
   run_case<3>(Integrator::Euler, 100, false, true);
 }
 
+// Unit-variance uniform pair noise (Particle/Noise = uniform) leaves the equilibrium unchanged.
+// 3D shardlow at c_v = 10, where u fluctuates most, six seeds per law; errors from the scatter
+// between the seeds (independent runs: one run's block errors understate it ~1.5x for Var(u)).
+// Each observable agrees between the laws within z = 4 of the difference's error, and the uniform
+// runs meet the theory: Gaussian velocities (kurtosis 3: each velocity sums many uniform kicks),
+// the Gamma law of u, T_K = T_I = the energy equation of state's T.
+TEST(Equilibrium, UniformPairNoiseAgainstGaussian) {
+  constexpr int kSeeds = 6;
+  const Weight wd(1, 2), wh(1, 2);
+  struct Pooled {
+    double mean, stderr_;
+  };
+  auto pool = [](const std::vector<double>& x) {
+    const double mean = std::accumulate(x.begin(), x.end(), 0.0) / x.size();
+    double var = 0;
+    for (const double v : x) var += (v - mean) * (v - mean);
+    return Pooled{mean, std::sqrt(var / (x.size() - 1) / x.size())};
+  };
+  std::vector<double> obs[2][4]; // [law][T_K / T_eos, T_I / T_eos, kurtosis, Var(u)/Gamma]
+  for (int law = 0; law < 2; ++law)
+    for (int seed = 1; seed <= kSeeds; ++seed) {
+      auto p = ideal(3, Integrator::Shardlow, 10);
+      p.uniform_noise = law == 1;
+      p.seed = static_cast<std::uint64_t>(seed);
+      const auto m = measure<3>(p, ConstantSigma{p.sigma, wd}, InverseConstantHeat{5, wh});
+      const double x[4] = {m.t_kin.mean / m.t_eos, m.t_int.mean / m.t_eos, m.kurtosis.mean,
+                           m.gamma_ratio.mean};
+      for (int k = 0; k < 4; ++k) obs[law][k].push_back(x[k]);
+    }
+  const char* names[4] = {"T_K / T_eos", "T_I / T_eos", "kurtosis", "Var(u)/Gamma"};
+  const double theory[4] = {1, 1, 3, 1};
+  for (int k = 0; k < 4; ++k) {
+    const Pooled g = pool(obs[0][k]), u = pool(obs[1][k]);
+    std::printf("%-13s gaussian %.5f +- %.5f  uniform %.5f +- %.5f  theory %.5f\n", names[k],
+                g.mean, g.stderr_, u.mean, u.stderr_, theory[k]);
+    EXPECT_NEAR(u.mean, g.mean, kZ * std::hypot(g.stderr_, u.stderr_)) << names[k];
+    const double bias = theory[k] * kBias;
+    EXPECT_NEAR(u.mean, theory[k], kZ * u.stderr_ + bias) << names[k] << " (uniform) vs theory";
+  }
+}
+
 // Seed 000's closed-system check: particles start at rest with theta_i = 1; the final T is the
 // energy equation of state's E/N / (d/2 + c_v + 1) (000:(3.21)).
 TEST(Equilibrium, ClosedSystemFromRest) {

@@ -125,24 +125,32 @@ std::vector<std::string> calibrated_twin_overrides(const std::string& run_dir,
   if (run.parameters.compare.calibration == "kapitza" && !kapitza)
     std::cout << "run: calibrated twin: Kapitza walls need the Boussinesq twin; this one is "
                  "calibrated by its walls' temperatures\n";
-  std::ostringstream conductances; // x lower, x upper, y lower, ...
+  std::ostringstream conductances, errors; // x lower, x upper, y lower, ...
   conductances << std::setprecision(8);
+  errors << std::setprecision(4);
   const io::Json& walls = *run.summary.find("results");
   for (int d = 0; d < run.parameters.scene.dim; ++d) {
     const auto& b = run.parameters.scene.boundary[d];
     for (int side = 0; side < 2; ++side) {
-      double h = 0;
+      double h = 0, h_stderr = 0;
       if (!b.periodic && b.thermal[side]) {
         const auto w = compare::wall_fluid_temperature(particle, interior, d, side);
         // h_K = q / (T_wall - T_fluid at the wall), from the particle wall's measured heat flow
-        const double q = number(walls, {"walls", wall_name(d, side).c_str(), "heat_flux_in"});
+        const std::string name = wall_name(d, side);
+        const double q = number(walls, {"walls", name.c_str(), "heat_flux_in"});
+        const double q_stderr = number(walls, {"walls", name.c_str(), "heat_flux_in_stderr"});
         const double jump = b.temperature[side] - w.value;
         if (kapitza && std::isfinite(q) && q * jump > 0) {
           // h_K = q / (T_wall - T_f), or for the inverse law q / (T_wall^2 (1/T_f - 1/T_wall))
           const double Tw = b.temperature[side];
-          h = run.parameters.continuum.boundary[d].kapitza_inverse
-                  ? q / (Tw * Tw * (1 / w.value - 1 / Tw))
-                  : q / jump;
+          const bool inverse = run.parameters.continuum.boundary[d].kapitza_inverse;
+          const double driving = inverse ? Tw * Tw * (1 / w.value - 1 / Tw) : jump;
+          h = q / driving;
+          // Its error from q's and T_f's, taken as independent (d driving / d T_f: -T_w^2 / T_f^2
+          // or -1).
+          const double driving_stderr = (inverse ? Tw * Tw / (w.value * w.value) : 1.0) * w.stderr_;
+          h_stderr = std::fabs(h) * std::hypot(q_stderr / q, driving_stderr / driving);
+          if (!std::isfinite(h_stderr)) h_stderr = 0;
         } else if (std::isfinite(w.value)) { // no usable jump: the fluid's wall temperature
           std::ostringstream o;
           o << std::setprecision(10) << "Scene/" << kAxis[d] << " boundaries/"
@@ -151,9 +159,13 @@ std::vector<std::string> calibrated_twin_overrides(const std::string& run_dir,
         }
       }
       conductances << (d + side ? ", " : "") << h;
+      errors << (d + side ? ", " : "") << h_stderr;
     }
   }
-  if (kapitza) overrides.push_back("Continuum/Kapitza conductances=" + conductances.str());
+  if (kapitza) {
+    overrides.push_back("Continuum/Kapitza conductances=" + conductances.str());
+    overrides.push_back("Continuum/Kapitza conductance errors=" + errors.str());
+  }
   return overrides;
 }
 
@@ -346,13 +358,18 @@ int compare_stage(const CommandLine& cl) {
       j["nusselt_particle_minus_twin"] = q_particle / q0 - q / q0;
       j["nusselt_relative_difference"] = q_particle / q - 1;
       table["nusselt_" + t.name] = q / q0;
-      // The twin's own error: its heat flux's response to the measured coefficients' errors.
+      // The twin's own error: its heat flux's response to the measured coefficients' errors
+      // (and, calibrated, to its Kapitza conductances').
       const double rel =
           number(t.summary, {"coefficient_uncertainty", "heat_flux_relative_stderr"});
       j["nusselt_stderr_from_coefficients"] = rel * q / q0;
       table["nusselt_" + t.name + "_stderr"] = rel * q / q0;
       std::cout << "compare: " << t.name << " twin: Nu = " << q / q0;
-      if (std::isfinite(rel)) std::cout << " +- " << rel * q / q0 << " (coefficients' errors)";
+      if (std::isfinite(rel))
+        std::cout << " +- " << rel * q / q0
+                  << (t.name == "calibrated" && run.parameters.compare.calibration == "kapitza"
+                          ? " (coefficients' and h_K's errors)"
+                          : " (coefficients' errors)");
       std::cout << " (own dT: " << nu_own
                 << "); particle / twin heat flux - 1 = " << q_particle / q - 1 << "\n";
     }

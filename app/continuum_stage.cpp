@@ -80,16 +80,17 @@ CoefficientErrors coefficients_from_transport(const std::filesystem::path& run_d
   return errors;
 }
 
-// The twin's heat flux as its coefficients move by their standard errors, one at a time (two
-// more solves, no files): the part of a particle-twin difference the coefficients can explain.
+// The twin's heat flux as its coefficients, and its Kapitza conductances, move by their standard
+// errors, one at a time (one more solve each, no files): the part of a particle-twin difference
+// the twin's own inputs can explain.
 io::Json coefficient_uncertainty(const continuum::ContinuumParameters& p,
                                  const CoefficientErrors& errors, double heat_flux) {
   io::Json j = io::Json::object();
   double variance = 0;
-  const auto vary = [&](const char* name, double stderr_, auto member) {
+  const auto vary = [&](const std::string& name, double stderr_, auto shift) {
     if (!std::isfinite(stderr_) || stderr_ <= 0) return;
     continuum::ContinuumParameters shifted = p;
-    (shifted.*member).value_at_reference += stderr_;
+    const double value = shift(shifted, stderr_);
     double change = std::nan("");
     try {
       const continuum::ContinuumResult r = continuum::run(shifted, "");
@@ -99,16 +100,37 @@ io::Json coefficient_uncertainty(const continuum::ContinuumParameters& p,
                 << ")\n";
     }
     io::Json c = io::Json::object();
-    c["value"] = (p.*member).value_at_reference;
+    c["value"] = value;
     c["stderr"] = stderr_;
     c["heat_flux_relative_change"] = change; // linear response to +1 stderr
     j[name] = c;
     variance += change * change;
   };
-  vary("conductivity", errors.conductivity, &continuum::ContinuumParameters::conductivity);
-  vary("viscosity", errors.viscosity, &continuum::ContinuumParameters::viscosity);
-  j["heat_flux_relative_stderr"] = std::sqrt(variance); // the two errors taken as independent
+  const auto law = [](auto member) {
+    return [member](continuum::ContinuumParameters& q, double by) {
+      (q.*member).value_at_reference += by;
+      return (q.*member).value_at_reference - by;
+    };
+  };
+  vary("conductivity", errors.conductivity, law(&continuum::ContinuumParameters::conductivity));
+  vary("viscosity", errors.viscosity, law(&continuum::ContinuumParameters::viscosity));
+  for (int d = 0; d < p.dim; ++d)
+    for (int side = 0; side < 2; ++side)
+      vary(std::string("kapitza_") + "xyz"[d] + (side ? "_upper" : "_lower"),
+           p.boundary[d].kapitza_conductance_stderr[side],
+           [d, side](continuum::ContinuumParameters& q, double by) {
+             q.boundary[d].kapitza_conductance[side] += by;
+             return q.boundary[d].kapitza_conductance[side] - by;
+           });
+  j["heat_flux_relative_stderr"] = std::sqrt(variance); // the errors taken as independent
   return j;
+}
+
+bool has_kapitza_errors(const continuum::ContinuumParameters& p) {
+  for (const auto& b : p.boundary)
+    for (const double e : b.kapitza_conductance_stderr)
+      if (e > 0) return true;
+  return false;
 }
 } // namespace
 
@@ -179,8 +201,8 @@ int continuum_twin(const CommandLine& cl, const std::string& stage_name) {
   summary["continuum_parameters"] = continuum::to_json(p);
   io::Json measured = continuum::to_json(result);
   for (const auto& [key, value] : measured.items()) summary[key] = value;
-  const bool has_errors =
-      std::isfinite(coefficient_errors.conductivity) || std::isfinite(coefficient_errors.viscosity);
+  const bool has_errors = std::isfinite(coefficient_errors.conductivity) ||
+                          std::isfinite(coefficient_errors.viscosity) || has_kapitza_errors(p);
   if (has_errors && n_processes > 1)
     std::cout << "continuum: the coefficients' effect on the heat flux is not computed under "
                  "mpirun (its two extra solves run on one process)\n";
@@ -189,7 +211,8 @@ int continuum_twin(const CommandLine& cl, const std::string& stage_name) {
         p, coefficient_errors, result.nusselt * result.numbers.conduction_flux);
     std::cout << "continuum: heat flux +- "
               << 100 * summary["coefficient_uncertainty"]["heat_flux_relative_stderr"].number()
-              << "% from the measured coefficients' errors\n";
+              << "% from the measured coefficients' errors"
+              << (has_kapitza_errors(p) ? " and the Kapitza conductances'" : "") << "\n";
   }
   summary["files"] = io::Json::array();
   for (const auto& f : files) summary["files"].push_back(f);

@@ -614,12 +614,13 @@ def nusselt_sentence(twin, twin_metrics, particle):
     text = (f"Nusselt number, {TWIN_LABEL[twin]}: particle − twin = {fmt(difference)}"
             f" ({fmt_percent(number(twin_metrics, 'nusselt_relative_difference'))} of the twin's)")
     if finite(twin_se) and finite(se):
-        # The twin's error: its heat flux's response to the measured coefficients' errors.
+        # The twin's error: its heat flux's response to the measured coefficients' errors (and
+        # the Kapitza twin's to its conductances').
         both = math.hypot(se, twin_se)
         over = abs(difference) / both
         verdict = "within the errors" if over <= WITHIN_NOISE_STDERRS else "not within the errors"
         return text + (f", {fmt(over, 3)} combined standard errors (particle {fmt(se, 2)}, twin "
-                       f"{fmt(twin_se, 2)} from its measured coefficients) — {verdict}.")
+                       f"{fmt(twin_se, 2)} from its measured inputs) — {verdict}.")
     if finite(se) and se > 0:
         over = abs(difference) / se
         verdict = "within noise" if over <= WITHIN_NOISE_STDERRS else "not within noise"
@@ -716,8 +717,8 @@ def report_run(run_dir, out_dir):
                  for t in twins])
         row("Nu particle ± stderr",
             [fmt_pm(number(particle, "nusselt"), number(particle, "nusselt_stderr"))] * len(twins))
-        row("Nu twin ± stderr from its measured coefficients (heat flux / the nominal "
-            "conduction flux, as the particle's)",
+        row("Nu twin ± stderr from its measured coefficients and Kapitza conductances (heat "
+            "flux / the nominal conduction flux, as the particle's)",
             [fmt_pm(number(metrics, "twins", t, "nusselt"),
                     number(metrics, "twins", t, "nusselt_stderr_from_coefficients"))
              for t in twins])
@@ -880,14 +881,18 @@ def continuum_accuracy(doc, summaries, twins):
         u = lookup(summaries[twin], "coefficient_uncertainty")
         if not u:
             continue
-        parts = [f"{name} {fmt_pm(number(u, name, 'value'), number(u, name, 'stderr'))} moves the "
+        names = ["conductivity", "viscosity"] + [f"kapitza_{a}_{s}" for a in "xyz"
+                                                 for s in ("lower", "upper")]
+        parts = [f"{name.replace('_', ' ')} "
+                 f"{fmt_pm(number(u, name, 'value'), number(u, name, 'stderr'))} moves the "
                  f"heat flux by {fmt_percent(number(u, name, 'heat_flux_relative_change'))} per "
-                 "standard error" for name in ("conductivity", "viscosity") if lookup(u, name)]
+                 "standard error" for name in names if lookup(u, name)]
         sentences.append(f"{TWIN_LABEL[twin]}: " + "; ".join(parts) + "; together ± "
                          f"{fmt_percent(number(u, 'heat_flux_relative_stderr'))}.")
     if sentences:
         doc.paragraph("The measured coefficients' errors (transport stage, from the spread of "
-                      "repeated runs), carried through two more solves of each twin:")
+                      "repeated runs) and the Kapitza conductances' (from the particle walls' "
+                      "heat-flux and fluid-temperature errors), one more solve each:")
         doc.bullets(sentences)
 
 

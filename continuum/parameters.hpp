@@ -62,6 +62,9 @@ struct DirectionBoundary {
   // Inverse law (the particle wall's own, physics.md): q = h T_wall^2 (1/T - 1/T_wall), the
   // same h at T = T_wall, larger where the fluid is colder. Else linear: q = h (T_wall - T).
   bool kapitza_inverse = false;
+  // The conductances' standard errors (not used by the solver: the continuum stage moves each
+  // h_K by its error in an extra solve, for the twin's heat-flux error).
+  std::array<double, 2> kapitza_conductance_stderr{{0.0, 0.0}};
   double kapitza_flux(int side, double T) const { // heat flux into the domain at fluid T
     const double h = kapitza_conductance[side], Tw = temperature[side];
     return kapitza_inverse ? h * Tw * Tw * (1 / T - 1 / Tw) : h * (Tw - T);

@@ -41,9 +41,10 @@ io::Json to_json(const ContinuumParameters& p) {
         io::Json s = io::Json::object();
         s["fixed_temperature"] = b.fixed_temperature[side];
         if (b.fixed_temperature[side]) s["temperature"] = b.temperature[side];
-        if (b.robin(side))
+        if (b.robin(side)) {
           s["kapitza_conductance"] = b.kapitza_conductance[side];
-        else if (!b.fixed_temperature[side])
+          s["kapitza_conductance_stderr"] = b.kapitza_conductance_stderr[side];
+        } else if (!b.fixed_temperature[side])
           s["heat_flux_in"] = b.heat_flux[side];
         w[side ? "upper" : "lower"] = s;
       }

@@ -197,6 +197,23 @@ TEST(Cli, RunComparesTheTwinsAndReusesUnchangedStages) {
   EXPECT_EQ(metrics.find("interior_bins")->number(), 9);
   for (const char* f : {"bins.csv", "profiles.csv", "error_vs_time.csv"})
     EXPECT_TRUE(fs::exists(dir / "compare" / f)) << f;
+  // The Kapitza twin's heat-flux error includes its conductances' errors (one solve per wall,
+  // each h_K moved by its error): more conductance, more heat, and the total covers each part.
+  {
+    const auto calibrated = twinflow::io::Json::parse(
+        twinflow::io::read_file(dir / "continuum_calibrated" / "summary.json"));
+    const auto* u = calibrated.find("coefficient_uncertainty");
+    ASSERT_NE(u, nullptr) << first.output;
+    const double total = u->find("heat_flux_relative_stderr")->number();
+    for (const char* wall : {"kapitza_x_lower", "kapitza_x_upper"}) {
+      const auto* k = u->find(wall);
+      ASSERT_NE(k, nullptr) << wall << "\n" << first.output;
+      EXPECT_GT(k->find("stderr")->number(), 0) << wall;
+      const double change = k->find("heat_flux_relative_change")->number();
+      EXPECT_GT(change, 0) << wall;
+      EXPECT_GE(total, change) << wall;
+    }
+  }
 
   const Result again = run("run " + tiny + " --out " + dir.string());
   ASSERT_EQ(again.code, 0) << again.output;

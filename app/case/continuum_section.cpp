@@ -87,6 +87,11 @@ void declare_continuum(Registry& r) {
             "wall with h_K > 0 takes the heat flux h_K (T_wall - T) instead of T = T_wall; 0 or "
             "absent: T = T_wall. `run`'s calibrated twin sets them from the particle walls' "
             "measured heat flux and temperature jump.");
+  r.declare(s + "Kapitza conductance errors", "", List(Double(0), 0, 6),
+            "Standard errors of the Kapitza conductances, in the same order. The twin's heat-flux "
+            "error then includes each h_K moved by its error (one more solve per wall). `run`'s "
+            "calibrated twin sets them from the particle walls' heat-flux and fluid-temperature "
+            "errors.");
   r.declare(s + "Kapitza law", "linear", Selection("linear|inverse"),
             "The heat flux into the fluid at a Kapitza wall: linear, h_K (T_wall - T); inverse, "
             "h_K T_wall^2 (1/T - 1/T_wall), the particle wall's own law (physics.md: the "
@@ -220,6 +225,14 @@ continuum::ContinuumParameters resolve_continuum(const Registry& r, const SceneP
     r.require(c.model == continuum::Model::Boussinesq, s + "Kapitza conductances",
               "0 unless Continuum/Model = boussinesq");
     c.boundary[d].kapitza_conductance[side] = kapitza[w];
+  }
+  const std::vector<double> kapitza_errors = r.get_doubles(s + "Kapitza conductance errors");
+  for (std::size_t w = 0; w < kapitza_errors.size(); ++w) {
+    const int d = static_cast<int>(w / 2), side = static_cast<int>(w % 2);
+    r.require(d < scene.dim && (kapitza_errors[w] == 0 || c.boundary[d].robin(side)),
+              s + "Kapitza conductance errors",
+              "at most 2 x dimension values, > 0 only where a Kapitza conductance is");
+    c.boundary[d].kapitza_conductance_stderr[side] = kapitza_errors[w];
   }
   for (auto& b : c.boundary) b.kapitza_inverse = r.get(s + "Kapitza law") == "inverse";
 

@@ -206,7 +206,8 @@ int continuum_twin(const CommandLine& cl, const std::string& stage_name) {
   if (has_errors && n_processes > 1)
     std::cout << "continuum: the coefficients' effect on the heat flux is not computed under "
                  "mpirun (its two extra solves run on one process)\n";
-  if (result.model == "boussinesq" && !p.transient() && n_processes == 1 && has_errors) {
+  if ((result.model == "boussinesq" || result.model == "low-mach") && !p.transient() &&
+      n_processes == 1 && has_errors) {
     summary["coefficient_uncertainty"] = coefficient_uncertainty(
         p, coefficient_errors, result.nusselt * result.numbers.conduction_flux);
     std::cout << "continuum: heat flux +- "

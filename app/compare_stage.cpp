@@ -1,6 +1,7 @@
 // twinflow compare RUNDIR: the distance between the particle run and its continuum twins
 // (nominal, calibrated), results in RUNDIR/compare. Also the calibrated twin's wall conditions.
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -29,7 +30,14 @@ struct ParticleRun {
   io::Json summary;
   CaseParameters parameters;
   io::FieldFile::Contents fields;
+  std::vector<std::vector<double>> temperature_blocks; // blocks.csv (runs before it: empty)
   std::array<bool, 3> walled{{false, false, false}};
+  // The final averages, with the per-block temperatures behind them.
+  compare::BinnedState final_state() const {
+    compare::BinnedState s = compare::particle_state(fields.grid, fields.snapshots.back());
+    s.temperature_blocks = temperature_blocks;
+    return s;
+  }
 };
 
 ParticleRun load_particle_run(const fs::path& run_dir, const std::vector<std::string>& overrides) {
@@ -49,6 +57,8 @@ ParticleRun load_particle_run(const fs::path& run_dir, const std::vector<std::st
   r.fields = io::FieldFile::read(dir / "fields.h5");
   if (r.fields.snapshots.empty())
     throw io::InputError((dir / "fields.h5").string() + ": holds no snapshot");
+  if (fs::exists(dir / "blocks.csv"))
+    r.temperature_blocks = compare::read_temperature_blocks(r.fields.grid, dir / "blocks.csv");
   for (int d = 0; d < r.parameters.scene.dim; ++d)
     r.walled[d] = !r.parameters.scene.boundary[d].periodic;
   return r;
@@ -113,8 +123,7 @@ void write_report(const fs::path& dir) {
 std::vector<std::string> calibrated_twin_overrides(const std::string& run_dir,
                                                    const std::vector<std::string>& command) {
   const ParticleRun run = load_particle_run(run_dir, command);
-  const auto& snapshot = run.fields.snapshots.back();
-  const compare::BinnedState particle = compare::particle_state(run.fields.grid, snapshot);
+  const compare::BinnedState particle = run.final_state();
   const auto interior =
       compare::interior_bins(run.fields.grid, run.walled, run.parameters.compare.wall_layer);
   std::vector<std::string> overrides;
@@ -273,12 +282,30 @@ int compare_stage(const CommandLine& cl) {
     particle["nusselt_hot_wall"] = q_in / q0;
     particle["nusselt_cold_wall"] = q_out / q0;
     particle["wall_imbalance_over_stderr"] = (q_in - q_out) / se;
+    // Nu's error with 1, 2, 4 adjacent blocks merged (runs before it: absent)
+    const io::Json* hot_blocking =
+        presults.find("walls")->find(wall_name(heated, hot))->find("heat_flux_in_stderr_blocking");
+    const io::Json* cold_blocking = presults.find("walls")
+                                        ->find(wall_name(heated, 1 - hot))
+                                        ->find("heat_flux_in_stderr_blocking");
+    if (hot_blocking && cold_blocking) { // the largest, as for the wall temperatures
+      const auto &a = hot_blocking->elements(), &c = cold_blocking->elements();
+      particle["nusselt_stderr_blocking"] = io::Json::array();
+      double largest = 0;
+      for (std::size_t k = 0; k < a.size() && k < c.size(); ++k) {
+        const double e = 0.5 * std::hypot(a[k].number(), c[k].number()) / q0;
+        particle["nusselt_stderr_blocking"].push_back(e);
+        largest = std::max(largest, e);
+      }
+      particle["nusselt_stderr"] = largest;
+      particle["heat_flux_stderr"] = largest * q0;
+      table["nusselt_particle_stderr"] = largest;
+    }
     table["nusselt_particle"] = q_particle / q0;
     table["nusselt_particle_stderr"] = 0.5 * se / q0;
   }
   // The fluid's temperature at each thermal wall, and the jump from the wall's own.
-  const compare::BinnedState final_state =
-      compare::particle_state(grid, run.fields.snapshots.back());
+  const compare::BinnedState final_state = run.final_state();
   io::Json jumps = io::Json::object();
   for (int d = 0; d < scene.dim; ++d) {
     const auto& b = scene.boundary[d];
@@ -290,6 +317,10 @@ int compare_stage(const CommandLine& cl) {
       j["wall_temperature"] = b.temperature[side];
       j["fluid_temperature_at_wall"] = w.value;
       j["fluid_temperature_at_wall_stderr"] = w.stderr_;
+      if (!w.blocking.empty()) { // the error with 1, 2, 4 adjacent blocks merged
+        j["fluid_temperature_at_wall_stderr_blocking"] = io::Json::array();
+        for (double e : w.blocking) j["fluid_temperature_at_wall_stderr_blocking"].push_back(e);
+      }
       j["jump"] = b.temperature[side] - w.value;
       j["extrapolated_from_distance"] = w.extrapolated_from;
       jumps[wall_name(d, side)] = j;
@@ -309,7 +340,13 @@ int compare_stage(const CommandLine& cl) {
     std::cout << "compare: particle Nu = " << number(particle, {"nusselt"}) << " +- "
               << number(particle, {"nusselt_stderr"}) << " (hot wall "
               << number(particle, {"nusselt_hot_wall"}) << ", cold wall "
-              << number(particle, {"nusselt_cold_wall"}) << ")\n";
+              << number(particle, {"nusselt_cold_wall"}) << ")";
+  if (const io::Json* b = particle.find("nusselt_stderr_blocking"); b && b->elements().size() > 1) {
+    std::cout << "; its error with 2, 4 blocks merged:";
+    for (std::size_t k = 1; k < b->elements().size(); ++k)
+      std::cout << " " << b->elements()[k].number();
+  }
+  if (heated >= 0) std::cout << "\n";
   for (const ContinuumTwin& t : twins) {
     io::Json j = io::Json::object();
     j["stage"] = t.stage;

@@ -257,7 +257,60 @@ WallFluidTemperature wall_fluid_temperature(const BinnedState& p, const std::vec
   }
   w.value = sum / columns;
   w.stderr_ = std::sqrt(var) / columns;
+  if (p.temperature_blocks.size() < 2) return w;
+  std::vector<double> per_block; // the same extrapolation, block by block
+  for (const auto& t : p.temperature_blocks) {
+    double s = 0;
+    for (long b = 0; b < g.cell_count(); ++b) {
+      auto i = bin_index(g, b);
+      if (!interior[b] || i[direction] != grid_index(first)) continue;
+      i[direction] = grid_index(first + 1);
+      s += (1 + r) * t[b] - r * t[flat_index(g, i)];
+    }
+    per_block.push_back(s / columns);
+  }
+  for (std::size_t merge = 1; per_block.size() / merge >= 2 && merge <= 4; merge *= 2) {
+    std::vector<double> m(per_block.size() / merge, 0.0); // a partial last group is left out
+    for (std::size_t k = 0; k < m.size() * merge; ++k) m[k / merge] += per_block[k] / merge;
+    double mean = 0, ss = 0;
+    for (const double x : m) mean += x / m.size();
+    for (const double x : m) ss += (x - mean) * (x - mean);
+    w.blocking.push_back(std::sqrt(ss / (m.size() - 1) / m.size()));
+  }
+  // The estimate grows with the block length until blocks outlast the correlation time
+  // (Flyvbjerg & Petersen 1989); with a few levels only, the largest is the honest figure.
+  w.stderr_ = *std::max_element(w.blocking.begin(), w.blocking.end());
   return w;
+}
+
+std::vector<std::vector<double>> read_temperature_blocks(const io::Grid& grid,
+                                                         const std::filesystem::path& blocks_csv) {
+  std::istringstream in(io::read_file(blocks_csv));
+  std::vector<std::vector<double>> blocks;
+  std::string line;
+  bool header = false;
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    if (!header) { // block,bin,T_kinetic
+      header = true;
+      continue;
+    }
+    const auto f = split(line, ',');
+    std::size_t block = 0, bin = 0;
+    double t = 0;
+    try {
+      if (f.size() != 3) throw std::invalid_argument("columns");
+      block = std::stoul(f[0]), bin = std::stoul(f[1]), t = std::stod(f[2]);
+    } catch (const std::exception&) {
+      throw io::InputError(blocks_csv.string() + ": bad row '" + line + "' (block,bin,T_kinetic)");
+    }
+    if (bin >= static_cast<std::size_t>(grid.cell_count()) || block > blocks.size())
+      throw io::InputError(blocks_csv.string() + ": row '" + line +
+                           "' does not fit the particle grid");
+    if (block == blocks.size()) blocks.emplace_back(grid.cell_count(), std::nan(""));
+    blocks[block][bin] = t;
+  }
+  return blocks;
 }
 
 namespace {

@@ -20,11 +20,16 @@ struct BinnedState {
   std::vector<double> temperature, temperature_se;
   std::vector<double> velocity, velocity_se; // empty if the twin has no flow
   std::vector<double> density, density_se;   // the particle's; the low-Mach twin's (no errors)
+  std::vector<std::vector<double>> temperature_blocks; // the particle's per block (blocks.csv)
   bool has_velocity() const { return !velocity.empty(); }
 };
 
 // The particle run's binned averages of one snapshot (temperature = T_kinetic).
 BinnedState particle_state(const io::Grid& grid, const io::Snapshot& snapshot);
+// RUNDIR/particle/blocks.csv: T_kinetic of each block on the grid's bins (throws io::InputError
+// if it does not fit).
+std::vector<std::vector<double>> read_temperature_blocks(const io::Grid& grid,
+                                                         const std::filesystem::path& blocks_csv);
 // RUNDIR/<continuum stage>/bins.csv on the same grid (throws io::InputError if it does not fit);
 // the density from its column "n" where there is one.
 BinnedState continuum_state(const io::Grid& grid, const std::filesystem::path& bins_csv);
@@ -58,10 +63,15 @@ Distance density_distance(const BinnedState& particle, const BinnedState& contin
 
 // The fluid's temperature at a wall (direction d, side 0: x_d = 0, 1: x_d = L_d), extrapolated
 // linearly from the first two bin layers beyond the wall layer and averaged over the interior
-// bins along the wall, with its standard error (bins treated as independent).
+// bins along the wall, with its standard error: from the spread of the same extrapolation over
+// the particle's blocks where it has them (the bins' correlations included): the largest of the
+// errors with 1, 2 and 4 adjacent blocks merged (`blocking`), since a roll that changes more
+// slowly than a block makes the short-block error too small; else from the bins' errors as if
+// independent.
 struct WallFluidTemperature {
   double value = 0, stderr_ = 0;
   double extrapolated_from = 0; // distance from the wall of the nearer bin layer used
+  std::vector<double> blocking;
 };
 WallFluidTemperature wall_fluid_temperature(const BinnedState& particle,
                                             const std::vector<char>& interior, int direction,

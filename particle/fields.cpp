@@ -12,6 +12,19 @@ double BinnedFields::centre(int bin, int d) const {
   return (idx + 0.5) * box[d] / bins[d];
 }
 
+std::string BinnedFields::blocks_csv() const {
+  std::ostringstream out;
+  out << "# T_kinetic of each block (the block means behind fields.csv's T_kinetic and its "
+         "standard error); bin: the row of fields.csv, counted from 0\nblock,bin,T_kinetic\n";
+  char buf[64];
+  for (std::size_t k = 0; k < temperature_kinetic_blocks.size(); ++k)
+    for (std::size_t b = 0; b < temperature_kinetic_blocks[k].size(); ++b) {
+      std::snprintf(buf, sizeof buf, "%zu,%zu,%.10g\n", k, b, temperature_kinetic_blocks[k][b]);
+      out << buf;
+    }
+  return out.str();
+}
+
 std::string BinnedFields::csv() const {
   std::ostringstream out;
   out << "# binned fields, cumulative over the sampled steps; error columns are block standard "
@@ -160,14 +173,7 @@ template <int D> BinnedFields FieldSampler<D>::result() const {
     for (int d = 0; d < D; ++d)
       reduce(f.velocity, static_cast<std::size_t>(bin) * D + d,
              [&](int b) { return at(b).n > 0 ? at(b).v[d] / at(b).n : 0.0; });
-    // Kinetic temperature in the bin's rest frame: m (<v^2> - <v>^2) / D
-    reduce(f.temperature_kinetic, bin, [&](int b) {
-      const Accumulator& c = at(b);
-      if (c.n < 2) return 0.0;
-      double mean2 = 0;
-      for (int d = 0; d < D; ++d) mean2 += (c.v[d] / c.n) * (c.v[d] / c.n);
-      return mass_ * (c.v2 / c.n - mean2) / D * c.n / (c.n - 1);
-    });
+    reduce(f.temperature_kinetic, bin, [&](int b) { return kinetic_temperature(at(b)); });
     reduce(f.temperature_internal, bin, [&](int b) {
       return at(b).inv_theta > 0 ? at(b).n / at(b).inv_theta : 0.0;
     }); // 1/<1/theta>
@@ -184,6 +190,13 @@ template <int D> BinnedFields FieldSampler<D>::result() const {
       reduce(f.flux_potential, slot,
              [&](int b) { return at(b).j_potential[d] / (block_samples_[b] * bin_volume_); });
     }
+  }
+  for (int b = 0; b < blocks_; ++b) {
+    if (block_samples_[b] == 0) continue;
+    std::vector<double> t(nbins_);
+    for (int bin = 0; bin < nbins_; ++bin)
+      t[bin] = kinetic_temperature(acc_[static_cast<std::size_t>(b) * nbins_ + bin]);
+    f.temperature_kinetic_blocks.push_back(std::move(t));
   }
   return f;
 }

@@ -27,9 +27,13 @@ struct BinnedFields {
   // internal, kinetic and potential energy carried by particles moving relative to their bin's
   // mean velocity (002 section III.C's diffusive parts; convection is rho u v from the fields).
   FieldEstimate flux_conductive, flux_internal, flux_kinetic, flux_potential;
+  // T_kinetic of each block [block][bin] (the estimates behind its mean and stderr): a quantity
+  // derived from several bins takes its error from these, the bins' correlations included.
+  std::vector<std::vector<double>> temperature_kinetic_blocks;
   int bin_count() const { return bins[0] * bins[1] * (dim == 3 ? bins[2] : 1); }
   double centre(int bin, int d) const; // bin centre coordinate along d
   std::string csv() const;
+  std::string blocks_csv() const; // temperature_kinetic_blocks: block, bin, T_kinetic
 };
 
 template <int D> class FieldSampler {
@@ -65,6 +69,13 @@ private:
   };
   static constexpr std::size_t kAccumulatorDoubles = 4 + 5 * D;
   int bin_of(const State<D>& s, std::size_t i) const;
+  // Kinetic temperature in the bin's rest frame: m (<v^2> - <v>^2) / D, unbiased
+  double kinetic_temperature(const Accumulator& c) const {
+    if (c.n < 2) return 0.0;
+    double mean2 = 0;
+    for (int d = 0; d < D; ++d) mean2 += (c.v[d] / c.n) * (c.v[d] / c.n);
+    return mass_ * (c.v2 / c.n - mean2) / D * c.n / (c.n - 1);
+  }
   std::array<double, 3> box_;
   std::array<int, 3> bins_;
   int blocks_, nbins_;

@@ -594,6 +594,11 @@ private:
         walls[names[w]]["pressure"] = pw.mean, walls[names[w]]["pressure_stderr"] = pw.stderr_;
         walls[names[w]]["heat_flux_in"] = jw.mean;
         walls[names[w]]["heat_flux_in_stderr"] = jw.stderr_;
+        // The same with 2 and 4 blocks merged: equal errors say the blocks are long enough.
+        io::Json blocking = io::Json::array();
+        for (int merge = 1; merge <= 4 && p_.blocks / merge >= 2; merge *= 2)
+          blocking.push_back(block_average(wall_heat_flux_[w], p_.blocks / merge).stderr_);
+        walls[names[w]]["heat_flux_in_stderr_blocking"] = blocking;
       }
       j["walls"] = walls;
       j["wall_reflections"] = sim_.wall_crossings();
@@ -658,6 +663,7 @@ private:
     }
     const BinnedFields final_fields = fields_.result(); // reduced over the blocks once
     out_.fields_csv = final_fields.csv();
+    out_.blocks_csv = final_fields.blocks_csv();
     out_.field_grid.dim = D;
     for (int d = 0; d < D; ++d) {
       out_.field_grid.counts[d] = p_.bins[d];

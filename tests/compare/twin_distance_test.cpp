@@ -8,6 +8,7 @@
 #include <random>
 
 #include "compare/twin_distance.hpp"
+#include "io/files.hpp"
 
 using namespace twinflow;
 
@@ -95,6 +96,39 @@ TEST(TwinDistance, WallTemperatureOfALinearProfileIsExact) {
   EXPECT_DOUBLE_EQ(lower.extrapolated_from, 3.0); // bins [0, 2] are in the wall layer
   // 8 columns, each (1 + r)^2 + r^2 times sigma^2 with r = 1.5
   EXPECT_NEAR(lower.stderr_, 0.003 * std::sqrt(2.5 * 2.5 + 1.5 * 1.5) / std::sqrt(8.0), 1e-15);
+}
+
+// With the particle's blocks, a wall temperature's error is the spread of the same extrapolation
+// over the blocks: a fluctuation shared by all bins of a block (a moving roll) counts in full,
+// which the independent-bins formula divides by sqrt(columns). The stated error is the largest
+// over 1, 2, 4 merged blocks. blocks.csv round trip included.
+TEST(TwinDistance, WallTemperatureErrorFromTheBlocks) {
+  const io::Grid g = grid_2d(10, 10, 2.0);
+  const auto interior = compare::interior_bins(g, {{true, true, false}}, 1.0);
+  auto p = linear_state(g, 0.9, -0.01, 0.003);
+  const double a = 0.01; // block k: the whole field shifted by +a, -a, +a, ...
+  const auto path = std::filesystem::temp_directory_path() / "twinflow_blocks.csv";
+  {
+    std::ofstream out(path);
+    out << "# comment\nblock,bin,T_kinetic\n";
+    for (int k = 0; k < 8; ++k)
+      for (long b = 0; b < g.cell_count(); ++b)
+        out << k << "," << b << "," << p.temperature[b] + (k % 2 ? -a : a) << "\n";
+  }
+  p.temperature_blocks = compare::read_temperature_blocks(g, path);
+  ASSERT_EQ(p.temperature_blocks.size(), 8u);
+  const auto w = compare::wall_fluid_temperature(p, interior, 0, 0);
+  EXPECT_NEAR(w.value, 0.9, 1e-13);
+  ASSERT_EQ(w.blocking.size(), 3u);                      // 8, 4, 2 blocks
+  EXPECT_NEAR(w.blocking[0], a / std::sqrt(7.0), 1e-13); // sd of 8 values +-a, over sqrt(8)
+  EXPECT_NEAR(w.blocking[1], 0, 1e-13);                  // merged pairs cancel
+  EXPECT_DOUBLE_EQ(w.stderr_, w.blocking[0]);            // the largest
+  {
+    std::ofstream out(path);
+    out << "block,bin,T_kinetic\n0,100,1.0\n"; // bin beyond the 10 x 10 grid
+  }
+  EXPECT_THROW(compare::read_temperature_blocks(g, path), io::InputError);
+  std::filesystem::remove(path);
 }
 
 TEST(TwinDistance, VelocityDistanceIsTheVectorNorm) {

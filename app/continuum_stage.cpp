@@ -205,7 +205,7 @@ int continuum_twin(const CommandLine& cl, const std::string& stage_name) {
                           std::isfinite(coefficient_errors.viscosity) || has_kapitza_errors(p);
   if (has_errors && n_processes > 1)
     std::cout << "continuum: the coefficients' effect on the heat flux is not computed under "
-                 "mpirun (its two extra solves run on one process)\n";
+                 "mpirun (its extra solves run on one process)\n";
   if ((result.model == "boussinesq" || result.model == "low-mach") && !p.transient() &&
       n_processes == 1 && has_errors) {
     summary["coefficient_uncertainty"] = coefficient_uncertainty(

@@ -1197,6 +1197,35 @@ def figure_pareto(out_dir, done, keys, doc):
                   "front; crosses: each point's noise level, the floor no run length removes.")
 
 
+def realisations_section(doc, done):
+    """Points that differ only in the seed are realisations of one case: each point's Nu gap to
+    the calibrated twin against its allowance (both errors + 3%), and the mean gap with its
+    standard error from the spread between realisations."""
+    rows, relative = [], []
+    for r in done:
+        p, ps = to_float(r.get("nusselt_particle")), to_float(r.get("nusselt_particle_stderr"))
+        c, cs = to_float(r.get("nusselt_calibrated")), to_float(r.get("nusselt_calibrated_stderr"))
+        if not all(finite(v) for v in (p, ps, c)) or c == 0:
+            continue
+        cs = cs if finite(cs) else 0.0
+        allowance = ps + cs + 0.03 * abs(c)
+        relative.append(p / c - 1)
+        rows.append([plain(r.get("Particle/Seed")), fmt_pm(p, ps), fmt_pm(c, cs),
+                     fmt_percent(p / c - 1), fmt(allowance),
+                     "within" if abs(p - c) <= allowance else "out"])
+    if not rows:
+        return
+    doc.heading("Realisations: particle against the calibrated twin")
+    doc.table(["seed", "Nu particle", "Nu calibrated twin", "particle / twin - 1",
+               "allowance (errors + 3%)", "gap"], rows)
+    if len(relative) > 1:
+        mean = sum(relative) / len(relative)
+        se = math.sqrt(sum((x - mean) ** 2 for x in relative) / (len(relative) - 1) / len(relative))
+        doc.paragraph(f"Over {len(relative)} realisations: particle / twin - 1 = "
+                      f"{fmt_percent(mean)} ± {fmt_percent(se)} (standard error from the spread "
+                      "between the realisations, independent of the runs' own error bars).")
+
+
 def report_sweep(sweep_dir, out_dir):
     import matplotlib.pyplot as plt
 
@@ -1349,6 +1378,8 @@ def report_sweep(sweep_dir, out_dir):
     doc.table([c[0] for c in columns] + ["Nu particle", "Nu nominal", "Nu calibrated",
                                           "T L2 nominal", "T L2 calibrated", "T noise",
                                           "wall s"], rows)
+    if keys == ["Particle/Seed"]:
+        realisations_section(doc, done)
     doc.heading("Points not done")
     if not_done:
         doc.table(["point", "status", "exit code", "reason"],

@@ -80,6 +80,8 @@ expect_text sweep_rayleigh "the particle run went unstable at step 812"
 expect_report sweep_two_keys nusselt_vs_particle_time_step.png \
   errors_vs_particle_time_step.png cost.png pareto.png
 expect_text sweep_two_keys "Pareto front (no other point"
+expect_report sweep_seeds nusselt_vs_particle_seed.png cost.png
+expect_text sweep_seeds "Over 4 realisations: particle / twin - 1 = 3.7 % ± 0.8 %"
 expect_report stability_two_keys stability_map.png
 expect_text stability_two_keys "negative_internal_energy"
 expect_report stability_time_step stability_map.png

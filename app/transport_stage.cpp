@@ -374,19 +374,18 @@ int transport_stage(const CommandLine& cl) {
   summary["results"]["estimated_g1"] = ideal.json();
   summary["results"]["estimated_measured_g"] = with_g.json();
   summary["results"]["measured"] = m.json();
-  if (cp.transport.kappa_from_walls) {
+  // The continuum twin reads "conductivity" and "viscosity" (app/continuum_stage.cpp).
+  if (cp.transport.kappa_from_walls || cp.transport.measure_flows) {
     summary["results"]["measured"]["conductivity"] = kappa.mean;
     summary["results"]["measured"]["conductivity_stderr"] = kappa.stderr_;
-    summary["results"]["measured"]["walls"] = by_walls.json;
   }
+  if (cp.transport.kappa_from_walls) summary["results"]["measured"]["walls"] = by_walls.json;
   if (cp.transport.measure_flows) {
-    // The continuum twin reads "conductivity" and "viscosity" (app/continuum_stage.cpp).
-    summary["results"]["measured"]["conductivity"] = kappa.mean;
-    summary["results"]["measured"]["conductivity_stderr"] = kappa.stderr_;
-    if (cp.transport.kappa_from_walls)
-      summary["results"]["measured"]["conductivity_relaxation"] = flow.conductivity.value.mean,
+    if (cp.transport.kappa_from_walls) {
+      summary["results"]["measured"]["conductivity_relaxation"] = flow.conductivity.value.mean;
       summary["results"]["measured"]["conductivity_relaxation_stderr"] =
           flow.conductivity.value.stderr_;
+    }
     summary["results"]["measured"]["viscosity"] = eta.mean;
     summary["results"]["measured"]["viscosity_stderr"] = eta.stderr_;
     io::Json method = io::Json::object();

@@ -238,37 +238,34 @@ WallFluidTemperature wall_fluid_temperature(const BinnedState& p, const std::vec
         break;
       }
   WallFluidTemperature w;
-  if (first < 0) return {std::nan(""), std::nan(""), 0};
+  if (first < 0) return {std::nan(""), std::nan(""), 0, {}};
   const double h = g.spacing[direction];
   w.extrapolated_from = (first + 0.5) * h;
   const double r = w.extrapolated_from / h; // T_wall = T1 + (T1 - T2) r
-  double sum = 0, var = 0;
-  long columns = 0;
+  // The bins of the first layer beyond the wall layer and their neighbours one layer further in.
+  std::vector<std::pair<long, long>> columns;
   for (long b = 0; b < g.cell_count(); ++b) {
     auto i = bin_index(g, b);
     if (!interior[b] || i[direction] != grid_index(first)) continue;
     i[direction] = grid_index(first + 1);
-    const long b2 = flat_index(g, i);
-    sum += (1 + r) * p.temperature[b] - r * p.temperature[b2];
-    if (!p.temperature_se.empty())
-      var += (1 + r) * (1 + r) * p.temperature_se[b] * p.temperature_se[b] +
-             r * r * p.temperature_se[b2] * p.temperature_se[b2];
-    ++columns;
+    columns.emplace_back(b, flat_index(g, i));
   }
-  w.value = sum / columns;
-  w.stderr_ = std::sqrt(var) / columns;
+  const double count = static_cast<double>(columns.size());
+  auto extrapolated = [&](const std::vector<double>& t) { // mean over the columns
+    double sum = 0;
+    for (const auto& [b1, b2] : columns) sum += (1 + r) * t[b1] - r * t[b2];
+    return sum / count;
+  };
+  w.value = extrapolated(p.temperature);
+  double var = 0;
+  if (!p.temperature_se.empty())
+    for (const auto& [b1, b2] : columns)
+      var += (1 + r) * (1 + r) * p.temperature_se[b1] * p.temperature_se[b1] +
+             r * r * p.temperature_se[b2] * p.temperature_se[b2];
+  w.stderr_ = std::sqrt(var) / count;
   if (p.temperature_blocks.size() < 2) return w;
   std::vector<double> per_block; // the same extrapolation, block by block
-  for (const auto& t : p.temperature_blocks) {
-    double s = 0;
-    for (long b = 0; b < g.cell_count(); ++b) {
-      auto i = bin_index(g, b);
-      if (!interior[b] || i[direction] != grid_index(first)) continue;
-      i[direction] = grid_index(first + 1);
-      s += (1 + r) * t[b] - r * t[flat_index(g, i)];
-    }
-    per_block.push_back(s / columns);
-  }
+  for (const auto& t : p.temperature_blocks) per_block.push_back(extrapolated(t));
   for (std::size_t merge = 1; per_block.size() / merge >= 2 && merge <= 4; merge *= 2) {
     std::vector<double> m(per_block.size() / merge, 0.0); // a partial last group is left out
     for (std::size_t k = 0; k < m.size() * merge; ++k) m[k / merge] += per_block[k] / merge;

@@ -105,6 +105,9 @@ private:
   void force_blocks(const PairNoise& noise);
   void shardlow_sweep(const PairNoise& noise);
   double theta(std::size_t i) const { return state_.u[i] / model_.cv; }
+  PairNoise pair_noise() const { // this step's pair noises, of the run's law
+    return PairNoise(p_.seed, static_cast<std::uint64_t>(step_), PairNoise::Pair, p_.uniform_noise);
+  }
   void apply_heat_slabs();
   void external_forces(); // wall repulsion and gravity into carried f and potential
   void wall_sweep(const PairNoise& noise);

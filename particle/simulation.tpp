@@ -157,8 +157,7 @@ template <class M> void Simulation<M>::conservative_pass(bool with_velocity_term
   std::fill(carried_.q.begin(), carried_.q.end(), 0.0);
   std::fill(carried_.potential.begin(), carried_.potential.end(), 0.0);
   (void)n;
-  const PairNoise noise(p_.seed, static_cast<std::uint64_t>(step_), PairNoise::Pair,
-                        p_.uniform_noise);
+  const PairNoise noise = pair_noise();
   if (with_velocity_terms)
     force_blocks(noise);
   else
@@ -394,8 +393,7 @@ template <class M> void Simulation<M>::step_ec_verlet() {
 template <class M> void Simulation<M>::step_euler() {
   ++step_;
   const std::size_t n = state_.size();
-  const PairNoise noise(p_.seed, static_cast<std::uint64_t>(step_), PairNoise::Pair,
-                        p_.uniform_noise);
+  const PairNoise noise = pair_noise();
   auto& v = state_.v;
   auto& dp = carried_.f;
   auto& q = carried_.q;
@@ -459,8 +457,7 @@ template <class M> void Simulation<M>::step_euler() {
 template <class M> void Simulation<M>::step_shardlow() {
   ++step_;
   const std::size_t n = state_.size();
-  const PairNoise noise(p_.seed, static_cast<std::uint64_t>(step_), PairNoise::Pair,
-                        p_.uniform_noise);
+  const PairNoise noise = pair_noise();
   shardlow_sweep(noise); // pair_kernels.tpp
   if (p_.has_walls())
     wall_sweep(PairNoise(p_.seed, static_cast<std::uint64_t>(step_), PairNoise::Wall));

@@ -146,20 +146,43 @@ std::vector<std::string> calibrated_twin_overrides(const std::string& run_dir,
   if (run.parameters.compare.calibration == "kapitza" && !kapitza)
     std::cout << "run: calibrated twin: Kapitza walls need the Boussinesq twin; this one is "
                  "calibrated by its walls' temperatures\n";
-  std::ostringstream conductances, errors; // x lower, x upper, y lower, ...
+  std::ostringstream conductances, errors, positions; // x lower, x upper, y lower, ...
   conductances << std::setprecision(8);
   errors << std::setprecision(4);
+  positions << std::setprecision(6);
   const io::Json& walls = *run.summary.find("results");
-  for (int d = 0; d < run.parameters.scene.dim; ++d) {
-    const auto& b = run.parameters.scene.boundary[d];
+  const SceneParameters& scene = run.parameters.scene;
+  // The twin's walls: the scene's, or the particle walls' effective positions (Gibbs depths).
+  std::array<double, 6> plane{};
+  for (int d = 0; d < scene.dim; ++d)
+    for (int side = 0; side < 2; ++side)
+      if (run.parameters.compare.effective_walls && !scene.boundary[d].periodic) {
+        const double depth =
+            number(walls, {"walls", wall_name(d, side).c_str(), "effective_position"});
+        if (!std::isfinite(depth))
+          throw io::InputError(run_dir + "/particle/summary.json: no wall effective_position "
+                                         "(a run from before wall_layers.csv); re-run the "
+                                         "particle stage (--force) or set Compare/Effective "
+                                         "walls = false");
+        plane[2 * d + side] = std::max(depth, 0.0);
+      }
+  for (int d = 0; d < scene.dim; ++d) {
+    const auto& b = scene.boundary[d];
+    // The particle wall's heat flow spread over the twin's wall, which is shorter where the
+    // walls across it moved in.
+    double area_ratio = 1; // scene's wall area / twin's
+    for (int e = 0; e < scene.dim; ++e)
+      if (e != d) area_ratio *= scene.box[e] / (scene.box[e] - plane[2 * e] - plane[2 * e + 1]);
     for (int side = 0; side < 2; ++side) {
+      positions << (d + side ? ", " : "") << plane[2 * d + side];
       double h = 0, h_stderr = 0;
       if (!b.periodic && b.thermal[side]) {
-        const auto w = compare::wall_fluid_temperature(particle, interior, d, side);
+        const auto w =
+            compare::wall_fluid_temperature(particle, interior, d, side, plane[2 * d + side]);
         // h_K = q / (T_wall - T_fluid at the wall), from the particle wall's measured heat flow
         const std::string name = wall_name(d, side);
-        const double q = number(walls, {"walls", name.c_str(), "heat_flux_in"});
-        const double q_stderr = largest_stderr(walls, name);
+        const double q = area_ratio * number(walls, {"walls", name.c_str(), "heat_flux_in"});
+        const double q_stderr = area_ratio * largest_stderr(walls, name);
         const double jump = b.temperature[side] - w.value;
         if (kapitza && std::isfinite(q) && q * jump > 0) {
           // h_K = q / (T_wall - T_f), or for the inverse law q / (T_wall^2 (1/T_f - 1/T_wall))
@@ -182,6 +205,35 @@ std::vector<std::string> calibrated_twin_overrides(const std::string& run_dir,
       conductances << (d + side ? ", " : "") << h;
       errors << (d + side ? ", " : "") << h_stderr;
     }
+  }
+  if (run.parameters.compare.effective_walls)
+    overrides.push_back("Continuum/Wall positions=" + positions.str());
+  if (run.parameters.compare.wall_slip &&
+      run.parameters.continuum.model == continuum::Model::Boussinesq) {
+    // Navier slip from the particle wall's friction per area zeta, acting at its mean depth
+    // h_f: eta u'(plane) = zeta u(h_f), u(h_f) ~ u(plane) + u' (h_f - plane), so
+    // b = eta / zeta - (h_f - plane) (eta of the nominal twin, at its reference temperature).
+    const io::Json nominal = read_json(fs::path(run_dir) / "continuum" / "summary.json",
+                                       "the nominal twin runs before the calibrated one");
+    const double eta = number(nominal, {"continuum_parameters", "viscosity", "value_at_reference"});
+    std::ostringstream slips;
+    slips << std::setprecision(6);
+    for (int d = 0; d < scene.dim; ++d)
+      for (int side = 0; side < 2; ++side) {
+        const std::string name = wall_name(d, side);
+        double b = 0;
+        if (!scene.boundary[d].periodic && scene.boundary[d].no_slip) {
+          const double zeta = number(walls, {"walls", name.c_str(), "friction_per_area"});
+          const double depth = number(walls, {"walls", name.c_str(), "friction_depth"});
+          if (!(zeta > 0) || !std::isfinite(eta))
+            throw io::InputError(run_dir + "/particle/summary.json: no wall friction_per_area "
+                                           "(a run from before it); re-run the particle stage "
+                                           "(--force) or set Compare/Wall slip = false");
+          b = std::max(eta / zeta - (depth - plane[2 * d + side]), 1e-3);
+        }
+        slips << (d + side ? ", " : "") << b;
+      }
+    overrides.push_back("Continuum/Slip lengths=" + slips.str());
   }
   if (kapitza) {
     overrides.push_back("Continuum/Kapitza conductances=" + conductances.str());
@@ -321,6 +373,16 @@ int compare_stage(const CommandLine& cl) {
       }
       j["jump"] = b.temperature[side] - w.value;
       j["extrapolated_from_distance"] = w.extrapolated_from;
+      const double plane =
+          number(presults, {"walls", wall_name(d, side).c_str(), "effective_position"});
+      if (std::isfinite(plane)) { // the same at the wall's effective position
+        j["effective_position"] = plane;
+        j["effective_position_stderr"] =
+            number(presults, {"walls", wall_name(d, side).c_str(), "effective_position_stderr"});
+        const auto at = compare::wall_fluid_temperature(final_state, interior, d, side, plane);
+        j["fluid_temperature_at_effective_position"] = at.value;
+        j["jump_at_effective_position"] = b.temperature[side] - at.value;
+      }
       jumps[wall_name(d, side)] = j;
     }
   }
@@ -343,15 +405,21 @@ int compare_stage(const CommandLine& cl) {
   for (const ContinuumTwin& t : twins) {
     io::Json j = io::Json::object();
     j["stage"] = t.stage;
-    if (t.name == "calibrated")
-      j["calibration"] =
-          run.parameters.compare.calibration != "kapitza" ||
-                  run.parameters.continuum.model != continuum::Model::Boussinesq
+    if (t.name == "calibrated") {
+      const bool boussinesq = run.parameters.continuum.model == continuum::Model::Boussinesq;
+      std::string calibration =
+          run.parameters.compare.calibration != "kapitza" || !boussinesq
               ? "walls at the fluid's wall temperatures"
           : run.parameters.continuum.boundary[0].kapitza_inverse
               ? "Kapitza walls, inverse law (h_K T_w^2 (1/T_f - 1/T_w) = the particle wall's "
                 "heat flux)"
               : "Kapitza walls (h_K = the particle wall's heat flux / its jump)";
+      if (run.parameters.compare.wall_slip && boussinesq)
+        calibration += "; Navier slip at no-slip walls (b from the particle wall's friction)";
+      if (run.parameters.compare.effective_walls)
+        calibration += "; walls at their effective positions (Gibbs depths)";
+      j["calibration"] = calibration;
+    }
     const auto T = compare::temperature_distance(final_state, t.state, interior, dT);
     j["temperature"] = T.to_json();
     table["temperature_l2_" + t.name] = T.l2;
@@ -381,7 +449,16 @@ int compare_stage(const CommandLine& cl) {
     const double nu_own = number(t.summary, {"results", "nusselt_volume_average"});
     const double q_own = number(t.summary, {"dimensionless", "conduction_flux"});
     if (heated >= 0 && std::isfinite(nu_own)) {
-      const double q = nu_own * q_own;
+      // Its heat flow over the scene's wall area, as the particle's (a twin with its walls
+      // moved in has a smaller wall; flux per own area = Nu_own kappa dT / H_own).
+      double area_ratio = 1;
+      const io::Json* twin = t.summary.find("continuum_parameters");
+      const io::Json* own_box = twin ? twin->find("box") : nullptr;
+      if (own_box && own_box->is_array() && own_box->elements().size() == std::size_t(scene.dim))
+        for (int e = 0; e < scene.dim; ++e)
+          if (e != heated) area_ratio *= own_box->elements()[e].number() / scene.box[e];
+      if (twin && twin->find("scene_box")) j["wall_area_over_scene"] = area_ratio;
+      const double q = nu_own * q_own * area_ratio;
       j["nusselt_own"] = nu_own; // against this twin's own wall temperature difference
       j["heat_flux"] = q;
       j["nusselt"] = q / q0; // against the nominal conduction flux, as the particle's

@@ -179,6 +179,8 @@ int particle_stage(const CommandLine& cl) {
   io::write_file_atomically(stage.file("correlations.csv"), out.correlations_csv);
   io::write_file_atomically(stage.file("fields.csv"), out.fields_csv);
   io::write_file_atomically(stage.file("blocks.csv"), out.blocks_csv);
+  if (!out.wall_layers_csv.empty())
+    io::write_file_atomically(stage.file("wall_layers.csv"), out.wall_layers_csv);
   double max_speed = 0; // largest bin-mean speed of the final averages
   if (!out.field_snapshots.empty())
     if (const io::Field* v = out.field_snapshots.back().find("velocity"))

@@ -514,6 +514,38 @@ def figure_profiles(out_dir, profiles, geometry, metrics, twins, excluded):
     return [p[3] for p in panels]
 
 
+def figure_wall_layers(out_dir, layers, particle_summary):
+    """Density, temperature and tangential velocity against the distance from each wall."""
+    import matplotlib.pyplot as plt
+
+    walls = list(dict.fromkeys(r["wall"] for r in layers.rows))
+    fig, axes = plt.subplots(1, 3, figsize=(15, 4.2), layout="constrained")
+    for k, wall in enumerate(walls):
+        rows = [r for r in layers.rows if r["wall"] == wall]
+        h = layers.numbers("h", rows)
+        colour = f"C{k}"
+        # The velocity along the wall: the first axis other than the wall's own.
+        along = next((a for a in "xyz" if a != wall[0] and layers.has(f"v{a}")), None)
+        for ax, column in zip(axes, ["density", "T_kinetic", f"v{along}" if along else None]):
+            if column is None or not layers.has(column):
+                continue
+            ax.errorbar(h, layers.numbers(column, rows), yerr=layers.numbers(column + "_se", rows),
+                        fmt=".-", ms=3, lw=0.8, capsize=1.5, color=colour,
+                        label=f"{wall} ({column})" if ax is axes[2] else wall)
+        depth = number(particle_summary, "results", "walls", wall, "effective_position")
+        if finite(depth):
+            for ax in axes:
+                ax.axvline(depth, color=colour, ls="--", lw=0.8)
+    for ax, label in zip(axes, ["number density [rc^-d]", "T_kinetic [T0]",
+                                "velocity along the wall [rc/tau]"]):
+        ax.set_xlabel("distance from the wall plane h [rc]")
+        ax.set_ylabel(label)
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=8)
+    axes[2].axhline(0, color="0.6", lw=0.7)
+    save_figure(fig, out_dir, "wall_layers.png")
+
+
 def wall_points(ax, metrics, direction, length):
     """The walls' own temperatures and the particle fluid's extrapolated temperature there."""
     jumps = lookup(metrics, "particle", "wall_temperature_jumps") or {}
@@ -845,6 +877,16 @@ def report_run(run_dir, out_dir):
                    "bins with their block standard errors, the twins as lines; grey: the "
                    "excluded wall layer; squares: the walls' temperatures; diamonds: the particle "
                    f"fluid's temperature extrapolated to the wall. {UNITS_NOTE}.")
+    layers = read_table(os.path.join(run_dir, "particle", "wall_layers.csv"))
+    if layers and layers.rows:
+        figure_wall_layers(out_dir, layers, particle_summary)
+        doc.figure("wall_layers.png",
+                   "The particle fluid in the layer at each wall (particle/wall_layers.csv, "
+                   "slices parallel to the wall, block standard errors): number density, kinetic "
+                   "temperature and the velocity along the wall against the distance h from the "
+                   "wall plane; dashed: each wall's effective position (the Gibbs depth of its "
+                   "density profile, where Compare/Effective walls puts the calibrated twin's "
+                   f"wall). {UNITS_NOTE}.")
     if series and series.rows:
         fields = figure_error_vs_time(out_dir, series, metrics, twins)
         doc.figure("error_vs_time.png",

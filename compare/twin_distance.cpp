@@ -225,7 +225,7 @@ Distance density_distance(const BinnedState& p, const BinnedState& c,
 }
 
 WallFluidTemperature wall_fluid_temperature(const BinnedState& p, const std::vector<char>& interior,
-                                            int direction, int side) {
+                                            int direction, int side, double plane) {
   const io::Grid& g = p.grid;
   const long n = g.counts[direction];
   // Layer index counted from the wall, and back to the grid index.
@@ -241,7 +241,7 @@ WallFluidTemperature wall_fluid_temperature(const BinnedState& p, const std::vec
   if (first < 0) return {std::nan(""), std::nan(""), 0, {}};
   const double h = g.spacing[direction];
   w.extrapolated_from = (first + 0.5) * h;
-  const double r = w.extrapolated_from / h; // T_wall = T1 + (T1 - T2) r
+  const double r = (w.extrapolated_from - plane) / h; // T(plane) = T1 + (T1 - T2) r
   // The bins of the first layer beyond the wall layer and their neighbours one layer further in.
   std::vector<std::pair<long, long>> columns;
   for (long b = 0; b < g.cell_count(); ++b) {

@@ -73,9 +73,10 @@ struct WallFluidTemperature {
   double extrapolated_from = 0; // distance from the wall of the nearer bin layer used
   std::vector<double> blocking;
 };
+// `plane`: the distance from the wall plane to extrapolate to (a wall's effective position).
 WallFluidTemperature wall_fluid_temperature(const BinnedState& particle,
                                             const std::vector<char>& interior, int direction,
-                                            int side);
+                                            int side, double plane = 0);
 
 // Mid-line profiles: along each direction a through the box centre, the bins' values averaged
 // over the central layer(s) of the other directions (two layers when the count is even).

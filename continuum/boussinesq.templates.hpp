@@ -208,7 +208,7 @@ template <int dim> void BoussinesqProblem<dim>::make_constraints() {
               dof_handler_, id, dealii::Functions::ConstantFunction<dim>(value, n_components), c,
               fe_.component_mask(temperature));
         }
-        if (b.no_slip)
+        if (b.no_slip && !b.navier(side)) // a Navier wall: no normal flow, as free slip
           dealii::VectorTools::interpolate_boundary_values(
               dof_handler_, id, dealii::Functions::ZeroFunction<dim>(n_components), c,
               fe_.component_mask(velocities));

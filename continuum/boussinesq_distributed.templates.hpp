@@ -301,7 +301,7 @@ template <int dim> void DistributedBoussinesqProblem<dim>::make_constraints() {
               dealii::Functions::ConstantFunction<dim>(homogeneous ? 0.0 : b.temperature[side],
                                                        n_components),
               c, fe_.component_mask(temperature));
-        if (b.no_slip)
+        if (b.no_slip && !b.navier(side)) // a Navier wall: no normal flow, as free slip
           dealii::VectorTools::interpolate_boundary_values(
               dof_handler_, id, dealii::Functions::ZeroFunction<dim>(n_components), c,
               fe_.component_mask(velocities));

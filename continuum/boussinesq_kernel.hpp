@@ -7,7 +7,8 @@
 //   n c_p (dT/dt + u . grad T) - div(kappa(T) grad T) = Q
 // eps(u) the symmetric gradient; flux walls add - int_Gamma q phi_T, Kapitza (Robin) walls
 // - int_Gamma h_K (T_wall - T) phi_T (Kapitza 1941: a jump T_wall - T = q / h_K at the wall), or
-// its inverse law h_K T_wall^2 (1/T - 1/T_wall) (DirectionBoundary::kapitza_flux).
+// its inverse law h_K T_wall^2 (1/T - 1/T_wall) (DirectionBoundary::kapitza_flux); Navier
+// walls + int_Gamma (eta(T) / b) u . phi_u (the normal part is constrained to zero).
 // Residual R and its exact
 // Jacobian (Gateaux derivative) for Newton's method. Steady: no time derivatives. In time, a
 // multistep (BDF) derivative d/dt x ~ a0 x + h with the history h = sum_k a_k x^{n+1-k} of the
@@ -35,8 +36,8 @@ public:
         n_(fe.n_dofs_per_cell()), u_(quadrature_.size()), grad_T_(quadrature_.size()),
         grad_u_(quadrature_.size()), p_(quadrature_.size()), T_(quadrature_.size()),
         history_u_(quadrature_.size()), history_T_(quadrature_.size()),
-        face_T_(face_quadrature_.size()), phi_u_(n_), grad_phi_T_(n_), grad_phi_u_(n_),
-        eps_phi_u_(n_), div_phi_u_(n_), phi_p_(n_), phi_T_(n_) {}
+        face_T_(face_quadrature_.size()), face_u_(face_quadrature_.size()), phi_u_(n_),
+        grad_phi_T_(n_), grad_phi_u_(n_), eps_phi_u_(n_), div_phi_u_(n_), phi_p_(n_), phi_T_(n_) {}
 
   // cell_rhs = -R (and cell_matrix = dR/dx if with_jacobian) at the state x, gravity scaled by
   // gravity_factor; with a `history`, the time derivatives a0 x + history are included.
@@ -125,6 +126,9 @@ public:
       const auto& b = prm_.boundary[d];
       if (b.periodic) continue;
       const bool robin = b.robin(side);
+      if (b.navier(side))
+        add_navier_traction(cell, face, x, b.slip_length[side], with_jacobian, cell_matrix,
+                            cell_rhs);
       if (!robin && (b.fixed_temperature[side] || b.heat_flux[side] == 0.0)) continue;
       fe_face_values_.reinit(cell, face);
       if (robin) fe_face_values_[temperature].get_function_values(x, face_T_);
@@ -144,6 +148,36 @@ public:
   }
 
 private:
+  // Navier wall: residual + int (eta(T)/b) u . phi_u,i; Jacobian (eta/b) phi_u,j . phi_u,i +
+  // (eta'(T)/b) phi_T,j u . phi_u,i.
+  template <class Face, class VectorType>
+  void add_navier_traction(const typename dealii::DoFHandler<dim>::active_cell_iterator& cell,
+                           const Face& face, const VectorType& x, double slip_length,
+                           bool with_jacobian, dealii::FullMatrix<double>& cell_matrix,
+                           dealii::Vector<double>& cell_rhs) {
+    const dealii::FEValuesExtractors::Vector velocities(0);
+    const dealii::FEValuesExtractors::Scalar temperature(dim + 1);
+    fe_face_values_.reinit(cell, face);
+    fe_face_values_[temperature].get_function_values(x, face_T_);
+    fe_face_values_[velocities].get_function_values(x, face_u_);
+    const double T_ref = prm_.reference_temperature;
+    for (unsigned q = 0; q < face_quadrature_.size(); ++q) {
+      const double JxW = fe_face_values_.JxW(q);
+      const double eta = prm_.viscosity.at(face_T_[q], T_ref) / slip_length;
+      const double deta = prm_.viscosity.derivative(face_T_[q], T_ref) / slip_length;
+      for (unsigned i = 0; i < n_; ++i) {
+        const dealii::Tensor<1, dim> phi_i = fe_face_values_[velocities].value(i, q);
+        cell_rhs(i) -= eta * (face_u_[q] * phi_i) * JxW;
+        if (!with_jacobian) continue;
+        for (unsigned j = 0; j < n_; ++j)
+          cell_matrix(i, j) +=
+              (eta * (fe_face_values_[velocities].value(j, q) * phi_i) +
+               deta * fe_face_values_[temperature].value(j, q) * (face_u_[q] * phi_i)) *
+              JxW;
+      }
+    }
+  }
+
   const ContinuumParameters& prm_;
   const dealii::QGauss<dim> quadrature_;
   const dealii::QGauss<dim - 1> face_quadrature_;
@@ -155,6 +189,7 @@ private:
   std::vector<double> p_, T_;
   std::vector<dealii::Tensor<1, dim>> history_u_;
   std::vector<double> history_T_, face_T_;
+  std::vector<dealii::Tensor<1, dim>> face_u_;
   std::vector<dealii::Tensor<1, dim>> phi_u_, grad_phi_T_;
   std::vector<dealii::Tensor<2, dim>> grad_phi_u_;
   std::vector<dealii::SymmetricTensor<2, dim>> eps_phi_u_;

@@ -147,7 +147,7 @@ BinAverages bin_averages(const dealii::DoFHandler<dim>& dofs, const VectorType& 
   for (int d = 0; d < dim; ++d) {
     out.bins[d] = std::max(1u, prm.bins[d]);
     n_bins *= out.bins[d];
-    finest_bin = std::min(finest_bin, prm.box[d] / out.bins[d]);
+    finest_bin = std::min(finest_bin, prm.bin_extent(d) / out.bins[d]);
   }
   for (const auto& cell : dofs.active_cell_iterators())
     largest_cell = std::max(largest_cell, cell->diameter());
@@ -173,8 +173,9 @@ BinAverages bin_averages(const dealii::DoFHandler<dim>& dofs, const VectorType& 
       const auto& x = fe_values.quadrature_point(q);
       unsigned index = 0, stride = 1;
       for (int d = 0; d < dim; ++d) {
-        const int i = std::clamp(static_cast<int>(x[d] / prm.box[d] * out.bins[d]), 0,
-                                 static_cast<int>(out.bins[d]) - 1);
+        const int i = std::clamp(
+            static_cast<int>((x[d] - prm.bin_lower[d]) / prm.bin_extent(d) * out.bins[d]), 0,
+            static_cast<int>(out.bins[d]) - 1);
         index += stride * i;
         stride *= out.bins[d];
       }

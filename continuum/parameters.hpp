@@ -65,6 +65,10 @@ struct DirectionBoundary {
   // The conductances' standard errors (not used by the solver: the continuum stage moves each
   // h_K by its error in an extra solve, for the twin's heat-flux error).
   std::array<double, 2> kapitza_conductance_stderr{{0.0, 0.0}};
+  // Navier slip of a no-slip wall: with b > 0 no normal flow and the tangential traction
+  // eta(T) u_t / b (Navier 1823; the particle wall's friction over its layer). Boussinesq only.
+  std::array<double, 2> slip_length{{0.0, 0.0}};
+  bool navier(int side) const { return no_slip && slip_length[side] > 0; }
   double kapitza_flux(int side, double T) const { // heat flux into the domain at fluid T
     const double h = kapitza_conductance[side], Tw = temperature[side];
     return kapitza_inverse ? h * Tw * Tw * (1 / T - 1 / Tw) : h * (Tw - T);
@@ -145,6 +149,11 @@ struct ContinuumParameters {
 
   // Output
   std::array<unsigned, 3> bins{{10, 10, 10}};
+  // The bins cover [bin_lower, bin_lower + bin_box] of this twin's coordinates (bin_box 0: the
+  // domain [0, box]). A twin whose walls sit inside the scene's, at the particle walls' effective
+  // positions delta, bins over the scene's box: bin_lower = -delta_lower, bin_box = scene box.
+  std::array<double, 3> bin_lower{{0, 0, 0}}, bin_box{{0, 0, 0}};
+  double bin_extent(int d) const { return bin_box[d] > 0 ? bin_box[d] : box[d]; }
   std::vector<std::array<double, 3>> probe_points;
   int profile_samples = 401; // samples per mid-line before zooming in on the maximum
   bool write_fields = true;  // HDF5 + XDMF

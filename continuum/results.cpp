@@ -30,6 +30,10 @@ io::Json to_json(const ContinuumParameters& p) {
                                             : "heat-conduction";
   j["dim"] = p.dim;
   j["box"] = triple(p.box, p.dim);
+  if (p.bin_box[0] > 0) { // the scene's box in this twin's coordinates (walls moved in)
+    j["scene_lower"] = triple(p.bin_lower, p.dim);
+    j["scene_box"] = triple(p.bin_box, p.dim);
+  }
   io::Json walls = io::Json::array();
   for (int d = 0; d < p.dim; ++d) {
     const auto& b = p.boundary[d];
@@ -46,6 +50,7 @@ io::Json to_json(const ContinuumParameters& p) {
           s["kapitza_conductance_stderr"] = b.kapitza_conductance_stderr[side];
         } else if (!b.fixed_temperature[side])
           s["heat_flux_in"] = b.heat_flux[side];
+        if (b.navier(side)) s["slip_length"] = b.slip_length[side];
         w[side ? "upper" : "lower"] = s;
       }
       w["velocity"] = b.no_slip ? "no-slip" : "free-slip";
@@ -239,7 +244,7 @@ std::string bins_csv(const ContinuumResult& r, const ContinuumParameters& p) {
     std::array<unsigned, 3> idx{{0, 0, 0}};
     for (int d = 0; d < r.dim; ++d) idx[d] = rest % b[d], rest /= b[d];
     for (int d = 0; d < r.dim; ++d) out << idx[d] << ",";
-    for (int d = 0; d < r.dim; ++d) out << (idx[d] + 0.5) * p.box[d] / b[d] << ",";
+    for (int d = 0; d < r.dim; ++d) out << (idx[d] + 0.5) * p.bin_extent(d) / b[d] << ",";
     for (std::size_t c = 0; c < r.bins.names.size(); ++c)
       out << r.bins.values[c][k] << (c + 1 < r.bins.names.size() ? "," : "\n");
   }

@@ -55,6 +55,7 @@ public:
   bool is_object() const { return std::holds_alternative<Object>(value_); }
   bool is_number() const { return std::holds_alternative<double>(value_); }
   bool is_string() const { return std::holds_alternative<std::string>(value_); }
+  bool is_array() const { return std::holds_alternative<Array>(value_); }
   double number() const { return std::get<double>(value_); }
   const std::string& string() const& { return std::get<std::string>(value_); }
   const std::string& string() const&& = delete;

@@ -204,4 +204,149 @@ template <int D> BinnedFields FieldSampler<D>::result() const {
 template class FieldSampler<2>;
 template class FieldSampler<3>;
 
+template <int D>
+WallLayerSampler<D>::WallLayerSampler(const std::array<double, 3>& box,
+                                      const std::array<bool, 3>& walls, double range,
+                                      int slices_per_range, int blocks, long total_samples,
+                                      double mass)
+    : box_(box), range_(range), slice_(range / slices_per_range), slices_(2 * slices_per_range),
+      blocks_(blocks), total_(total_samples), mass_(mass) {
+  for (int d = 0; d < D; ++d)
+    if (walls[d]) walls_.push_back(2 * d), walls_.push_back(2 * d + 1);
+  const std::size_t cells = static_cast<std::size_t>(blocks_) * walls_.size() * slices_;
+  n_.assign(cells, 0.0);
+  v2_.assign(cells, 0.0);
+  v_.assign(cells * D, 0.0);
+  block_samples_.assign(blocks_, 0);
+}
+
+template <int D> void WallLayerSampler<D>::sample(const State<D>& s) {
+  const int block =
+      static_cast<int>(std::min<long>(taken_ * blocks_ / std::max(total_, 1L), blocks_ - 1));
+  ++taken_;
+  ++block_samples_[block];
+  const double inv_slice = 1 / slice_;
+  for (std::size_t k = 0; k < walls_.size(); ++k) {
+    const int d = walls_[k] / 2, side = walls_[k] % 2;
+    const std::size_t base = (static_cast<std::size_t>(block) * walls_.size() + k) * slices_;
+    for (std::size_t i = 0; i < s.size(); ++i) {
+      const double h = side ? box_[d] - s.x[d][i] : s.x[d][i];
+      const int slice = static_cast<int>(h * inv_slice);
+      if (slice < 0 || slice >= slices_) continue;
+      n_[base + slice] += 1;
+      for (int e = 0; e < D; ++e) {
+        v_[(base + slice) * D + e] += s.v[e][i];
+        v2_[base + slice] += s.v[e][i] * s.v[e][i];
+      }
+    }
+  }
+}
+
+template <int D>
+std::vector<WallLayerProfile>
+WallLayerSampler<D>::result(const std::function<double(int, double, double)>& friction) const {
+  std::vector<WallLayerProfile> out;
+  int used = 0; // blocks with samples
+  for (int b = 0; b < blocks_; ++b) used += block_samples_[b] > 0;
+  for (std::size_t k = 0; k < walls_.size(); ++k) {
+    const int d = walls_[k] / 2;
+    double area = 1; // of the wall plane
+    for (int e = 0; e < D; ++e)
+      if (e != d) area *= box_[e];
+    WallLayerProfile p;
+    p.wall = walls_[k];
+    p.slice = slice_;
+    for (int j = 0; j < slices_; ++j) p.h.push_back((j + 0.5) * slice_);
+    // Per block: density and mean velocity per slice, the reference density, the Gibbs depth.
+    std::vector<std::vector<double>> n_blocks, v_blocks, t_blocks;
+    std::vector<double> ref_blocks, depth_blocks, zeta_blocks, zeta_h_blocks;
+    for (int b = 0; b < blocks_; ++b) {
+      if (block_samples_[b] == 0) continue;
+      const std::size_t base = (static_cast<std::size_t>(b) * walls_.size() + k) * slices_;
+      std::vector<double> n(slices_), v(static_cast<std::size_t>(slices_) * D, 0.0);
+      std::vector<double> t(slices_, 0.0);
+      double ref = 0;
+      for (int j = 0; j < slices_; ++j) {
+        n[j] = n_[base + j] / (block_samples_[b] * area * slice_);
+        for (int e = 0; e < D; ++e)
+          v[j * D + e] = n_[base + j] > 0 ? v_[(base + j) * D + e] / n_[base + j] : 0.0;
+        if (j >= slices_ / 2) ref += n[j] / (slices_ - slices_ / 2);
+        if (n_[base + j] >= 2) { // kinetic temperature in the slice's rest frame
+          double mean2 = 0;
+          for (int e = 0; e < D; ++e) mean2 += v[j * D + e] * v[j * D + e];
+          t[j] = mass_ * (v2_[base + j] / n_[base + j] - mean2) / D;
+        }
+      }
+      double depth = 0, zeta = 0, zeta_h = 0;
+      for (int j = 0; j < slices_ / 2; ++j) {
+        depth += (1 - n[j] / ref) * slice_;
+        if (n_[base + j] < 2) continue;
+        const double z = n[j] * friction(walls_[k], t[j], p.h[j]) * slice_;
+        zeta += z, zeta_h += z * p.h[j];
+      }
+      n_blocks.push_back(std::move(n)), v_blocks.push_back(std::move(v));
+      t_blocks.push_back(std::move(t));
+      ref_blocks.push_back(ref), depth_blocks.push_back(depth);
+      zeta_blocks.push_back(zeta), zeta_h_blocks.push_back(zeta > 0 ? zeta_h / zeta : 0.0);
+    }
+    auto mean_se = [&](auto value, double& mean, double& se) { // over the used blocks
+      mean = 0, se = 0;
+      for (int b = 0; b < used; ++b) mean += value(b) / used;
+      for (int b = 0; b < used; ++b) se += (value(b) - mean) * (value(b) - mean);
+      se = used > 1 ? std::sqrt(se / (used - 1) / used) : 0.0;
+    };
+    p.density.mean.resize(slices_), p.density.stderr_.resize(slices_);
+    p.temperature.mean.resize(slices_), p.temperature.stderr_.resize(slices_);
+    p.velocity.mean.resize(static_cast<std::size_t>(slices_) * D);
+    p.velocity.stderr_.resize(static_cast<std::size_t>(slices_) * D);
+    for (int j = 0; j < slices_; ++j) {
+      mean_se([&](int b) { return n_blocks[b][j]; }, p.density.mean[j], p.density.stderr_[j]);
+      mean_se([&](int b) { return t_blocks[b][j]; }, p.temperature.mean[j],
+              p.temperature.stderr_[j]);
+      for (int e = 0; e < D; ++e)
+        mean_se([&](int b) { return v_blocks[b][j * D + e]; }, p.velocity.mean[j * D + e],
+                p.velocity.stderr_[j * D + e]);
+    }
+    double unused = 0;
+    mean_se([&](int b) { return ref_blocks[b]; }, p.reference, p.reference_stderr);
+    mean_se([&](int b) { return depth_blocks[b]; }, p.effective_position,
+            p.effective_position_stderr);
+    mean_se([&](int b) { return zeta_blocks[b]; }, p.friction, p.friction_stderr);
+    mean_se([&](int b) { return zeta_h_blocks[b]; }, p.friction_depth, unused);
+    out.push_back(std::move(p));
+  }
+  return out;
+}
+
+template <int D>
+std::string WallLayerSampler<D>::csv(const std::vector<WallLayerProfile>& profiles, int dim) {
+  std::ostringstream out;
+  out << "# the layer at each wall in slices parallel to it: h = distance from the wall plane "
+         "(rc), number density, kinetic temperature and mean velocity components with block "
+         "standard errors\n"
+         "wall,h,density,density_se,T_kinetic,T_kinetic_se";
+  const char* axes = "xyz";
+  for (int e = 0; e < dim; ++e) out << ",v" << axes[e] << ",v" << axes[e] << "_se";
+  out << "\n";
+  const char* names[6] = {"x_lower", "x_upper", "y_lower", "y_upper", "z_lower", "z_upper"};
+  char buf[64];
+  for (const auto& p : profiles)
+    for (std::size_t j = 0; j < p.h.size(); ++j) {
+      out << names[p.wall];
+      std::snprintf(buf, sizeof buf, ",%.6g,%.8g,%.8g,%.8g,%.8g", p.h[j], p.density.mean[j],
+                    p.density.stderr_[j], p.temperature.mean[j], p.temperature.stderr_[j]);
+      out << buf;
+      for (int e = 0; e < dim; ++e) {
+        std::snprintf(buf, sizeof buf, ",%.8g,%.8g", p.velocity.mean[j * dim + e],
+                      p.velocity.stderr_[j * dim + e]);
+        out << buf;
+      }
+      out << "\n";
+    }
+  return out.str();
+}
+
+template class WallLayerSampler<2>;
+template class WallLayerSampler<3>;
+
 } // namespace twinflow::particle

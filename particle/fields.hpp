@@ -5,6 +5,7 @@
 #include <array>
 #include <cmath>
 #include <cstring>
+#include <functional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -85,6 +86,53 @@ private:
   std::vector<long> block_samples_;
   std::vector<double> now_; // scratch: this sample's bin means
   std::vector<int> bin_;    // scratch: each particle's bin
+};
+
+// The layer next to each wall, in thin slices parallel to it: density and mean velocity against
+// the distance h from the wall plane, per time block. From the density the wall's effective
+// position (the calibrated continuum twin's wall).
+struct WallLayerProfile {
+  int wall = 0;                                 // 2 d + side (x lower, x upper, y lower, ...)
+  double slice = 0;                             // slice thickness
+  double reference = 0, reference_stderr = 0;   // density over [range, 2 range): beyond the wall
+  std::vector<double> h;                        // slice centres, distance from the wall plane
+  FieldEstimate density, temperature, velocity; // per slice (velocity: slice * D + d);
+                                                // temperature: kinetic, in the slice's frame
+  // Gibbs dividing surface: integral over [0, range) of (1 - n(h) / reference) dh, the depth of
+  // a step profile with the same particle count; per block, its mean and block error.
+  double effective_position = 0, effective_position_stderr = 0;
+  // The wall's tangential friction per area and slip velocity, zeta = integral n(h) gamma(T(h))
+  // w_D(h) dh (T the slice's kinetic temperature), and the mean distance at which it acts.
+  double friction = 0, friction_stderr = 0, friction_depth = 0;
+};
+
+template <int D> class WallLayerSampler {
+public:
+  // Walls present per direction; `range` the wall force's (the slices span [0, 2 range)).
+  WallLayerSampler(const std::array<double, 3>& box, const std::array<bool, 3>& walls, double range,
+                   int slices_per_range, int blocks, long total_samples, double mass);
+  void sample(const State<D>& s); // call exactly total_samples times
+  // friction(wall, T, h): the friction coefficient gamma w_D(h) of a particle at temperature T
+  // and distance h from that wall.
+  std::vector<WallLayerProfile>
+  result(const std::function<double(int, double, double)>& friction) const;
+  static std::string csv(const std::vector<WallLayerProfile>& profiles, int dim);
+
+  template <class A> void archive(A& a) {
+    a("wall_layer_counts", n_), a("wall_layer_velocity", v_), a("wall_layer_v2", v2_);
+    a("wall_layer_taken", taken_);
+    a("wall_layer_block_samples", block_samples_);
+  }
+
+private:
+  std::array<double, 3> box_;
+  std::vector<int> walls_; // 2 d + side of each wall present
+  double range_, slice_;
+  int slices_, blocks_;
+  long total_, taken_ = 0;
+  double mass_;
+  std::vector<double> n_, v_, v2_; // [block][wall][slice] (v_: times D)
+  std::vector<long> block_samples_;
 };
 
 } // namespace twinflow::particle

@@ -310,6 +310,12 @@ public:
     }
     if constexpr (M::Heat::active)
       for (int d = 0; d < D; ++d) conduction_[d].assign(n_, 0.0);
+    if (p.has_walls()) {
+      std::array<bool, 3> walls{};
+      for (int d = 0; d < D; ++d) walls[d] = p.walls[d].present;
+      wall_layers_ = std::make_unique<WallLayerSampler<D>>(box3(), walls, p.wall_range, 20,
+                                                           p.blocks, sampled_rows(), p.mass);
+    }
   }
 
   template <class A> void archive(A& a) {
@@ -335,6 +341,10 @@ public:
     if (slab_profile_) {
       auto sp = a.nested("slab_profile");
       slab_profile_->archive(sp);
+    }
+    if (wall_layers_) {
+      auto wl = a.nested("wall_layers");
+      wall_layers_->archive(wl);
     }
     auto snaps = a.nested("snapshots");
     archive_snapshots(snaps, out_.field_snapshots);
@@ -482,6 +492,7 @@ private:
     const auto& potential = sim_.carried().potential;
     fields_.sample(s, potential, conduction_);
     if (slab_profile_) slab_profile_->sample(s, potential, conduction_);
+    if (wall_layers_) wall_layers_->sample(s);
     ++fields_taken_;
     const long rows = fields_.total_samples();
     if (fields_taken_ == rows || fields_taken_ % std::max(1L, rows / 10) == 0)
@@ -600,6 +611,34 @@ private:
           blocking.push_back(block_average(wall_heat_flux_[w], p_.blocks / merge).stderr_);
         walls[names[w]]["heat_flux_in_stderr_blocking"] = blocking;
       }
+      if (wall_layers_) {
+        // A no-slip wall's friction on a particle's tangential velocity, gamma w_D(h), against a
+        // wall particle at the wall's temperature (adiabatic: the particle's own).
+        const Weight weight(p_.wall_range, p_.dissipation.exponent);
+        const auto friction = [&](int wall, double T, double h) {
+          const WallPair& pair = p_.walls[wall / 2];
+          if (!pair.no_slip || !(T > 0)) return 0.0;
+          double w, sqrt_w;
+          weight.eval(h, w, sqrt_w);
+          if (!M::has_energy || p_.friction == Friction::ConstantGamma) return p_.gamma * w;
+          const double Tw = pair.thermal[wall % 2] ? pair.temperature[wall % 2] : T;
+          return p_.sigma * p_.sigma * (T + Tw) / (4 * T * Tw) * w; // 000:(2.37), 003
+        };
+        const auto layers = wall_layers_->result(friction);
+        for (const auto& l : layers) {
+          io::Json& w = walls[names[l.wall]];
+          w["effective_position"] = l.effective_position; // Gibbs depth from the wall plane
+          w["effective_position_stderr"] = l.effective_position_stderr;
+          w["layer_reference_density"] = l.reference;
+          w["layer_reference_density_stderr"] = l.reference_stderr;
+          if (p_.walls[l.wall / 2].no_slip) {
+            w["friction_per_area"] = l.friction; // tangential force / (area x slip velocity)
+            w["friction_per_area_stderr"] = l.friction_stderr;
+            w["friction_depth"] = l.friction_depth;
+          }
+        }
+        out_.wall_layers_csv = WallLayerSampler<D>::csv(layers, D);
+      }
       j["walls"] = walls;
       j["wall_reflections"] = sim_.wall_crossings();
     }
@@ -702,7 +741,8 @@ private:
   long sample_count_ = 0, fields_taken_ = 0, step_ = 0, total_steps_;
   FieldSampler<D> fields_;
   std::unique_ptr<FieldSampler<D>> slab_profile_;
-  std::array<std::vector<double>, D> conduction_; // per particle, at the current sample
+  std::unique_ptr<WallLayerSampler<D>> wall_layers_; // walled scenes
+  std::array<std::vector<double>, D> conduction_;    // per particle, at the current sample
   std::array<double, 6> wall_last_momentum_{}, wall_last_energy_{};
   long wall_last_step_ = 0;
   std::vector<double> relax_time_, relax_amplitude_;

@@ -27,6 +27,7 @@ struct RunOutput {
   std::string correlations_csv; // VACF and MSD
   std::string fields_csv;       // binned fields on the scene's bins, with block errors
   std::string blocks_csv;       // T_kinetic of each block on those bins
+  std::string wall_layers_csv;  // walled scenes: density and velocity in slices along each wall
   std::string slab_profile_csv; // heat-slab scenes: the profile along the slab direction
   std::string relaxation_csv;   // thermal relaxation scenes: the mode amplitude over time
   io::Grid field_grid;          // the scene's bins

@@ -268,6 +268,32 @@ TEST(Cli, RunComparesTheTwinsAndReusesUnchangedStages) {
       << calibration.output;
   EXPECT_NE(calibration.output.find("Lower wall temperature="), std::string::npos)
       << calibration.output;
+
+  // The calibrated twin with its walls at the particle walls' effective positions: a smaller
+  // domain inside the scene's box, its bins still the scene's, Navier slip at each no-slip
+  // wall (Compare/Wall slip, on by default) and its heat flow compared over the scene's wall.
+  const Result effective =
+      run("run " + tiny + " --set 'Compare/Effective walls=true' --out " + dir.string());
+  ASSERT_EQ(effective.code, 0) << effective.output;
+  EXPECT_NE(effective.output.find("Continuum/Wall positions="), std::string::npos);
+  EXPECT_NE(effective.output.find("Continuum/Slip lengths="), std::string::npos);
+  const auto twin = twinflow::io::Json::parse(
+      twinflow::io::read_file(dir / "continuum_calibrated" / "summary.json"));
+  const auto& p = *twin.find("continuum_parameters");
+  ASSERT_NE(p.find("scene_box"), nullptr) << effective.output;
+  for (int d = 0; d < 2; ++d) {
+    const double own = p.find("box")->elements()[d].number();
+    EXPECT_LT(own, 10.0) << d; // the tiny cavity's 10 rc, less two Gibbs depths (~0.5 each)
+    EXPECT_GT(own, 8.0) << d;
+  }
+  for (const auto& wall : p.find("boundaries")->elements())
+    for (const char* side : {"lower", "upper"})
+      EXPECT_GT(wall.find(side)->find("slip_length")->number(), 0) << side;
+  const auto m =
+      twinflow::io::Json::parse(twinflow::io::read_file(dir / "compare" / "metrics.json"));
+  const double area = m.find("twins")->find("calibrated")->find("wall_area_over_scene")->number();
+  EXPECT_GT(area, 0.8);
+  EXPECT_LT(area, 1.0);
 }
 
 // `twinflow particle` records its inputs as `run` does: a later `run` of the same case reuses it.

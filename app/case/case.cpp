@@ -61,6 +61,8 @@ CaseParameters Case::resolve(const std::string& filename) const {
   c.transport.wall_steps = registry_.get_integer("Transport/Wall steps");
   c.compare.wall_layer = registry_.get_double("Compare/Wall layer");
   c.compare.calibration = registry_.get("Compare/Calibration");
+  c.compare.effective_walls = registry_.get_bool("Compare/Effective walls");
+  c.compare.wall_slip = registry_.get_bool("Compare/Wall slip");
   c.compare.rayleigh_control = registry_.get("Compare/Rayleigh control");
   c.compare.stability.energy_drift = registry_.get_double("Compare/Stability/Energy drift bound");
   c.compare.stability.temperature_tolerance =
@@ -111,6 +113,18 @@ void declare_transport_and_compare(Registry& r) {
             "Kapitza (Robin) conductance h_K = q / jump per wall, from the particle wall's heat "
             "flux q and the fluid's temperature jump there; wall temperatures: Dirichlet at the "
             "fluid's temperature extrapolated to each wall.");
+  r.declare("Compare/Effective walls", "false", Bool(),
+            "The calibrated twin's walls at the particle walls' effective positions: each wall "
+            "moved in by the depth of its depleted layer (the Gibbs dividing surface of the "
+            "measured density profile, particle/wall_layers.csv), its fluid temperature (and so "
+            "its jump) extrapolated to that plane, its heat flow compared over the scene's wall "
+            "area. false: the twin fills the scene's box.");
+  r.declare("Compare/Wall slip", "true", Bool(),
+            "The calibrated twin's no-slip walls with Navier slip (Boussinesq twin): b = eta / "
+            "zeta - (h_f - wall), zeta the particle wall's measured friction per area (integral "
+            "of n(h) gamma(T(h)) w_D(h) over its layer, particle/summary.json), h_f the mean "
+            "depth where it acts, wall the twin's wall position (the particle wall's friction lets "
+            "the fluid slip by ~1 rc on the default cavity's hot side). false: no slip.");
   r.declare("Compare/Wall layer", "1", Double(0),
             "Thickness (length units) of the layer next to each wall left out of field errors.");
   r.declare("Compare/Rayleigh control", "gravity", Selection("gravity"),

@@ -92,6 +92,18 @@ void declare_continuum(Registry& r) {
             "error then includes each h_K moved by its error (one more solve per wall). `run`'s "
             "calibrated twin sets them from the particle walls' heat-flux and fluid-temperature "
             "errors.");
+  r.declare(
+      s + "Wall positions", "", List(Double(0), 0, 6),
+      "Distance of each wall of the twin inside the scene's wall plane (rc), in the order x "
+      "lower, x upper, y lower, ...: the twin's domain is the scene's box less these, its "
+      "output bins still the scene's. `run`'s calibrated twin sets them to the particle "
+      "walls' effective positions (Compare/Effective walls); 0 or absent: the scene's walls.");
+  r.declare(s + "Slip lengths", "", List(Double(0), 0, 6),
+            "Navier slip b (rc) per wall, in the order x lower, x upper, y lower, ...: a no-slip "
+            "wall with b > 0 lets the fluid slip with the tangential traction eta u_t / b "
+            "(Boussinesq only; all of the twin's no-slip walls or none). `run`'s calibrated twin "
+            "sets them from the particle walls' measured friction (Compare/Wall slip); 0 or "
+            "absent: no slip.");
   r.declare(s + "Kapitza law", "linear", Selection("linear|inverse"),
             "The heat flux into the fluid at a Kapitza wall: linear, h_K (T_wall - T); inverse, "
             "h_K T_wall^2 (1/T - 1/T_wall), the particle wall's own law (physics.md: the "
@@ -235,6 +247,36 @@ continuum::ContinuumParameters resolve_continuum(const Registry& r, const SceneP
     c.boundary[d].kapitza_conductance_stderr[side] = kapitza_errors[w];
   }
   for (auto& b : c.boundary) b.kapitza_inverse = r.get(s + "Kapitza law") == "inverse";
+  const std::vector<double> slips = r.get_doubles(s + "Slip lengths");
+  int navier = 0, sticking = 0; // no-slip walls with and without a slip length
+  for (std::size_t w = 0; w < slips.size(); ++w) {
+    const int d = static_cast<int>(w / 2), side = static_cast<int>(w % 2);
+    r.require(d < scene.dim &&
+                  (slips[w] == 0 || (!c.boundary[d].periodic && c.boundary[d].no_slip)),
+              s + "Slip lengths", "at most 2 x dimension values, > 0 only at no-slip walls");
+    r.require(slips[w] == 0 || c.model == continuum::Model::Boussinesq, s + "Slip lengths",
+              "0 unless Continuum/Model = boussinesq");
+    c.boundary[d].slip_length[side] = slips[w];
+  }
+  for (int d = 0; d < scene.dim; ++d)
+    for (int side = 0; side < 2; ++side)
+      if (!c.boundary[d].periodic && c.boundary[d].no_slip)
+        ++(c.boundary[d].navier(side) ? navier : sticking);
+  r.require(navier == 0 || sticking == 0, s + "Slip lengths",
+            "> 0 at all of the twin's no-slip walls or at none");
+  const std::vector<double> positions = r.get_doubles(s + "Wall positions");
+  for (std::size_t w = 0; w < positions.size(); ++w) {
+    const int d = static_cast<int>(w / 2), side = static_cast<int>(w % 2);
+    r.require(d < scene.dim && (positions[w] == 0 || !c.boundary[d].periodic), s + "Wall positions",
+              "at most 2 x dimension values, 0 in periodic directions");
+    if (positions[w] == 0) continue;
+    for (int e = 0; e < scene.dim; ++e) c.bin_box[e] = scene.box[e];
+    c.box[d] -= positions[w];
+    if (side == 0) c.bin_lower[d] = -positions[w];
+  }
+  for (int d = 0; d < scene.dim; ++d)
+    r.require(c.box[d] > 0.5 * scene.box[d], s + "Wall positions",
+              "two walls' distances together below half the box length");
 
   // Same units as the particle twin: n from the scene, m from the particle section.
   c.number_density = scene.density;
@@ -288,9 +330,12 @@ continuum::ContinuumParameters resolve_continuum(const Registry& r, const SceneP
       "empty with Mode = steady and for low-Mach (which starts at the reference temperature)");
 
   for (const auto& slab : scene.heat_slabs)
-    c.heat_slabs.push_back({slab.direction, slab.lower, slab.upper, slab.power});
+    c.heat_slabs.push_back({slab.direction, slab.lower + c.bin_lower[slab.direction],
+                            slab.upper + c.bin_lower[slab.direction], slab.power});
   for (int d = 0; d < scene.dim; ++d) c.bins[d] = static_cast<unsigned>(scene.bins[d]);
   c.probe_points = points(r, s + "Output/Probe points", scene.dim, scene.box);
+  for (auto& point : c.probe_points) // scene coordinates to this twin's
+    for (int d = 0; d < scene.dim; ++d) point[d] += c.bin_lower[d];
   c.write_fields = r.get_bool(s + "Output/Write fields");
   c.profile_samples = static_cast<int>(r.get_integer(s + "Output/Profile samples"));
 

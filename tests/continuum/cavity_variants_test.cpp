@@ -139,3 +139,33 @@ TEST(KapitzaWalls, InverseLawInSeriesIsExact) {
   EXPECT_NEAR(r.temperature_max, T0, 1e-8);
   EXPECT_NEAR(r.temperature_min, cold_end(q), 1e-8);
 }
+
+// Navier slip against the exact plane Poiseuille flow with slip: walls at y = 0 and 1 with slip
+// length b, x periodic, a uniform body force f = n m alpha (T - T_ref) |g| (both walls at T, so T
+// is uniform): u(y) = f / (2 eta) (y (1 - y) + b) (Navier 1823), whose quadratic Q2 holds
+// exactly, so u_max = f / (2 eta) (1/4 + b) to the solver's tolerance. b -> 0 is no slip.
+TEST(NavierSlip, PoiseuilleWithSlipIsExact) {
+  for (const double b : {0.0, 0.1, 1.0}) {
+    ContinuumParameters p;
+    p.dim = 2;
+    p.model = Model::Boussinesq;
+    p.box = {{1.0, 1.0, 1.0}};
+    p.cells = {{2, 4, 1}};
+    p.refinements = 1;
+    p.reference_temperature = 1.0;
+    p.thermal_expansion = 1.0;
+    p.viscosity = {0.5, 0.0};
+    p.boundary[0] = {true, {{false, false}}, {{1, 1}}, {{0, 0}}, true};    // periodic x
+    p.boundary[1] = {false, {{true, true}}, {{1.5, 1.5}}, {{0, 0}}, true}; // walls, T = 1.5
+    p.boundary[1].slip_length = {{b, b}};
+    p.boundary[2].periodic = true;
+    p.gravity = {{-2.0, 0, 0}}; // f = n m alpha (T - T_ref) |g| = 1 along +x
+    p.bins = {{1, 4, 1}};
+    p.write_fields = false;
+    const ContinuumResult r = run(p, "");
+    const double f = 1.0, eta = 0.5, expected = f / (2 * eta) * (0.25 + b);
+    // u_max on the vertical mid-line, in units of chi / H (chi = kappa / (n c_p) = 1, H = 1)
+    EXPECT_NEAR(r.u_max_vertical_midline.value, expected, 1e-7) << "b = " << b;
+    EXPECT_NEAR(r.u_max_vertical_midline.position, 0.5, 1e-3) << "b = " << b;
+  }
+}

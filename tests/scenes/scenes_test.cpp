@@ -17,6 +17,45 @@ TEST(Scenes, WallsEquilibriumPressureIsRhoKT) {
   EXPECT_NEAR(t, 1.1, 0.02) << "relaxes towards the walls' temperature";
 }
 
+// The same fluid at equilibrium against repulsive no-slip walls (a_w = 5): an ideal gas, so the
+// density in the wall's layer is Boltzmann's, n(h) = n_ref exp(-U(h) / k T) with U = a_w range/2
+// (1 - h/range)^2 (physics.md). The wall's Gibbs depth and its tangential friction per area
+// (constant gamma: gamma n_ref exp(-U/kT) w_D(h) over the layer) follow as sums over the same
+// slices; each measured value within 4 of its block standard errors.
+TEST(Scenes, WallLayerFollowsBoltzmann) {
+  const auto dir = fresh_dir("scenes", "wall_layer");
+  const Result run = run_twinflow(
+      "particle " + case_path("walls_equilibrium") + " --out " + dir.string() +
+      " --threads 1 --set Scene/Temperature=1.1 --set 'Particle/Initial velocities=maxwell' "
+      "--set Particle/Walls/Repulsion=5 --set 'Scene/x boundaries/Slip=no-slip' "
+      "--set 'Particle/Equilibration steps=2000' --set Particle/Steps=8000");
+  ASSERT_EQ(run.code, 0) << run.output;
+  const twinflow::io::Json summary =
+      twinflow::io::Json::parse(twinflow::io::read_file(dir / "particle" / "summary.json"));
+  const twinflow::io::Json& r = *summary.find("results");
+  const double a = 5, range = 1.7536, gamma = 1, kT = number(r, "T_kinetic");
+  const int slices = 20; // per range, as the particle stage samples them
+  double depth = 0, friction = 0;
+  for (int j = 0; j < slices; ++j) {
+    const double h = (j + 0.5) * range / slices, c = 1 - h / range;
+    const double boltzmann = std::exp(-0.5 * a * range * c * c / kT);
+    depth += (1 - boltzmann) * range / slices;
+    friction += gamma * boltzmann * c * c * range / slices; // w_D = (1 - h/range)^2
+  }
+  for (const char* wall : {"walls.x_lower", "walls.x_upper"}) {
+    const std::string w(wall);
+    const double d = number(r, w + ".effective_position");
+    EXPECT_NEAR(d, depth, 4 * number(r, w + ".effective_position_stderr")) << wall;
+    const double n_ref = number(r, w + ".layer_reference_density");
+    const double zeta = number(r, w + ".friction_per_area");
+    const double se = std::hypot(number(r, w + ".friction_per_area_stderr"),
+                                 friction * number(r, w + ".layer_reference_density_stderr"));
+    EXPECT_NEAR(zeta, n_ref * friction, 4 * se) << wall;
+    std::cout << wall << ": depth " << d << " (Boltzmann " << depth << "), friction " << zeta
+              << " (" << n_ref * friction << ")\n";
+  }
+}
+
 // The relaxing heat and transverse momentum modes decay; the fits' chi and nu are positive with
 // finite errors, and the decays hold at the smaller box's faster rates. eta = rho m nu near the
 // reverse-Poiseuille 1.54 of the same fluid (README), loosely: one short run, fit errors only.

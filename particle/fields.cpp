@@ -209,8 +209,8 @@ WallLayerSampler<D>::WallLayerSampler(const std::array<double, 3>& box,
                                       const std::array<bool, 3>& walls, double range,
                                       int slices_per_range, int blocks, long total_samples,
                                       double mass)
-    : box_(box), range_(range), slice_(range / slices_per_range), slices_(2 * slices_per_range),
-      blocks_(blocks), total_(total_samples), mass_(mass) {
+    : box_(box), slice_(range / slices_per_range), slices_(2 * slices_per_range), blocks_(blocks),
+      total_(total_samples), mass_(mass) {
   for (int d = 0; d < D; ++d)
     if (walls[d]) walls_.push_back(2 * d), walls_.push_back(2 * d + 1);
   const std::size_t cells = static_cast<std::size_t>(blocks_) * walls_.size() * slices_;
@@ -329,7 +329,7 @@ std::string WallLayerSampler<D>::csv(const std::vector<WallLayerProfile>& profil
   for (int e = 0; e < dim; ++e) out << ",v" << axes[e] << ",v" << axes[e] << "_se";
   out << "\n";
   const char* names[6] = {"x_lower", "x_upper", "y_lower", "y_upper", "z_lower", "z_upper"};
-  char buf[64];
+  char buf[128];
   for (const auto& p : profiles)
     for (std::size_t j = 0; j < p.h.size(); ++j) {
       out << names[p.wall];

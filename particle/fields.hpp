@@ -127,7 +127,7 @@ public:
 private:
   std::array<double, 3> box_;
   std::vector<int> walls_; // 2 d + side of each wall present
-  double range_, slice_;
+  double slice_;
   int slices_, blocks_;
   long total_, taken_ = 0;
   double mass_;

@@ -147,7 +147,8 @@ TEST(Cli, InterruptedRunRestartsToIdenticalOutputs) {
   const Result resumed = run("particle " + c + " --out " + parts.string() + size + " --restart");
   ASSERT_EQ(resumed.code, 0) << resumed.output;
   EXPECT_FALSE(fs::exists(parts / "particle" / "checkpoint.twfc"));
-  for (const char* f : {"thermo.csv", "fields.csv", "histograms.csv", "rdf.csv"}) {
+  for (const char* f :
+       {"thermo.csv", "fields.csv", "histograms.csv", "rdf.csv", "wall_layers.csv"}) {
     std::ifstream a(whole / "particle" / f), b(parts / "particle" / f);
     std::stringstream sa, sb;
     sa << a.rdbuf(), sb << b.rdbuf();

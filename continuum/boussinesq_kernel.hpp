@@ -163,16 +163,17 @@ private:
     const double T_ref = prm_.reference_temperature;
     for (unsigned q = 0; q < face_quadrature_.size(); ++q) {
       const double JxW = fe_face_values_.JxW(q);
-      const double eta = prm_.viscosity.at(face_T_[q], T_ref) / slip_length;
-      const double deta = prm_.viscosity.derivative(face_T_[q], T_ref) / slip_length;
+      // Navier (1823): the wall's traction eta u_t / b, its friction per area eta / b
+      const double friction = prm_.viscosity.at(face_T_[q], T_ref) / slip_length;
+      const double dfriction = prm_.viscosity.derivative(face_T_[q], T_ref) / slip_length;
       for (unsigned i = 0; i < n_; ++i) {
         const dealii::Tensor<1, dim> phi_i = fe_face_values_[velocities].value(i, q);
-        cell_rhs(i) -= eta * (face_u_[q] * phi_i) * JxW;
+        cell_rhs(i) -= friction * (face_u_[q] * phi_i) * JxW;
         if (!with_jacobian) continue;
         for (unsigned j = 0; j < n_; ++j)
           cell_matrix(i, j) +=
-              (eta * (fe_face_values_[velocities].value(j, q) * phi_i) +
-               deta * fe_face_values_[temperature].value(j, q) * (face_u_[q] * phi_i)) *
+              (friction * (fe_face_values_[velocities].value(j, q) * phi_i) +
+               dfriction * fe_face_values_[temperature].value(j, q) * (face_u_[q] * phi_i)) *
               JxW;
       }
     }

@@ -98,8 +98,8 @@ struct WallLayerProfile {
   std::vector<double> h;                        // slice centres, distance from the wall plane
   FieldEstimate density, temperature, velocity; // per slice (velocity: slice * D + d);
                                                 // temperature: kinetic, in the slice's frame
-  // Gibbs dividing surface: integral over [0, range) of (1 - n(h) / reference) dh, the depth of
-  // a step profile with the same particle count; per block, its mean and block error.
+  // Gibbs (1878) dividing surface: integral over [0, range) of (1 - n(h) / reference) dh, the depth
+  // of a step profile with the same particle count; per block, its mean and block error.
   double effective_position = 0, effective_position_stderr = 0;
   // The wall's tangential friction per area and slip velocity, zeta = integral n(h) gamma(T(h))
   // w_D(h) dh (T the slice's kinetic temperature), and the mean distance at which it acts.

@@ -514,6 +514,37 @@ def figure_profiles(out_dir, profiles, geometry, metrics, twins, excluded):
     return [p[3] for p in panels]
 
 
+def wall_layer_table(doc, particle_summary, calibrated_summary):
+    """Each wall's measured layer and the conditions the calibrated twin took from it."""
+    walls = lookup(particle_summary, "results", "walls") or {}
+    if not any(isinstance(w, dict) and "effective_position" in w for w in walls.values()):
+        return
+    twin_walls = {}  # "x_lower" -> the calibrated twin's boundary entry
+    for entry in lookup(calibrated_summary, "continuum_parameters", "boundaries") or []:
+        for side in ("lower", "upper"):
+            if isinstance(entry, dict) and isinstance(entry.get(side), dict):
+                twin_walls[f"{entry.get('direction')}_{side}"] = entry[side]
+    rows = []
+    for name, w in walls.items():
+        if not isinstance(w, dict) or "effective_position" not in w:
+            continue
+        twin = twin_walls.get(name, {})
+        rows.append([name, fmt_pm(w.get("effective_position"), w.get("effective_position_stderr")),
+                     fmt_pm(w.get("friction_per_area"), w.get("friction_per_area_stderr"))
+                     if "friction_per_area" in w else "(free slip)",
+                     fmt(twin.get("slip_length")) if "slip_length" in twin else "none",
+                     fmt(twin.get("kapitza_conductance")) if "kapitza_conductance" in twin
+                     else "none"])
+    doc.heading("The walls' layers and what the calibrated twin takes from them", 3)
+    doc.table(["wall", "effective position (Gibbs depth, rc)", "friction per area zeta",
+               "calibrated twin: Navier slip b (rc)", "calibrated twin: Kapitza h_K"], rows)
+    doc.paragraph("From particle/wall_layers.csv (report/wall_layers.png): the Gibbs depth is where "
+                  "a step profile with the layer's particle count would start; zeta the no-slip "
+                  "wall's tangential friction per area and slip velocity, so b = eta / zeta less "
+                  "the depth at which it acts (Compare/Wall slip). Compare/Effective walls moves "
+                  "the twin's walls to the Gibbs depths.")
+
+
 def figure_wall_layers(out_dir, layers, particle_summary):
     """Density, temperature and tangential velocity against the distance from each wall."""
     import matplotlib.pyplot as plt
@@ -846,6 +877,7 @@ def report_run(run_dir, out_dir):
                               f"{k}: {a} → {b}" for k, a, b in differences) +
                           ". The fraction explained is the part of each gap that this change "
                           "removes; a negative fraction means it made the gap larger.")
+    wall_layer_table(doc, particle_summary, summaries.get("calibrated"))
 
     continuum_accuracy(doc, summaries, twins)
 

@@ -84,8 +84,7 @@ template <int D> int FieldSampler<D>::bin_of(const State<D>& s, std::size_t i) c
 template <int D>
 void FieldSampler<D>::sample(const State<D>& s, const std::vector<double>& potential,
                              const std::array<std::vector<double>, D>& conduction) {
-  const int block =
-      static_cast<int>(std::min<long>(taken_ * blocks_ / std::max(total_, 1L), blocks_ - 1));
+  const int block = block_of_sample(taken_, blocks_, total_);
   ++taken_;
   ++block_samples_[block];
   Accumulator* a = &acc_[static_cast<std::size_t>(block) * nbins_];
@@ -221,8 +220,7 @@ WallLayerSampler<D>::WallLayerSampler(const std::array<double, 3>& box,
 }
 
 template <int D> void WallLayerSampler<D>::sample(const State<D>& s) {
-  const int block =
-      static_cast<int>(std::min<long>(taken_ * blocks_ / std::max(total_, 1L), blocks_ - 1));
+  const int block = block_of_sample(taken_, blocks_, total_);
   ++taken_;
   ++block_samples_[block];
   const double inv_slice = 1 / slice_;
@@ -271,11 +269,7 @@ WallLayerSampler<D>::result(const std::function<double(int, double, double)>& fr
         for (int e = 0; e < D; ++e)
           v[j * D + e] = n_[base + j] > 0 ? v_[(base + j) * D + e] / n_[base + j] : 0.0;
         if (j >= slices_ / 2) ref += n[j] / (slices_ - slices_ / 2);
-        if (n_[base + j] >= 2) { // kinetic temperature in the slice's rest frame
-          double mean2 = 0;
-          for (int e = 0; e < D; ++e) mean2 += v[j * D + e] * v[j * D + e];
-          t[j] = mass_ * (v2_[base + j] / n_[base + j] - mean2) / D;
-        }
+        t[j] = rest_frame_temperature<D>(mass_, n_[base + j], &v_[(base + j) * D], v2_[base + j]);
       }
       double depth = 0, zeta = 0, zeta_h = 0;
       for (int j = 0; j < slices_ / 2; ++j) {

@@ -2,6 +2,7 @@
 // Binned fields of a particle run on a regular grid (a count of 1 in a direction averages over
 // it), each with a statistical error from block averages over time.
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstring>
@@ -13,6 +14,21 @@
 #include "particle/system.hpp"
 
 namespace twinflow::particle {
+
+// Kinetic temperature of n particles in their rest frame from the sums of v (per component) and
+// of v^2: m (<v^2> - <v>^2) / D, unbiased (n / (n - 1)); 0 below two particles.
+template <int D>
+double rest_frame_temperature(double mass, double n, const double* v_sum, double v2_sum) {
+  if (n < 2) return 0.0;
+  double mean2 = 0;
+  for (int d = 0; d < D; ++d) mean2 += (v_sum[d] / n) * (v_sum[d] / n);
+  return mass * (v2_sum / n - mean2) / D * n / (n - 1);
+}
+
+// The time block of sample number `taken` when `total` samples fill `blocks` equal blocks.
+inline int block_of_sample(long taken, int blocks, long total) {
+  return static_cast<int>(std::min<long>(taken * blocks / std::max(total, 1L), blocks - 1));
+}
 
 struct FieldEstimate {
   std::vector<double> mean, stderr_; // per bin (per component for vectors: bin * D + d)
@@ -70,12 +86,8 @@ private:
   };
   static constexpr std::size_t kAccumulatorDoubles = 4 + 5 * D;
   int bin_of(const State<D>& s, std::size_t i) const;
-  // Kinetic temperature in the bin's rest frame: m (<v^2> - <v>^2) / D, unbiased
-  double kinetic_temperature(const Accumulator& c) const {
-    if (c.n < 2) return 0.0;
-    double mean2 = 0;
-    for (int d = 0; d < D; ++d) mean2 += (c.v[d] / c.n) * (c.v[d] / c.n);
-    return mass_ * (c.v2 / c.n - mean2) / D * c.n / (c.n - 1);
+  double kinetic_temperature(const Accumulator& c) const { // in the bin's rest frame
+    return rest_frame_temperature<D>(mass_, c.n, c.v.data(), c.v2);
   }
   std::array<double, 3> box_;
   std::array<int, 3> bins_;

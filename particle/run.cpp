@@ -612,17 +612,18 @@ private:
         walls[names[w]]["heat_flux_in_stderr_blocking"] = blocking;
       }
       if (wall_layers_) {
-        // A no-slip wall's friction on a particle's tangential velocity, gamma w_D(h), against a
-        // wall particle at the wall's temperature (adiabatic: the particle's own).
-        const Weight weight(p_.wall_range, p_.dissipation.exponent);
+        // A no-slip wall's friction on a particle's tangential velocity, gamma w_D(h), as the
+        // wall sweep applies it: the run's friction law against a wall particle at the wall's
+        // temperature (adiabatic: the particle's own), with the wall's weight.
+        auto wall_friction = model_.friction;
+        wall_friction.w = Weight(p_.wall_range, p_.dissipation.exponent);
         const auto friction = [&](int wall, double T, double h) {
           const WallPair& pair = p_.walls[wall / 2];
           if (!pair.no_slip || !(T > 0)) return 0.0;
           double w, sqrt_w;
-          weight.eval(h, w, sqrt_w);
-          if (!M::has_energy || p_.friction == Friction::ConstantGamma) return p_.gamma * w;
+          wall_friction.w.eval(h, w, sqrt_w);
           const double Tw = pair.thermal[wall % 2] ? pair.temperature[wall % 2] : T;
-          return p_.sigma * p_.sigma * (T + Tw) / (4 * T * Tw) * w; // 000:(2.37), 003
+          return wall_friction.ito_gamma(T, Tw) * w; // 000:(2.37), 003
         };
         const auto layers = wall_layers_->result(friction);
         for (const auto& l : layers) {

@@ -37,6 +37,11 @@ public:
   void operator()(const std::string& name, const std::array<std::vector<double>, N>& v) {
     for (std::size_t d = 0; d < N; ++d) (*this)(name + "." + std::to_string(d), v[d]);
   }
+  template <std::size_t N> // floats travel as doubles (exact both ways)
+  void operator()(const std::string& name, const std::array<std::vector<float>, N>& v) {
+    for (std::size_t d = 0; d < N; ++d)
+      (*this)(name + "." + std::to_string(d), std::vector<double>(v[d].begin(), v[d].end()));
+  }
   void operator()(const std::string& name, const std::vector<std::vector<double>>& v) {
     (*this)(name + ".count", static_cast<long>(v.size()));
     for (std::size_t k = 0; k < v.size(); ++k) (*this)(name + "." + std::to_string(k), v[k]);
@@ -78,6 +83,13 @@ public:
   template <std::size_t N>
   void operator()(const std::string& name, std::array<std::vector<double>, N>& v) {
     for (std::size_t d = 0; d < N; ++d) (*this)(name + "." + std::to_string(d), v[d]);
+  }
+  template <std::size_t N>
+  void operator()(const std::string& name, std::array<std::vector<float>, N>& v) {
+    for (std::size_t d = 0; d < N; ++d) {
+      const auto w = c_.get<std::vector<double>>(key(name + "." + std::to_string(d)));
+      v[d].assign(w.begin(), w.end());
+    }
   }
   void operator()(const std::string& name, std::vector<std::vector<double>>& v) {
     long count = 0;

@@ -72,7 +72,9 @@ public:
     a("step", step_), a("wall_energy_in", wall_energy_in_), a("wall_crossings", crossings_);
     a("wall_momentum_in", wall_momentum_in_), a("x_listed", x_listed_);
     if constexpr (A::loading) {
-      if (state_.id.size() != carried_.q.size() || state_.x[0].size() != state_.id.size())
+      const bool heat_rates = p_.integrator != Integrator::Shardlow;
+      if (carried_.q.size() != (heat_rates ? state_.id.size() : 0) ||
+          state_.x[0].size() != state_.id.size())
         throw std::invalid_argument("checkpoint: particle arrays of different lengths");
       // Stored in (cell, id) order of the positions the pair list was built from: the sort
       // rebuilds the cell index only, and the list is the one the run had.
@@ -91,6 +93,7 @@ private:
                        double r2, const std::array<std::vector<double>, D>& v) const;
 
   void update_neighbours(bool force);
+  void list_positions(); // x_listed_ = x rounded to float
   void step_ec_verlet();
   void step_euler();
   void step_shardlow();
@@ -122,8 +125,9 @@ private:
   State<D> state_;
   Carried<D> carried_;
   CellGrid<D> grid_;
-  double skin_ = 0, list_cutoff_ = 1;           // the pair list holds pairs closer than rc + skin
-  std::array<std::vector<double>, D> x_listed_; // positions the list was built from (skin > 0)
+  double skin_ = 0, list_cutoff_ = 1; // the pair list holds pairs closer than rc + skin
+  // Positions the list was built from (skin > 0), rounded to float.
+  typename CellGrid<D>::ListedPositions x_listed_;
   long list_builds_ = 0;
   long step_ = 0;
   double dt_, sqrt_dt_, inv_sqrt_dt_;

@@ -72,7 +72,7 @@ Simulation<M>::Simulation(const M& model, const ParticleParameters& p)
         state_.u[i] *=
             1 + p.temperature_perturbation * std::sin(2 * M_PI * state_.x[0][i] / p.box[0]);
   }
-  carried_.q.assign(n, 0.0);
+  if (p_.integrator != Integrator::Shardlow) carried_.q.assign(n, 0.0); // heat rates
   carried_.potential.assign(n, 0.0);
   update_neighbours(true);
   prepare();
@@ -100,11 +100,27 @@ template <class M> void Simulation<M>::update_neighbours(bool force) {
     }
     if (largest < 0.25 * skin_ * skin_) return;
   }
-  grid_.sort(state_, carried_);
   ++list_builds_;
-  if (p_.integrator == Integrator::Euler) return; // walks the cells (for_each_pair) instead
-  grid_.build_pairs(state_, list_cutoff_);
-  if (skin_ > 0) x_listed_ = state_.x;
+  if (skin_ == 0 || p_.integrator == Integrator::Euler) {
+    grid_.sort(state_, carried_);
+    if (p_.integrator != Integrator::Euler) grid_.build_pairs(state_, list_cutoff_);
+    return; // euler walks the cells (for_each_pair) instead
+  }
+  // A Verlet list is built from the positions rounded to float, kept as the reference of the
+  // displacement test: the bound holds exactly for them, and they cost half the memory.
+  grid_.wrap(state_);
+  list_positions();
+  grid_.sort(state_, carried_, &x_listed_);
+  list_positions(); // in the sorted order
+  grid_.build_pairs(x_listed_, state_.size(), list_cutoff_);
+}
+
+template <class M> void Simulation<M>::list_positions() {
+  const std::size_t n = state_.size();
+  for (int d = 0; d < D; ++d) {
+    x_listed_[d].resize(n);
+    for (std::size_t i = 0; i < n; ++i) x_listed_[d][i] = static_cast<float>(state_.x[d][i]);
+  }
 }
 
 template <class M> void Simulation<M>::prepare() {

@@ -2,6 +2,9 @@
 
 #include <omp.h>
 
+#include <stdexcept>
+#include <string>
+
 namespace twinflow::particle {
 
 template <int D> void CellGrid<D>::build_stencil() {
@@ -44,8 +47,15 @@ template <int D> void CellGrid<D>::build_stencil() {
   row_range_.assign(slot_cell_.size() / n_[0], RowRange{});
 }
 
-template <int D> void CellGrid<D>::build_pairs(const Positions& x, std::size_t count, double rc) {
+template <int D>
+template <class T>
+void CellGrid<D>::build_pairs(const Positions<T>& x, std::size_t count, double rc) {
   const double rc2 = rc * rc;
+  for (int c = 0; c < total_; ++c)
+    if (start_[c + 1] - start_[c] > 65536)
+      throw std::runtime_error("a cell of the neighbour grid holds " +
+                               std::to_string(start_[c + 1] - start_[c]) +
+                               " particles; the pair list takes at most 65536 (density too high)");
   const std::size_t threads = static_cast<std::size_t>(std::max(1, omp_get_max_threads()));
   if (buffers_.size() < threads) buffers_.resize(threads);
   // First guess of the pairs per thread, 10% above the uniform density's N rho V_D(rc) / 2, so
@@ -61,15 +71,26 @@ template <int D> void CellGrid<D>::build_pairs(const Positions& x, std::size_t c
     const std::size_t t = static_cast<std::size_t>(omp_get_thread_num());
     PairBuffer& b = buffers_[t];
     b.used = 0;
-    if (b.i.size() < guess) b.i.resize(guess), b.j.resize(guess);
+    b.segments.clear();
+    b.i.grow(guess, 0), b.j.grow(guess, 0);
 #pragma omp for schedule(static)
     for (long row = 0; row < rows; ++row) {
       RowRange& r = row_range_[row];
       r.buffer = t;
-      r.begin = b.used;
-      for (long slot = row * nx; slot < (row + 1) * nx; ++slot)
-        build_cell(x, slot_cell_[slot], rc2, b);
-      r.count = b.used - r.begin;
+      r.first_segment = b.segments.size();
+      Segment seg{b.used, 0, static_cast<std::uint32_t>(start_[slot_cell_[row * nx]])};
+      for (long slot = row * nx; slot < (row + 1) * nx; ++slot) {
+        const int c = slot_cell_[slot];
+        if (start_[c + 1] - seg.base > 65536) { // i no longer fits 16 bits: a new segment
+          seg.count = b.used - seg.begin;
+          if (seg.count > 0) b.segments.push_back(seg);
+          seg = Segment{b.used, 0, static_cast<std::uint32_t>(start_[c])};
+        }
+        build_cell(x, c, rc2, seg.base, b);
+      }
+      seg.count = b.used - seg.begin;
+      if (seg.count > 0) b.segments.push_back(seg);
+      r.segments = b.segments.size() - r.first_segment;
     }
   }
   pairs_valid_ = true;
@@ -77,7 +98,8 @@ template <int D> void CellGrid<D>::build_pairs(const Positions& x, std::size_t c
 
 template <int D> std::size_t CellGrid<D>::pair_count() const {
   std::size_t n = 0;
-  for (const auto& r : row_range_) n += r.count;
+  for (const auto& b : buffers_)
+    for (const auto& seg : b.segments) n += seg.count;
   return n;
 }
 
@@ -85,7 +107,9 @@ template <int D> std::size_t CellGrid<D>::pair_count() const {
 // appended to b. Distances as in visit_cell (minimum image by nearbyint), the test vectorised
 // over candidates. Order: see the end.
 template <int D>
-void CellGrid<D>::build_cell(const Positions& x, int c, double rc2, PairBuffer& b) const {
+template <class T>
+void CellGrid<D>::build_cell(const Positions<T>& x, int c, double rc2, std::uint32_t base,
+                             PairBuffer& b) const {
   const std::size_t first = start_[c], ni = start_[c + 1] - first;
   if (ni == 0) return;
   std::array<int, D> idx;
@@ -126,9 +150,9 @@ void CellGrid<D>::build_cell(const Positions& x, int c, double rc2, PairBuffer& 
   const std::size_t need = b.used + ni * nc;
   if (b.i.size() < need) {
     const std::size_t grown = std::max(need, b.i.size() + b.i.size() / 4);
-    b.i.resize(grown), b.j.resize(grown);
+    b.i.grow(grown, b.used), b.j.grow(grown, b.used);
   }
-  std::uint32_t* out_i = b.i.data();
+  std::uint16_t* out_i = b.i.data();
   std::uint32_t* out_j = b.j.data();
   std::size_t m = b.used;
   double* __restrict r2 = b.r2.data();
@@ -155,7 +179,7 @@ void CellGrid<D>::build_cell(const Positions& x, int c, double rc2, PairBuffer& 
       }
       r2[q] = sum;
     }
-    const auto i = static_cast<std::uint32_t>(first + p);
+    const auto i = static_cast<std::uint16_t>(first + p - base);
     for (std::size_t q = p + 1; q < nc; ++q) { // branch-free compaction
       out_i[m] = i;
       out_j[m] = cand[q];
@@ -187,18 +211,18 @@ template <int D> void CellGrid<D>::wrap(State<D>& s) const {
     for (int d = 0; d < D; ++d) s.x[d][i] = wrapped(s.x[d][i], d);
 }
 
-template <int D> void CellGrid<D>::sort(State<D>& s, Carried<D>& carried, const Positions* key) {
+template <int D>
+void CellGrid<D>::sort(State<D>& s, Carried<D>& carried, const ListedPositions* key) {
   const std::size_t n = s.size();
   pairs_valid_ = false;
   cell_.resize(n);
   std::fill(start_.begin(), start_.end(), 0);
   const long count = static_cast<long>(n);
   wrap(s);
-  const Positions& x = key ? *key : s.x;
   for (long i = 0; i < count; ++i) {
     double pos[D];
-    for (int d = 0; d < D; ++d) pos[d] = x[d][i];
-    cell_[i] = cell_of(pos);
+    for (int d = 0; d < D; ++d) pos[d] = key ? (*key)[d][i] : s.x[d][i];
+    cell_[i] = static_cast<std::uint32_t>(cell_of(pos));
   }
   for (std::size_t i = 0; i < n; ++i) ++start_[cell_[i] + 1];
   std::partial_sum(start_.begin(), start_.end(), start_.begin());
@@ -232,5 +256,9 @@ template <int D> void CellGrid<D>::sort(State<D>& s, Carried<D>& carried, const 
 
 template class CellGrid<2>;
 template class CellGrid<3>;
+template void CellGrid<2>::build_pairs(const Positions<double>&, std::size_t, double);
+template void CellGrid<3>::build_pairs(const Positions<double>&, std::size_t, double);
+template void CellGrid<2>::build_pairs(const Positions<float>&, std::size_t, double);
+template void CellGrid<3>::build_pairs(const Positions<float>&, std::size_t, double);
 
 } // namespace twinflow::particle

@@ -7,6 +7,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <memory>
 #include <numeric>
 #include <vector>
 
@@ -24,8 +25,28 @@ template <int D> struct State {
 // permuted together with the state.
 template <int D> struct Carried {
   std::array<std::vector<double>, D> f; // force on each particle
-  std::vector<double> q;                // heat rate (ec-verlet)
+  std::vector<double> q;                // heat rate (ec-verlet, euler; empty for shardlow)
   std::vector<double> potential;        // per-particle share of pair potentials
+};
+
+// An array whose new elements are left uninitialised: the pages a list sized with a margin
+// never reaches are never touched, so they cost no memory.
+template <class T> class UninitialisedArray {
+public:
+  T* data() { return data_.get(); }
+  const T* data() const { return data_.get(); }
+  std::size_t size() const { return size_; }
+  void grow(std::size_t size, std::size_t keep) { // to at least `size`, keeping [0, keep)
+    if (size <= size_) return;
+    std::unique_ptr<T[]> bigger(new T[size]);
+    std::copy(data_.get(), data_.get() + keep, bigger.get());
+    data_ = std::move(bigger);
+    size_ = size;
+  }
+
+private:
+  std::unique_ptr<T[]> data_;
+  std::size_t size_ = 0;
 };
 
 template <int D> class CellGrid {
@@ -80,8 +101,9 @@ public:
 
   // Wraps positions into the box and sorts every per-particle array by (cell, id), the cell of
   // each particle taken from `key` (positions in storage order) if given, else from s.x.
-  using Positions = std::array<std::vector<double>, D>;
-  void sort(State<D>& s, Carried<D>& carried, const Positions* key = nullptr);
+  template <class T> using Positions = std::array<std::vector<T>, D>;
+  using ListedPositions = Positions<float>; // what a Verlet list is built from (12 bytes)
+  void sort(State<D>& s, Carried<D>& carried, const ListedPositions* key = nullptr);
   // Wraps positions in periodic directions into [0, box) (keeps the storage order).
   void wrap(State<D>& s) const;
   double wrapped(double x, int d) const {
@@ -116,11 +138,13 @@ public:
 
   // ---- The pair list: every pair closer than rc once, stored per cell (the cell of the
   // particle i), built after a sort from the positions alone, so that its content and order do
-  // not depend on the thread count. sort() invalidates it.
+  // not depend on the thread count. sort() invalidates it. Six bytes a pair: j, and i as a
+  // 16-bit offset from its segment's first particle (a row of cells is one segment unless it
+  // holds more than 65536 particles).
   void build_pairs(const State<D>& s, double rc) {
     build_pairs(s.x, s.size(), rc);
   }
-  void build_pairs(const Positions& x, std::size_t n, double rc);
+  template <class T> void build_pairs(const Positions<T>& x, std::size_t n, double rc);
   bool has_pairs() const {
     return pairs_valid_;
   }
@@ -136,10 +160,17 @@ public:
       const long first = colour_begin_[colour], last = colour_begin_[colour + 1];
 #pragma omp parallel for schedule(static)
       for (long unit = first; unit < last; ++unit) {
+        static thread_local std::vector<std::uint32_t> rows_i; // i of one segment, widened
         const RowRange& r = row_range_[unit];
-        if (r.count == 0) continue;
         const PairBuffer& b = buffers_[r.buffer];
-        fn(b.i.data() + r.begin, b.j.data() + r.begin, r.count);
+        for (std::size_t k = r.first_segment; k < r.first_segment + r.segments; ++k) {
+          const Segment& seg = b.segments[k];
+          if (rows_i.size() < seg.count) rows_i.resize(seg.count + seg.count / 2);
+          const std::uint16_t* offset = b.i.data() + seg.begin;
+          std::uint32_t* __restrict wide = rows_i.data();
+          for (std::size_t p = 0; p < seg.count; ++p) wide[p] = seg.base + offset[p];
+          fn(static_cast<const std::uint32_t*>(wide), b.j.data() + seg.begin, seg.count);
+        }
       }
     }
   }
@@ -193,18 +224,27 @@ private:
   }
 
   void build_stencil();
+  struct Segment { // pairs [begin, begin + count) of a buffer, i = base + offset
+    std::size_t begin = 0, count = 0;
+    std::uint32_t base = 0;
+  };
   struct PairBuffer { // one per building thread
-    std::vector<std::uint32_t> i, j;
+    UninitialisedArray<std::uint16_t> i;
+    UninitialisedArray<std::uint32_t> j;
     std::size_t used = 0;
+    std::vector<Segment> segments;
     std::vector<std::uint32_t> cand; // scratch: candidate indices of one cell
     std::vector<double> cx[D], r2;   // scratch: their positions and distances
     std::vector<std::size_t> count;  // scratch: first pair of each particle of the cell
-    std::vector<std::uint32_t> tmp_i, tmp_j;
+    std::vector<std::uint16_t> tmp_i;
+    std::vector<std::uint32_t> tmp_j;
   };
-  struct RowRange { // a row's pairs: buffers_[buffer].i/j[begin, begin + count)
-    std::size_t buffer = 0, begin = 0, count = 0;
+  struct RowRange { // a row's pairs: buffers_[buffer].segments[first_segment, + segments)
+    std::size_t buffer = 0, first_segment = 0, segments = 0;
   };
-  void build_cell(const Positions& x, int c, double rc2, PairBuffer& b) const;
+  template <class T>
+  void build_cell(const Positions<T>& x, int c, double rc2, std::uint32_t base,
+                  PairBuffer& b) const;
 
   std::array<double, D> box_, inv_side_, inv_box_;
   std::array<bool, D> periodic_;
@@ -218,14 +258,14 @@ private:
   std::vector<RowRange> row_range_;         // per row of slot_cell_
   std::vector<PairBuffer> buffers_;
   bool pairs_valid_ = false;
-  std::vector<int> cell_, order_;
+  std::vector<std::uint32_t> cell_; // the sort's cell of each particle, then its id scratch
+  std::vector<int> order_;
   std::vector<double> scratch_;
-  std::vector<std::uint32_t> scratch_id_;
   std::vector<double>& scratch_for(std::vector<double>&) {
     return scratch_;
   }
   std::vector<std::uint32_t>& scratch_for(std::vector<std::uint32_t>&) {
-    return scratch_id_;
+    return cell_;
   }
 };
 

@@ -108,3 +108,9 @@ TEST(Neighbours, PairListMatchesCellSearch) {
   check_list<2>({{12.3, 9.7}}, 1.0, 900, 7, {{true, true}});
   check_list<2>({{12.3, 3.7}}, 1.0, 300, 8, {{true, false}});
 }
+
+// A row of cells with more than 65536 particles: the list's 16-bit offsets of i start new
+// segments inside the row (a long thin 2D box: one cell across, one row of 20000 cells).
+TEST(Neighbours, PairListSplitsRowsOfManyParticles) {
+  check_list<2>({{20000, 2.5}}, 1.0, 150000, 9, {{true, true}});
+}

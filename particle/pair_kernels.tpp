@@ -209,15 +209,17 @@ template <class M> void Simulation<M>::force_blocks(const PairNoise& noise) {
 // previous ones, and the colouring keeps them exact in parallel.
 template <class M> void Simulation<M>::shardlow_sweep(const PairNoise& noise) {
   if (!grid_.has_pairs()) update_neighbours(true);
-  const auto fr = model_.friction;
-  const auto heat = model_.heat;
-  const double dt = dt_, sqrt_dt = sqrt_dt_, m = model_.mass, inv_m = 1 / m;
-  const double inv_cv = 1 / model_.cv;
-  double* u = state_.u.data();
-  double* v[D];
-  for (int d = 0; d < D; ++d) v[d] = state_.v[d].data();
   const std::uint32_t* id = state_.id.data();
   grid_.for_each_pair_block([&](const std::uint32_t* I, const std::uint32_t* J, std::size_t n) {
+    // Everything the sequential loop reads, as locals: the stores to u and v cannot alias them,
+    // so they stay in registers instead of being reloaded after every pair's update.
+    const auto fr = model_.friction;
+    const auto heat = model_.heat;
+    const double dt = dt_, sqrt_dt = sqrt_dt_, m = model_.mass, inv_m = 1 / m;
+    const double inv_cv = 1 / model_.cv;
+    double* __restrict u = state_.u.data();
+    double* v[D];
+    for (int d = 0; d < D; ++d) v[d] = state_.v[d].data();
     auto& s = PairScratch<D>::get(n);
     n = pair_geometry(I, J, n, s);
     noise.pairs(n, I, J, id, s.xi.data(), s.zeta.data());

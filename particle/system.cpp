@@ -29,20 +29,18 @@ template <int D> void CellGrid<D>::build_stencil() {
       }
     if (first >= 0) stencil_.push_back(o);
   }
-  // Colours of the rows of cells along x (constructor): (y mod 3, z mod 2) in 3D, y mod 2 in 2D.
-  const int ncolours = D == 2 ? 2 : 6, rows = total_ / n_[0];
-  std::vector<std::vector<int>> colour_rows(ncolours);
-  for (int row = 0; row < rows; ++row) {
-    const int y = row % n_[1];
-    const int colour = D == 2 ? y % 2 : y % 3 + 3 * ((row / n_[1]) % 2);
-    colour_rows[colour].push_back(row);
-  }
-  colour_begin_.assign(1, 0);
-  for (const auto& list : colour_rows) {
-    if (list.empty()) continue;
-    for (const int row : list)
-      for (int x = 0; x < n_[0]; ++x) slot_cell_.push_back(row * n_[0] + x);
-    colour_begin_.push_back(colour_begin_.back() + static_cast<long>(list.size()));
+  // Pass order (constructor): units (3D: planes z; 2D: rows y), even ones, then odd ones.
+  const int units = n_[D - 1], rows_per_unit = D == 2 ? 1 : n_[1];
+  phase_begin_.assign(1, 0);
+  unit_begin_.assign(1, 0);
+  for (int parity = 0; parity < 2; ++parity) {
+    for (int unit = parity; unit < units; unit += 2) {
+      for (int row = unit * rows_per_unit; row < (unit + 1) * rows_per_unit; ++row)
+        for (int x = 0; x < n_[0]; ++x) slot_cell_.push_back(row * n_[0] + x);
+      unit_begin_.push_back(static_cast<long>(slot_cell_.size() / n_[0]));
+    }
+    if (unit_begin_.size() - 1 > static_cast<std::size_t>(phase_begin_.back()))
+      phase_begin_.push_back(static_cast<long>(unit_begin_.size()) - 1);
   }
   row_range_.assign(slot_cell_.size() / n_[0], RowRange{});
 }

@@ -51,11 +51,12 @@ private:
 
 template <int D> class CellGrid {
 public:
-  // Cell side >= rc. The unit of parallel work is a row of cells along x; a row's pairs touch
-  // its own row and the next one in the last direction, and rows y-1..y+1 in the one after in 3D
-  // (half shell), so rows are coloured by (y mod 3, z mod 2) in 3D and y mod 2 in 2D: rows of one
-  // colour touch disjoint particles, also across the wrap, where a periodic direction then has a
-  // cell count that is a multiple of 3 (3D y), even and >= 4 (the last direction), >= 3 (x), or 1
+  // Cell side >= rc. Through its half-shell pairs a plane of cells z (3D; a row y in 2D)
+  // touches only its own particles and those of the next plane, so planes of one parity touch
+  // disjoint particles. The unit of parallel work is a plane (2D: a row), its rows of cells
+  // along x in y order: even units run in parallel, then odd ones, so a pass has two phases
+  // and a plane's particles stay in cache while its rows pass. Across the wrap this needs a
+  // periodic cell count that is even and >= 4 in the last direction, >= 3 in the others, or 1
   // when the box is too small. A direction with walls has no wrap and no minimum image.
   CellGrid(const std::array<double, D>& box, double rc,
            std::array<bool, D> periodic = all_periodic())
@@ -64,8 +65,6 @@ public:
       int n = static_cast<int>(std::floor(box[d] / rc));
       if (periodic[d] && d == D - 1)
         n = n >= 4 ? 2 * (n / 2) : 1;
-      else if (periodic[d] && d == 1)
-        n = n >= 3 ? 3 * (n / 3) : 1;
       else if (periodic[d])
         n = n >= 3 ? n : 1;
       n_[d] = std::max(n, 1);
@@ -121,19 +120,15 @@ public:
     }
   }
 
-  // Calls fn(i, j, dx, r2) once for every pair closer than rc (dx = x_i - x_j). Colours run in
-  // turn, the rows of one colour in parallel (see the constructor): no two threads write the
-  // same particle, a particle is touched by one row per colour, and so it sees its pairs in one
-  // fixed order, whatever the thread count.
+  // Calls fn(i, j, dx, r2) once for every pair closer than rc (dx = x_i - x_j). Phases run in
+  // turn, the units of one phase in parallel (see the constructor): no two threads write the
+  // same particle, and every particle sees its pairs in one fixed order, whatever the thread
+  // count (rows that share particles always run in the same order).
   template <class PairFn> void for_each_pair(const State<D>& s, double rc, PairFn&& fn) const {
     const double rc2 = rc * rc;
-    const int colours = static_cast<int>(colour_begin_.size()) - 1;
-    for (int colour = 0; colour < colours; ++colour) {
-      const long first = colour_begin_[colour], last = colour_begin_[colour + 1];
-#pragma omp parallel for schedule(static)
-      for (long unit = first; unit < last; ++unit)
-        for (int x = 0; x < n_[0]; ++x) visit_cell(s, slot_cell_[unit * n_[0] + x], rc2, fn);
-    }
+    for_each_row([&](long row) {
+      for (int x = 0; x < n_[0]; ++x) visit_cell(s, slot_cell_[row * n_[0] + x], rc2, fn);
+    });
   }
 
   // ---- The pair list: every pair closer than rc once, stored per cell (the cell of the
@@ -141,46 +136,32 @@ public:
   // not depend on the thread count. sort() invalidates it. Six bytes a pair: j, and i as a
   // 16-bit offset from its segment's first particle (a row of cells is one segment unless it
   // holds more than 65536 particles).
-  void build_pairs(const State<D>& s, double rc) {
-    build_pairs(s.x, s.size(), rc);
-  }
+  void build_pairs(const State<D>& s, double rc) { build_pairs(s.x, s.size(), rc); }
   template <class T> void build_pairs(const Positions<T>& x, std::size_t n, double rc);
-  bool has_pairs() const {
-    return pairs_valid_;
-  }
+  bool has_pairs() const { return pairs_valid_; }
   std::size_t pair_count() const;
   // Calls fn(i, j, count) with one row of cells' pairs (storage indices, cell by cell along the
   // row, each cell's in a fixed order: round-robin over its particles, see build_cell). A row is
   // one block so that the per-pair loops run over hundreds of pairs, not a cell's ~20, and
-  // vectorise. Colours in turn, rows of one colour in parallel, as in for_each_pair: a particle
-  // sees its pairs in one fixed order whatever the thread count.
+  // vectorise. Rows in the order of for_each_pair.
   template <class BlockFn> void for_each_pair_block(BlockFn&& fn) const {
-    const int colours = static_cast<int>(colour_begin_.size()) - 1;
-    for (int colour = 0; colour < colours; ++colour) {
-      const long first = colour_begin_[colour], last = colour_begin_[colour + 1];
-#pragma omp parallel for schedule(static)
-      for (long unit = first; unit < last; ++unit) {
-        static thread_local std::vector<std::uint32_t> rows_i; // i of one segment, widened
-        const RowRange& r = row_range_[unit];
-        const PairBuffer& b = buffers_[r.buffer];
-        for (std::size_t k = r.first_segment; k < r.first_segment + r.segments; ++k) {
-          const Segment& seg = b.segments[k];
-          if (rows_i.size() < seg.count) rows_i.resize(seg.count + seg.count / 2);
-          const std::uint16_t* offset = b.i.data() + seg.begin;
-          std::uint32_t* __restrict wide = rows_i.data();
-          for (std::size_t p = 0; p < seg.count; ++p) wide[p] = seg.base + offset[p];
-          fn(static_cast<const std::uint32_t*>(wide), b.j.data() + seg.begin, seg.count);
-        }
+    for_each_row([&](long row) {
+      static thread_local std::vector<std::uint32_t> rows_i; // i of one segment, widened
+      const RowRange& r = row_range_[row];
+      const PairBuffer& b = buffers_[r.buffer];
+      for (std::size_t k = r.first_segment; k < r.first_segment + r.segments; ++k) {
+        const Segment& seg = b.segments[k];
+        if (rows_i.size() < seg.count) rows_i.resize(seg.count + seg.count / 2);
+        const std::uint16_t* offset = b.i.data() + seg.begin;
+        std::uint32_t* __restrict wide = rows_i.data();
+        for (std::size_t p = 0; p < seg.count; ++p) wide[p] = seg.base + offset[p];
+        fn(static_cast<const std::uint32_t*>(wide), b.j.data() + seg.begin, seg.count);
       }
-    }
+    });
   }
   // Minimum image: r - image_box(d) nearbyint(r inv_box(d)) (0 in wall directions).
-  double image_box(int d) const {
-    return box_[d];
-  }
-  double inv_box(int d) const {
-    return inv_box_[d];
-  }
+  double image_box(int d) const { return box_[d]; }
+  double inv_box(int d) const { return inv_box_[d]; }
 
   // The same pairs, one thread, in the same order (reference for tests and for serial passes).
   template <class PairFn>
@@ -190,6 +171,16 @@ public:
   }
 
 private:
+  // fn(row) for every row of slot_cell_ (index into its rows): phases in turn, the units of a
+  // phase in parallel, the rows of a unit in order.
+  template <class RowFn> void for_each_row(RowFn&& fn) const {
+    for (std::size_t phase = 0; phase + 1 < phase_begin_.size(); ++phase) {
+      const long first = phase_begin_[phase], last = phase_begin_[phase + 1];
+#pragma omp parallel for schedule(static)
+      for (long unit = first; unit < last; ++unit)
+        for (long row = unit_begin_[unit]; row < unit_begin_[unit + 1]; ++row) fn(row);
+    }
+  }
   template <class PairFn> void visit_cell(const State<D>& s, int c, double rc2, PairFn& fn) const {
     std::array<int, D> idx;
     int rem = c;
@@ -252,9 +243,9 @@ private:
   int total_ = 1;
   std::vector<std::size_t> start_;
   std::vector<std::array<int, D>> stencil_; // half shell: each neighbour pair of cells once
-  std::vector<int> slot_cell_;              // cells in colour order, row by row (n_[0] per row)
-  std::vector<long> colour_begin_;          // first row of each colour (index into the rows of
-                                            // slot_cell_), and the end
+  std::vector<int> slot_cell_;              // cells in pass order, row by row (n_[0] per row)
+  std::vector<long> unit_begin_;            // first row (of slot_cell_) of each unit, and the end
+  std::vector<long> phase_begin_;           // first unit of each phase, and the end
   std::vector<RowRange> row_range_;         // per row of slot_cell_
   std::vector<PairBuffer> buffers_;
   bool pairs_valid_ = false;

@@ -102,7 +102,7 @@ template <class M> void Simulation<M>::update_neighbours(bool force) {
   }
   ++list_builds_;
   if (skin_ == 0 || p_.integrator == Integrator::Euler) {
-    grid_.sort(state_, carried_);
+    grid_.sort(state_, carried_, nullptr, false);
     if (p_.integrator != Integrator::Euler) grid_.build_pairs(state_, list_cutoff_);
     return; // euler walks the cells (for_each_pair) instead
   }
@@ -110,7 +110,7 @@ template <class M> void Simulation<M>::update_neighbours(bool force) {
   // displacement test: the bound holds exactly for them, and they cost half the memory.
   grid_.wrap(state_);
   list_positions();
-  grid_.sort(state_, carried_, &x_listed_);
+  grid_.sort(state_, carried_, &x_listed_, false);
   list_positions(); // in the sorted order
   grid_.build_pairs(x_listed_, state_.size(), list_cutoff_);
 }

@@ -210,7 +210,8 @@ template <int D> void CellGrid<D>::wrap(State<D>& s) const {
 }
 
 template <int D>
-void CellGrid<D>::sort(State<D>& s, Carried<D>& carried, const ListedPositions* key) {
+void CellGrid<D>::sort(State<D>& s, Carried<D>& carried, const ListedPositions* key,
+                       bool keep_carried) {
   const std::size_t n = s.size();
   pairs_valid_ = false;
   cell_.resize(n);
@@ -233,23 +234,24 @@ void CellGrid<D>::sort(State<D>& s, Carried<D>& carried, const ListedPositions* 
     for (auto it = b + (b != e); it < e; ++it) // insertion sort by id
       for (auto k = it; k > b && s.id[*(k - 1)] > s.id[*k]; --k) std::iter_swap(k - 1, k);
   }
-  // Serial on purpose: on a shared machine every extra barrier can cost a scheduler time slice.
-  auto permute = [&](auto& a) { // through a kept buffer: no allocation per step
+  // Through a scratch array, swapped in: f[0]'s storage when the carried arrays are left stale
+  // (then no extra array: peak memory), else a temporary. Serial on purpose: on a shared
+  // machine every extra barrier can cost a scheduler time slice.
+  std::vector<double> temporary;
+  std::vector<double>& scratch = keep_carried ? temporary : carried.f[0];
+  auto permute = [&](auto& a, auto& tmp) {
     if (a.empty()) return;
-    auto& tmp = scratch_for(a);
     tmp.resize(n);
     for (long k = 0; k < count; ++k) tmp[k] = a[order_[k]];
     a.swap(tmp);
   };
-  for (int d = 0; d < D; ++d) {
-    permute(s.x[d]);
-    permute(s.v[d]);
-    permute(carried.f[d]);
+  for (int d = 0; d < D; ++d) permute(s.x[d], scratch), permute(s.v[d], scratch);
+  permute(s.u, scratch);
+  permute(s.id, cell_); // the cells are no longer needed
+  if (keep_carried) {
+    for (int d = 0; d < D; ++d) permute(carried.f[d], scratch);
+    permute(carried.q, scratch), permute(carried.potential, scratch);
   }
-  permute(s.u);
-  permute(s.id);
-  permute(carried.q);
-  permute(carried.potential);
 }
 
 template class CellGrid<2>;

@@ -98,11 +98,14 @@ public:
     return c;
   }
 
-  // Wraps positions into the box and sorts every per-particle array by (cell, id), the cell of
-  // each particle taken from `key` (positions in storage order) if given, else from s.x.
+  // Wraps positions into the box and sorts the state by (cell, id), the cell of each particle
+  // taken from `key` (positions in storage order) if given, else from s.x. The carried arrays
+  // are sorted with it (keep_carried) or left stale: a step recomputes them after every sort
+  // before it reads them, and f[0] then lends its storage to the sort (no extra array).
   template <class T> using Positions = std::array<std::vector<T>, D>;
   using ListedPositions = Positions<float>; // what a Verlet list is built from (12 bytes)
-  void sort(State<D>& s, Carried<D>& carried, const ListedPositions* key = nullptr);
+  void sort(State<D>& s, Carried<D>& carried, const ListedPositions* key = nullptr,
+            bool keep_carried = true);
   // Wraps positions in periodic directions into [0, box) (keeps the storage order).
   void wrap(State<D>& s) const;
   double wrapped(double x, int d) const {
@@ -250,14 +253,7 @@ private:
   std::vector<PairBuffer> buffers_;
   bool pairs_valid_ = false;
   std::vector<std::uint32_t> cell_; // the sort's cell of each particle, then its id scratch
-  std::vector<int> order_;
-  std::vector<double> scratch_;
-  std::vector<double>& scratch_for(std::vector<double>&) {
-    return scratch_;
-  }
-  std::vector<std::uint32_t>& scratch_for(std::vector<std::uint32_t>&) {
-    return cell_;
-  }
+  std::vector<int> order_;          // the sort's permutation: new k <- old order_[k]
 };
 
 } // namespace twinflow::particle

@@ -1,6 +1,6 @@
-// The pair passes of ec-verlet and shardlow (included from simulation.hpp): one cell's pairs at a
-// time from the grid's pair list; the per-pair algebra (geometry, Philox noise, weights, forces) in
-// loops over the block that vectorise, then the updates of the particles in pair order.
+// The pair passes of ec-verlet and shardlow (included from simulation.hpp): one row of cells'
+// pairs at a time from the grid's pair list; the per-pair algebra (geometry, Philox noise, weights,
+// forces) in loops over the block that vectorise, then the updates of the particles in pair order.
 
 #include <omp.h>
 
@@ -206,7 +206,7 @@ template <class M> void Simulation<M>::force_blocks(const PairNoise& noise) {
 // splitting of the pair's dissipative+random update (explicit half, implicit half, same xi), the
 // kinetic change of each half taken from the pair's internal energies, so energy is conserved
 // per half (Lisal et al. 2011; LAMMPS fix shardlow). Pairs in list order: each update sees the
-// previous ones, and the colouring keeps them exact in parallel.
+// previous ones, and the two phases of planes keep them exact in parallel.
 template <class M> void Simulation<M>::shardlow_sweep(const PairNoise& noise) {
   if (!grid_.has_pairs()) update_neighbours(true);
   const std::uint32_t* id = state_.id.data();

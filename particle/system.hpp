@@ -21,8 +21,8 @@ template <int D> struct State {
   std::size_t size() const { return id.size(); }
 };
 
-// Extra per-particle arrays an integrator keeps across steps (forces, potentials); they are
-// permuted together with the state.
+// Extra per-particle arrays an integrator keeps across steps (forces, potentials): a step
+// recomputes them after every sort, a restart restores them (CellGrid::sort).
 template <int D> struct Carried {
   std::array<std::vector<double>, D> f; // force on each particle
   std::vector<double> q;                // heat rate (ec-verlet, euler; empty for shardlow)

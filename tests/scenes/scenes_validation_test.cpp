@@ -1,6 +1,9 @@
 // Full-size scene validations against the papers (label validation).
 #include "scene_run.hpp"
 
+#include <cmath>
+#include <vector>
+
 using namespace twinflow::testing;
 
 // Seed 000 section 3.1: N = 30000 between walls at T* = 1.1, B = 0.01, C = 17, r* = 1.24.
@@ -44,13 +47,24 @@ TEST(ScenesValidation, SlabConductionPeriodic) {
 }
 
 // Seed 004's relaxation method on seed 002's fluid: kappa from the decay agrees with the slab's
-// 150 within 5% (issue: transport).
+// 150 within three standard errors of the mean of four seeds. The error comes from the seeds'
+// scatter: one run's fit error was half of it (2026-11-23: 158.3, 149.5, 159.8, 148.6 with
+// stated errors 2.6-4.1), and one run against a fixed 5% failed by chance.
 TEST(ScenesValidation, ThermalRelaxationKappa) {
-  const auto r = run_case("thermal_relaxation", "");
-  const double kappa = number(r, "relaxation.kappa_ideal_cp");
-  const double se = number(r, "relaxation.kappa_ideal_cp_stderr");
-  std::cout << "kappa (relaxation) = " << kappa << " +- " << se
-            << "; eta (shear relaxation) = " << number(r, "shear_relaxation.viscosity") << " +- "
-            << number(r, "shear_relaxation.viscosity_stderr") << "\n";
-  EXPECT_NEAR(kappa / 150, 1, 0.05);
+  std::vector<double> kappa;
+  for (const int seed : {1, 2, 3, 4}) {
+    const auto r = run_case("thermal_relaxation", "--set Particle/Seed=" + std::to_string(seed));
+    kappa.push_back(number(r, "relaxation.kappa_ideal_cp"));
+    std::cout << "seed " << seed << ": kappa (relaxation) = " << kappa.back() << " +- "
+              << number(r, "relaxation.kappa_ideal_cp_stderr")
+              << "; eta (shear relaxation) = " << number(r, "shear_relaxation.viscosity") << " +- "
+              << number(r, "shear_relaxation.viscosity_stderr") << "\n";
+  }
+  const double n = static_cast<double>(kappa.size());
+  double mean = 0, var = 0;
+  for (const double k : kappa) mean += k / n;
+  for (const double k : kappa) var += (k - mean) * (k - mean) / (n - 1);
+  const double sem = std::sqrt(var / n);
+  std::cout << "kappa (relaxation, " << n << " seeds) = " << mean << " +- " << sem << "\n";
+  EXPECT_NEAR(mean, 150, 3 * sem);
 }

@@ -1,8 +1,9 @@
 // Full-size scene validations against the papers (label validation).
 #include "scene_run.hpp"
 
-#include <cmath>
 #include <vector>
+
+#include "transport/measure.hpp"
 
 using namespace twinflow::testing;
 
@@ -51,20 +52,19 @@ TEST(ScenesValidation, SlabConductionPeriodic) {
 // scatter: one run's fit error was half of it (2026-11-23: 158.3, 149.5, 159.8, 148.6 with
 // stated errors 2.6-4.1), and one run against a fixed 5% failed by chance.
 TEST(ScenesValidation, ThermalRelaxationKappa) {
-  std::vector<double> kappa;
+  std::vector<twinflow::particle::Estimate> kappa;
   for (const int seed : {1, 2, 3, 4}) {
     const auto r = run_case("thermal_relaxation", "--set Particle/Seed=" + std::to_string(seed));
-    kappa.push_back(number(r, "relaxation.kappa_ideal_cp"));
-    std::cout << "seed " << seed << ": kappa (relaxation) = " << kappa.back() << " +- "
-              << number(r, "relaxation.kappa_ideal_cp_stderr")
+    kappa.push_back(
+        {number(r, "relaxation.kappa_ideal_cp"), number(r, "relaxation.kappa_ideal_cp_stderr")});
+    std::cout << "seed " << seed << ": kappa (relaxation) = " << kappa.back().mean << " +- "
+              << kappa.back().stderr_
               << "; eta (shear relaxation) = " << number(r, "shear_relaxation.viscosity") << " +- "
               << number(r, "shear_relaxation.viscosity_stderr") << "\n";
   }
-  const double n = static_cast<double>(kappa.size());
-  double mean = 0, var = 0;
-  for (const double k : kappa) mean += k / n;
-  for (const double k : kappa) var += (k - mean) * (k - mean) / (n - 1);
-  const double sem = std::sqrt(var / n);
-  std::cout << "kappa (relaxation, " << n << " seeds) = " << mean << " +- " << sem << "\n";
+  const auto repeated = twinflow::transport::summarise_repeats(kappa);
+  const double mean = repeated.value.mean, sem = repeated.spread_stderr;
+  std::cout << "kappa (relaxation, " << kappa.size() << " seeds) = " << mean << " +- " << sem
+            << "\n";
   EXPECT_NEAR(mean, 150, 3 * sem);
 }

@@ -217,10 +217,15 @@ struct ConstantSigma {
   double ito_gamma(double th_i, double th_j) const {
     return sigma * sigma * (th_i + th_j) / (4 * th_i * th_j);
   }
+  // gamma a for a factor a known before the temperatures: the constants multiplied first, so
+  // the Shardlow sweep's chain of dependent operations through th is short.
+  double ito_gamma_times(double th_i, double th_j, double a) const {
+    return (0.25 * sigma * sigma * a) * (th_i + th_j) / (th_i * th_j);
+  }
   // Shardlow's implicit half: rhs / (1 + gamma' c), c = w_D dt/m, with the one division.
   double implicit_half(double rhs, double th_i, double th_j, double c) const {
-    const double p = 4 * th_i * th_j;
-    return rhs * p / (p + sigma * sigma * (th_i + th_j) * c);
+    const double p = th_i * th_j;
+    return rhs * p / std::fma(0.25 * sigma * sigma * c, th_i + th_j, p);
   }
   static double harmonic(double a, double b) { return 2 * a * b / (a + b); } // Theta_ij, 003
 };
@@ -239,6 +244,9 @@ struct ConstantGamma {
     const double s = th_i + th_j;
     return gamma_ * (1 + (th_i * th_i + th_j * th_j) / (cv * s * s));
   }
+  double ito_gamma_times(double th_i, double th_j, double a) const {
+    return ito_gamma(th_i, th_j) * a;
+  }
   static double harmonic(double a, double b) { return 2 * a * b / (a + b); }
 };
 struct IsothermalFriction { // seed 001: fixed T in the FDT, no internal energy
@@ -251,6 +259,7 @@ struct IsothermalFriction { // seed 001: fixed T in the FDT, no internal energy
   double gamma(double) const { return gamma_; }
   double sigma_of(double) const { return sigma; }
   double ito_gamma(double, double) const { return gamma_; }
+  double ito_gamma_times(double, double, double a) const { return gamma_ * a; }
   static double harmonic(double, double) { return 1; }
 };
 

@@ -77,21 +77,52 @@ void CellGrid<D>::build_pairs(const Positions<T>& x, std::size_t count, double r
       r.buffer = t;
       r.first_segment = b.segments.size();
       Segment seg{b.used, 0, static_cast<std::uint32_t>(start_[slot_cell_[row * nx]])};
+      b.cell_begin.assign(1, b.used);
       for (long slot = row * nx; slot < (row + 1) * nx; ++slot) {
         const int c = slot_cell_[slot];
         if (start_[c + 1] - seg.base > 65536) { // i no longer fits 16 bits: a new segment
+          interleave_cells(b);
           seg.count = b.used - seg.begin;
           if (seg.count > 0) b.segments.push_back(seg);
           seg = Segment{b.used, 0, static_cast<std::uint32_t>(start_[c])};
         }
         build_cell(x, c, rc2, seg.base, b);
+        b.cell_begin.push_back(b.used);
+        if (b.cell_begin.size() == 4) interleave_cells(b);
       }
+      interleave_cells(b);
       seg.count = b.used - seg.begin;
       if (seg.count > 0) b.segments.push_back(seg);
       r.segments = b.segments.size() - r.first_segment;
     }
   }
   pairs_valid_ = true;
+}
+
+// The pairs of up to three neighbouring cells of a row, built one cell after the other
+// (b.cell_begin: each cell's first pair and the end), interleaved: the first pair of each cell,
+// then the second of each, ... Together with the round-robin inside each cell (build_cell) a
+// pair seldom shares a particle with the one or two before it, so the Shardlow sweep's
+// sequential updates overlap in the processor instead of each waiting on the previous pair's
+// chain of divisions (the sweep takes ~13% less time; measured on the benchmark system).
+template <int D> void CellGrid<D>::interleave_cells(PairBuffer& b) const {
+  const std::size_t cells = b.cell_begin.size() - 1, first = b.cell_begin.front();
+  const std::size_t total = b.cell_begin.back() - first;
+  if (cells > 1) {
+    if (b.tmp_i.size() < total)
+      b.tmp_i.resize(total + total / 2), b.tmp_j.resize(total + total / 2);
+    std::size_t next[3], o = 0;
+    for (std::size_t c = 0; c < cells; ++c) next[c] = b.cell_begin[c];
+    while (o < total)
+      for (std::size_t c = 0; c < cells; ++c)
+        if (next[c] < b.cell_begin[c + 1]) {
+          b.tmp_i[o] = b.i.data()[next[c]];
+          b.tmp_j[o++] = b.j.data()[next[c]++];
+        }
+    std::copy(b.tmp_i.begin(), b.tmp_i.begin() + total, b.i.data() + first);
+    std::copy(b.tmp_j.begin(), b.tmp_j.begin() + total, b.j.data() + first);
+  }
+  b.cell_begin.assign(1, first + total);
 }
 
 template <int D> std::size_t CellGrid<D>::pair_count() const {

@@ -232,6 +232,7 @@ private:
     std::vector<std::size_t> count;  // scratch: first pair of each particle of the cell
     std::vector<std::uint16_t> tmp_i;
     std::vector<std::uint32_t> tmp_j;
+    std::vector<std::size_t> cell_begin; // scratch: first pair of each cell of a group, the end
   };
   struct RowRange { // a row's pairs: buffers_[buffer].segments[first_segment, + segments)
     std::size_t buffer = 0, first_segment = 0, segments = 0;
@@ -239,6 +240,7 @@ private:
   template <class T>
   void build_cell(const Positions<T>& x, int c, double rc2, std::uint32_t base,
                   PairBuffer& b) const;
+  void interleave_cells(PairBuffer& b) const;
 
   std::array<double, D> box_, inv_side_, inv_box_;
   std::array<bool, D> periodic_;

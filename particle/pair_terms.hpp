@@ -220,11 +220,11 @@ struct ConstantSigma {
   // gamma a for a factor a known before the temperatures: the constants multiplied first, so
   // the Shardlow sweep's chain of dependent operations through th is short.
   double ito_gamma_times(double th_i, double th_j, double a) const {
-    return (0.25 * sigma * sigma * a) * (th_i + th_j) / (th_i * th_j);
+    return (0.25 * sigma * sigma * a) * (th_i + th_j) / (th_i * th_j); // 000:(2.37), as above
   }
   // Shardlow's implicit half: rhs / (1 + gamma' c), c = w_D dt/m, with the one division.
   double implicit_half(double rhs, double th_i, double th_j, double c) const {
-    const double p = th_i * th_j;
+    const double p = th_i * th_j; // 1 + gamma c = (p + sigma^2 c (th_i + th_j)/4) / p
     return rhs * p / std::fma(0.25 * sigma * sigma * c, th_i + th_j, p);
   }
   static double harmonic(double a, double b) { return 2 * a * b / (a + b); } // Theta_ij, 003

@@ -143,8 +143,9 @@ public:
   template <class T> void build_pairs(const Positions<T>& x, std::size_t n, double rc);
   bool has_pairs() const { return pairs_valid_; }
   std::size_t pair_count() const;
-  // Calls fn(i, j, count) with one row of cells' pairs (storage indices, cell by cell along the
-  // row, each cell's in a fixed order: round-robin over its particles, see build_cell). A row is
+  // Calls fn(i, j, count) with one row of cells' pairs (storage indices, three cells at a time
+  // along the row, interleaved, each cell's round-robin over its particles: see build_cell and
+  // interleave_cells). A row is
   // one block so that the per-pair loops run over hundreds of pairs, not a cell's ~20, and
   // vectorise. Rows in the order of for_each_pair.
   template <class BlockFn> void for_each_pair_block(BlockFn&& fn) const {

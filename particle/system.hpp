@@ -145,9 +145,8 @@ public:
   std::size_t pair_count() const;
   // Calls fn(i, j, count) with one row of cells' pairs (storage indices, three cells at a time
   // along the row, interleaved, each cell's round-robin over its particles: see build_cell and
-  // interleave_cells). A row is
-  // one block so that the per-pair loops run over hundreds of pairs, not a cell's ~20, and
-  // vectorise. Rows in the order of for_each_pair.
+  // interleave_cells). A row is one block so that the per-pair loops run over hundreds of pairs,
+  // not a cell's ~20, and vectorise. Rows in the order of for_each_pair.
   template <class BlockFn> void for_each_pair_block(BlockFn&& fn) const {
     for_each_row([&](long row) {
       static thread_local std::vector<std::uint32_t> rows_i; // i of one segment, widened

@@ -241,6 +241,7 @@ private:
   void build_cell(const Positions<T>& x, int c, double rc2, std::uint32_t base,
                   PairBuffer& b) const;
   void interleave_cells(PairBuffer& b) const;
+  void round_robin(PairBuffer& b, const std::size_t* bounds, std::size_t runs) const;
 
   std::array<double, D> box_, inv_side_, inv_box_;
   std::array<bool, D> periodic_;

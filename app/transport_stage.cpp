@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <iostream>
 #include <sstream>
+#include <unistd.h>
 
 #include "app/case/case.hpp"
 #include "app/commands.hpp"
@@ -149,7 +150,7 @@ WallKappa kappa_from_walls(const CaseParameters& cp, const particle::ParticlePar
               w.particle_count(), w.equilibration_steps, w.steps);
   std::fflush(stdout);
   particle::RunControl control;
-  control.progress = true; // a progress line with ETA on a terminal
+  control.progress = isatty(STDERR_FILENO); // a progress line with ETA on a terminal only
   const particle::RunOutput out = particle::run_particles(w, control);
   const auto lower = wall_name(heated, 0), upper = wall_name(heated, 1);
   const double q_lo = number(out.summary, {"walls", lower.c_str(), "heat_flux_in"});

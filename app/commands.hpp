@@ -31,10 +31,13 @@ struct CommandLine {
 };
 
 // Shared by the stages (app/compare_stage.cpp): a number at a path of nested JSON objects (NaN
-// where absent), a wall's name in the particle summary ("x_lower", ...), and the scene's heated
-// direction (the walled direction whose two thermal walls differ in temperature; -1: none).
+// where absent), a wall's name in the particle summary ("x_lower", ...), a wall's heat-flux
+// error in that summary (the largest over its blockings, 1, 2 and 4 blocks merged; runs before
+// the blockings were recorded: the 20-block one), and the scene's heated direction (the walled
+// direction whose two thermal walls differ in temperature; -1: none).
 double number(const io::Json& j, std::initializer_list<const char*> path);
 std::string wall_name(int d, int side);
+double largest_stderr(const io::Json& results, const std::string& wall);
 int heated_direction(const SceneParameters& s);
 
 // Exit code of a run stopped by a signal or the wall-time limit after writing its checkpoint.
@@ -63,7 +66,8 @@ std::vector<std::string> calibrated_twin_overrides(const std::string& run_dir,
 int transport_stage(const CommandLine&);
 // The transport measurement's version: part of its cache key and of its stage inputs in `run`,
 // bumped when a measurement changes (results of an older method are not reused).
-constexpr int kTransportMethod = 3; // 3: relaxation fit window from the noise (decay_fit.hpp)
+constexpr int kTransportMethod = 4; // 3: relaxation fit window from the noise (decay_fit.hpp);
+                                    // 4: the wall run's slope and flux errors from the blockings
 int bench(const CommandLine&);
 int run_all(const CommandLine&);
 int sweep(const CommandLine&);

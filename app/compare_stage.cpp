@@ -117,9 +117,6 @@ void write_report(const fs::path& dir) {
             << TWINFLOW_REPORT_SCRIPT << " " << dir.string() << ")\n";
 }
 
-namespace {
-// A wall's heat-flux error: the largest over its blockings (1, 2, 4 blocks merged), as compare
-// states Nu's; runs before the blockings were recorded: the 20-block one.
 double largest_stderr(const io::Json& results, const std::string& wall) {
   double e = number(results, {"walls", wall.c_str(), "heat_flux_in_stderr"});
   const io::Json* w = results.find("walls") ? results.find("walls")->find(wall) : nullptr;
@@ -127,7 +124,6 @@ double largest_stderr(const io::Json& results, const std::string& wall) {
     for (const auto& x : b->elements()) e = std::max(e, x.number());
   return e;
 }
-} // namespace
 
 // --set options of the calibrated twin: each thermal wall at the temperature the particle fluid
 // reaches at it (extrapolated from the bins beyond the wall layer), i.e. the measured

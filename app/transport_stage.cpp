@@ -156,8 +156,7 @@ WallKappa kappa_from_walls(const CaseParameters& cp, const particle::ParticlePar
   const double q_lo = number(out.summary, {"walls", lower.c_str(), "heat_flux_in"});
   const double q_up = number(out.summary, {"walls", upper.c_str(), "heat_flux_in"});
   const double se_q =
-      0.5 * std::hypot(number(out.summary, {"walls", lower.c_str(), "heat_flux_in_stderr"}),
-                       number(out.summary, {"walls", upper.c_str(), "heat_flux_in_stderr"}));
+      0.5 * std::hypot(largest_stderr(out.summary, lower), largest_stderr(out.summary, upper));
   const double q = 0.5 * (q_lo - q_up); // from the lower wall to the upper one
   // Steady: both walls carry the same flow. Else the profile is still forming.
   const double imbalance = (q_lo + q_up) / (2 * se_q);

@@ -164,6 +164,9 @@ template <int D> BinnedFields FieldSampler<D>::result() const {
     e.mean[slot] = mean;
     e.stderr_[slot] = k > 1 ? std::sqrt(std::max(0.0, sum2 / k - mean * mean) / (k - 1)) : 0;
   };
+  const auto internal_temperature = [](const Accumulator& a) {
+    return a.inv_theta > 0 ? a.n / a.inv_theta : 0.0; // 1/<1/theta>
+  };
   for (int bin = 0; bin < nbins_; ++bin) {
     auto at = [&](int b) -> const Accumulator& {
       return acc_[static_cast<std::size_t>(b) * nbins_ + bin];
@@ -173,9 +176,7 @@ template <int D> BinnedFields FieldSampler<D>::result() const {
       reduce(f.velocity, static_cast<std::size_t>(bin) * D + d,
              [&](int b) { return at(b).n > 0 ? at(b).v[d] / at(b).n : 0.0; });
     reduce(f.temperature_kinetic, bin, [&](int b) { return kinetic_temperature(at(b)); });
-    reduce(f.temperature_internal, bin, [&](int b) {
-      return at(b).inv_theta > 0 ? at(b).n / at(b).inv_theta : 0.0;
-    }); // 1/<1/theta>
+    reduce(f.temperature_internal, bin, [&](int b) { return internal_temperature(at(b)); });
     reduce(f.internal_energy, bin, [&](int b) { return at(b).n > 0 ? at(b).u / at(b).n : 0.0; });
     // Flux densities: the bin's sum over the sample, per volume.
     for (int d = 0; d < D; ++d) {
@@ -192,10 +193,13 @@ template <int D> BinnedFields FieldSampler<D>::result() const {
   }
   for (int b = 0; b < blocks_; ++b) {
     if (block_samples_[b] == 0) continue;
-    std::vector<double> t(nbins_);
-    for (int bin = 0; bin < nbins_; ++bin)
-      t[bin] = kinetic_temperature(acc_[static_cast<std::size_t>(b) * nbins_ + bin]);
+    std::vector<double> t(nbins_), ti(nbins_);
+    for (int bin = 0; bin < nbins_; ++bin) {
+      const Accumulator& a = acc_[static_cast<std::size_t>(b) * nbins_ + bin];
+      t[bin] = kinetic_temperature(a), ti[bin] = internal_temperature(a);
+    }
     f.temperature_kinetic_blocks.push_back(std::move(t));
+    f.temperature_internal_blocks.push_back(std::move(ti));
   }
   return f;
 }

@@ -44,9 +44,10 @@ struct BinnedFields {
   // internal, kinetic and potential energy carried by particles moving relative to their bin's
   // mean velocity (002 section III.C's diffusive parts; convection is rho u v from the fields).
   FieldEstimate flux_conductive, flux_internal, flux_kinetic, flux_potential;
-  // T_kinetic of each block [block][bin] (the estimates behind its mean and stderr): a quantity
-  // derived from several bins takes its error from these, the bins' correlations included.
-  std::vector<std::vector<double>> temperature_kinetic_blocks;
+  // T_kinetic and T_internal of each block [block][bin] (the estimates behind their means and
+  // stderrs): a quantity derived from several bins takes its error from these, the bins'
+  // correlations included.
+  std::vector<std::vector<double>> temperature_kinetic_blocks, temperature_internal_blocks;
   int bin_count() const { return bins[0] * bins[1] * (dim == 3 ? bins[2] : 1); }
   double centre(int bin, int d) const; // bin centre coordinate along d
   std::string csv() const;

@@ -176,7 +176,8 @@ static std::string tiny_cavity(int equilibration, int steps, int refinements) {
          " --set 'Particle/Equilibration steps=" + std::to_string(equilibration) + "'" +
          " --set 'Particle/Steps=" + std::to_string(steps) + "'" +
          " --set 'Continuum/Mesh/Cells=4' --set 'Continuum/Mesh/Refinements=" +
-         std::to_string(refinements) + "' --set 'Transport/Measure kappa and eta=false'";
+         std::to_string(refinements) + "' --set 'Transport/Measure kappa and eta=false'" +
+         " --set 'Transport/Kappa from walls=false'";
 }
 
 TEST(Cli, RunComparesTheTwinsAndReusesUnchangedStages) {
@@ -315,7 +316,8 @@ TEST(Cli, RunReusesAParticleStageRunOnItsOwn) {
 TEST(Cli, TransportReusesCachedMeasurementsAcrossRunDirectories) {
   const std::string base = std::string(TWINFLOW_SOURCE_DIR) +
                            "/cases/heated_cavity_2d.prm --threads 1"
-                           " --set 'Transport/Measure kappa and eta=false'";
+                           " --set 'Transport/Measure kappa and eta=false'"
+                           " --set 'Transport/Kappa from walls=false'";
   const fs::path cache = fresh_dir("cache"), a = fresh_dir("cache_a"), b = fresh_dir("cache_b"),
                  c = fresh_dir("cache_c");
   const Result first =
@@ -361,6 +363,14 @@ TEST(Cli, KappaFromWallsIsFouriersLawOfTheWallRun) {
   EXPECT_DOUBLE_EQ(kappa, -walls.find("heat_flux")->number() / walls.find("slope")->number());
   EXPECT_GT(measured.find("conductivity_stderr")->number(), 0);
   EXPECT_EQ(walls.find("particles")->number(), 4000); // 20 x 100 at density 2
+  // The slope's error: the largest of the fit's (bins independent) and the blocks' slopes'
+  // (20 blocks, 2 and 4 merged), which see the fluctuations the bins share.
+  const auto& profile = *walls.find("wall_profile");
+  const auto& blocking = profile.find("slope_stderr_blocking")->elements();
+  ASSERT_EQ(blocking.size(), 3u);
+  double largest = profile.find("slope_stderr_fit")->number();
+  for (const auto& e : blocking) largest = std::max(largest, e.number());
+  EXPECT_EQ(walls.find("slope_stderr")->number(), largest);
   const fs::path none = fresh_dir("kappa_walls_none");
   const Result bad = twinflow::testing::run_twinflow(
       "transport " + base + " --set 'Scene/x boundaries/Upper wall temperature=1.5' --out " +

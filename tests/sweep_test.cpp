@@ -68,7 +68,8 @@ const std::string kTinyCavity = shipped("heated_cavity_2d") +
                                 " --set 'Particle/Equilibration steps=200'"
                                 " --set 'Particle/Steps=400' --set 'Continuum/Mesh/Cells=4'"
                                 " --set 'Continuum/Mesh/Refinements=1'"
-                                " --set 'Transport/Measure kappa and eta=false'";
+                                " --set 'Transport/Measure kappa and eta=false'"
+                                " --set 'Transport/Kappa from walls=false'";
 
 } // namespace
 

@@ -80,10 +80,11 @@ TEST(Scenes, ThermalRelaxationFitsHeatAndShearDecayRates) {
 // case says so; without that summary it refuses (exit 2) and names the command to run.
 TEST(Scenes, ContinuumTakesCoefficientsFromTheTransportStage) {
   const auto dir = fresh_dir("scenes", "coefficients");
-  // the estimates only (the default case also measures kappa and eta: minutes)
+  // the estimates only (the default case also measures kappa and eta, and kappa between walls:
+  // minutes)
   const std::string c = case_path("heated_cavity_2d") +
                         " --set 'Transport/Measure kappa and eta=false' --set "
-                        "Transport/Source=estimated";
+                        "'Transport/Kappa from walls=false' --set Transport/Source=estimated";
   const std::string from = " --set Continuum/Coefficients/Source=transport";
   const Result missing = run_twinflow("continuum " + c + " --out " + dir.string() + from);
   EXPECT_EQ(missing.code, 2) << missing.output;

@@ -35,6 +35,13 @@ Estimate block_average(const std::vector<double>& x, int blocks) {
   return e;
 }
 
+std::vector<double> blocking_errors(const std::vector<double>& x, int blocks) {
+  std::vector<double> errors;
+  for (int merge = 1; merge <= 4 && blocks / merge >= 2; merge *= 2)
+    errors.push_back(block_average(x, blocks / merge).stderr_);
+  return errors;
+}
+
 namespace {
 
 struct Histogram {
@@ -96,14 +103,10 @@ io::Json wall_profile_fit(const ParticleParameters& p, const BinnedFields& f) {
     std::vector<double> block_slopes;
     for (const auto& block : f.temperature_internal_blocks)
       block_slopes.push_back(line(block).slope());
+    const std::vector<double> blocking =
+        blocking_errors(block_slopes, static_cast<int>(block_slopes.size()));
     double slope_stderr = fit.slope_stderr();
-    io::Json blocking = io::Json::array();
-    const int blocks = static_cast<int>(block_slopes.size());
-    for (int merge = 1; merge <= 4 && blocks / merge >= 2; merge *= 2) {
-      const double se = block_average(block_slopes, blocks / merge).stderr_;
-      blocking.push_back(se);
-      slope_stderr = std::max(slope_stderr, se);
-    }
+    for (const double se : blocking) slope_stderr = std::max(slope_stderr, se);
     io::Json j = io::Json::object();
     j["direction"] = d;
     j["fit_from"] = lo, j["fit_to"] = hi;
@@ -624,10 +627,8 @@ private:
         walls[names[w]]["heat_flux_in"] = jw.mean;
         walls[names[w]]["heat_flux_in_stderr"] = jw.stderr_;
         // The same with 2 and 4 blocks merged: equal errors say the blocks are long enough.
-        io::Json blocking = io::Json::array();
-        for (int merge = 1; merge <= 4 && p_.blocks / merge >= 2; merge *= 2)
-          blocking.push_back(block_average(wall_heat_flux_[w], p_.blocks / merge).stderr_);
-        walls[names[w]]["heat_flux_in_stderr_blocking"] = blocking;
+        walls[names[w]]["heat_flux_in_stderr_blocking"] =
+            blocking_errors(wall_heat_flux_[w], p_.blocks);
       }
       if (wall_layers_) {
         // A no-slip wall's friction on a particle's tangential velocity, gamma w_D(h), as the

@@ -18,6 +18,9 @@ struct Estimate {
   double mean = 0, stderr_ = 0;
 };
 Estimate block_average(const std::vector<double>& series, int blocks);
+// The standard error with B blocks, then with 2 and 4 of them merged (Flyvbjerg & Petersen
+// 1989): equal errors say the blocks are longer than the series' memory; else the largest holds.
+std::vector<double> blocking_errors(const std::vector<double>& series, int blocks);
 
 struct RunOutput {
   io::Json summary;             // the particle stage's results

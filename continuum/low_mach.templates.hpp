@@ -296,11 +296,12 @@ template <int dim> ContinuumResult LowMachProblem<dim>::run(const std::filesyste
     }
     m.change_in_nusselt = level_ == 0 ? 0.0 : m.nusselt - previous_nusselt;
     previous_nusselt = m.nusselt;
+    m.pressure_ratio = P_ / reference_pressure_;
     m.newton_iterations = newton_iterations_ - iterations_before;
     m.wall_time = detail::seconds_since(start);
     result.mesh_study.push_back(m);
     std::cout << "continuum: level " << level_ << ", " << m.dofs << " DoFs, Nu = " << m.nusselt
-              << ", P/p0 = " << P_ / reference_pressure_ << ", " << m.newton_iterations
+              << ", P/p0 = " << m.pressure_ratio << ", " << m.newton_iterations
               << " Newton iterations, " << m.wall_time << " s" << std::endl;
   }
   {
@@ -603,6 +604,7 @@ template <int dim> void LowMachProblem<dim>::run_transient() {
   m.cells = detail::current_cells(triangulation_, prm_);
   m.dofs = dof_handler_.n_dofs();
   m.nusselt = volume_nusselt();
+  m.pressure_ratio = P_ / reference_pressure_;
   m.newton_iterations = newton_iterations_;
   m.wall_time = detail::seconds_since(start);
   std::cout << "continuum: " << time_steps_ << " time steps, " << m.dofs << " DoFs, "

@@ -187,6 +187,7 @@ io::Json to_json(const ContinuumResult& r) {
       o["dofs"] = m.dofs;
       o["nusselt"] = m.nusselt;
       o["change_in_nusselt"] = m.change_in_nusselt;
+      if (m.pressure_ratio > 0) o["pressure_ratio"] = m.pressure_ratio;
       o["newton_iterations"] = m.newton_iterations;
       o["wall_time_s"] = m.wall_time;
       study.push_back(o);

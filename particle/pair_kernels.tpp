@@ -7,6 +7,8 @@
 #include <limits>
 #include <tuple>
 
+#include "particle/simd.hpp"
+
 namespace twinflow::particle {
 
 // Per-thread scratch of one block of pairs.
@@ -58,9 +60,37 @@ std::size_t Simulation<M>::pair_geometry(const std::uint32_t*& I, const std::uin
   double* __restrict r = s.r.data();
   std::uint32_t* __restrict ci = s.i.data();
   std::uint32_t* __restrict cj = s.j.data();
+  std::size_t m = 0;
+#ifdef TWINFLOW_AVX512
+  // Eight pairs at a time: gathers, and the pairs within the cutoff compressed into place (the
+  // scratch has room for the eight-wide stores past m).
+  const __m512d limit = _mm512_set1_pd(rc2);
+  for (std::size_t k = 0; k < n; k += 8) {
+    const auto live = n - k >= 8 ? __mmask8(0xFF) : static_cast<__mmask8>((1u << (n - k)) - 1);
+    const __m256i vi = _mm256_maskz_loadu_epi32(live, I + k);
+    const __m256i vj = _mm256_maskz_loadu_epi32(live, J + k);
+    __m512d c[D], r2 = _mm512_setzero_pd();
+    for (int d = 0; d < D; ++d) {
+      const double box = d == 0 ? b0 : d == 1 ? b1 : b2, inv_box = d == 0 ? i0 : d == 1 ? i1 : i2;
+      const __m512d zero = _mm512_setzero_pd();
+      c[d] = _mm512_sub_pd(_mm512_mask_i32gather_pd(zero, live, vi, x[d], 8),
+                           _mm512_mask_i32gather_pd(zero, live, vj, x[d], 8));
+      const __m512d image = // nearbyint, as below (simd.hpp)
+          _mm512_maskz_roundscale_pd(0xFF, _mm512_mul_pd(c[d], _mm512_set1_pd(inv_box)),
+                                     _MM_FROUND_CUR_DIRECTION | _MM_FROUND_NO_EXC);
+      c[d] = _mm512_sub_pd(c[d], _mm512_mul_pd(_mm512_set1_pd(box), image));
+      r2 = _mm512_add_pd(r2, _mm512_mul_pd(c[d], c[d]));
+    }
+    const __mmask8 keep = _mm512_mask_cmp_pd_mask(live, r2, limit, _CMP_LT_OQ);
+    for (int d = 0; d < D; ++d) _mm512_storeu_pd(e[d] + m, _mm512_maskz_compress_pd(keep, c[d]));
+    _mm512_storeu_pd(r + m, _mm512_maskz_compress_pd(keep, r2));
+    _mm256_storeu_si256(reinterpret_cast<__m256i*>(ci + m), _mm256_maskz_compress_epi32(keep, vi));
+    _mm256_storeu_si256(reinterpret_cast<__m256i*>(cj + m), _mm256_maskz_compress_epi32(keep, vj));
+    m += static_cast<std::size_t>(__builtin_popcount(keep));
+  }
+#else
   // One scalar pass (the gathers: no vector gathers on every CPU) that also drops the pairs
   // beyond the cutoff, branch-free: the kept ones are written once, not copied afterwards.
-  std::size_t m = 0;
   for (std::size_t k = 0; k < n; ++k) {
     const std::uint32_t i = I[k], j = J[k];
     double r2 = 0;
@@ -74,6 +104,7 @@ std::size_t Simulation<M>::pair_geometry(const std::uint32_t*& I, const std::uin
     ci[m] = i, cj[m] = j, r[m] = r2;
     m += r2 < rc2;
   }
+#endif
   for (std::size_t k = 0; k < m; ++k) { // vectorises
     const double rk = std::sqrt(r[k]), inv_r = 1 / rk;
     for (int d = 0; d < D; ++d) e[d][k] *= inv_r;

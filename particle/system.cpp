@@ -1,11 +1,83 @@
 #include "particle/system.hpp"
 
+#include "particle/simd.hpp"
+
 #include <omp.h>
 
 #include <stdexcept>
 #include <string>
 
 namespace twinflow::particle {
+
+namespace {
+// A cell's candidates as columns (x[d][q]: the candidate positions, index[q]: their indices;
+// r2: scratch).
+struct Candidates {
+  const double *x0, *x1, *x2;
+  const std::uint32_t* index;
+  double* r2;
+};
+
+// Appends (i, index[q]) for every candidate q in [from, to) closer to y than sqrt(rc2), in q
+// order, at out_i[m], out_j[m]; returns the new end. The distance is the minimum image by
+// nearbyint as in visit_cell, and the same in both versions (bitwise: the same pairs). The
+// AVX-512 version tests eight candidates at a time and compresses the close ones into place; it
+// writes up to eight entries past the returned end (the caller's margin).
+template <int D>
+std::size_t append_close(const Candidates& c, const double* y, const double* box, const double* inv,
+                         double rc2, std::size_t from, std::size_t to, std::uint16_t i,
+                         std::uint16_t* out_i, std::uint32_t* out_j, std::size_t m) {
+#ifdef TWINFLOW_AVX512
+  const __m128i wide_i = _mm_set1_epi16(static_cast<short>(i));
+  const __m512d limit = _mm512_set1_pd(rc2);
+  // x_i - x_q - box nearbyint((x_i - x_q) / box): nearbyint rounds in the current mode (0x4),
+  // without exceptions (0x8), as std::nearbyint does.
+  auto component = [&](const double* x, int d, __mmask8 live, std::size_t q) {
+    const __m512d r = _mm512_sub_pd(_mm512_set1_pd(y[d]), _mm512_maskz_loadu_pd(live, x + q));
+    const __m512d image = // (simd.hpp)
+        _mm512_maskz_roundscale_pd(0xFF, _mm512_mul_pd(r, _mm512_set1_pd(inv[d])),
+                                   _MM_FROUND_CUR_DIRECTION | _MM_FROUND_NO_EXC);
+    return _mm512_sub_pd(r, _mm512_mul_pd(_mm512_set1_pd(box[d]), image));
+  };
+  for (std::size_t q = from; q < to; q += 8) {
+    const __mmask8 live =
+        to - q >= 8 ? __mmask8(0xFF) : static_cast<__mmask8>((1u << (to - q)) - 1);
+    __m512d r = component(c.x0, 0, live, q);
+    __m512d sum = _mm512_mul_pd(r, r);
+    r = component(c.x1, 1, live, q);
+    sum = _mm512_add_pd(sum, _mm512_mul_pd(r, r));
+    if constexpr (D == 3) {
+      r = component(c.x2, 2, live, q);
+      sum = _mm512_add_pd(sum, _mm512_mul_pd(r, r));
+    }
+    const __mmask8 close = _mm512_mask_cmp_pd_mask(live, sum, limit, _CMP_LT_OQ);
+    const __m256i j =
+        _mm256_maskz_compress_epi32(close, _mm256_maskz_loadu_epi32(live, c.index + q));
+    _mm256_storeu_si256(reinterpret_cast<__m256i*>(out_j + m), j);
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(out_i + m), wide_i);
+    m += static_cast<std::size_t>(__builtin_popcount(close));
+  }
+  return m;
+#else
+  const double* x[3] = {c.x0, c.x1, c.x2};
+  for (std::size_t q = from; q < to; ++q) { // vectorises
+    double sum = 0;
+    for (int d = 0; d < D; ++d) {
+      double r = y[d] - x[d][q];
+      r -= box[d] * std::nearbyint(r * inv[d]);
+      sum += r * r;
+    }
+    c.r2[q] = sum;
+  }
+  for (std::size_t q = from; q < to; ++q) { // branch-free compaction
+    out_i[m] = i;
+    out_j[m] = c.index[q];
+    m += c.r2[q] < rc2;
+  }
+  return m;
+#endif
+}
+} // namespace
 
 template <int D> void CellGrid<D>::build_stencil() {
   // Half shell: offsets in {-1,0,1}^D that are lexicographically >= 0, with directions of a
@@ -163,44 +235,21 @@ void CellGrid<D>::build_cell(const Positions<T>& x, int c, double rc2, std::uint
       cand[k] = static_cast<std::uint32_t>(j);
       for (int d = 0; d < D; ++d) b.cx[d][k] = x[d][j];
     }
-  const std::size_t need = b.used + ni * nc;
+  const std::size_t need = b.used + ni * nc + 8; // 8: append_close's margin
   if (b.i.size() < need) {
     const std::size_t grown = std::max(need, b.i.size() + b.i.size() / 4);
     b.i.grow(grown, b.used), b.j.grow(grown, b.used);
   }
-  std::uint16_t* out_i = b.i.data();
-  std::uint32_t* out_j = b.j.data();
+  const Candidates cs{b.cx[0].data(), b.cx[1].data(), b.cx[D - 1].data(), cand.data(), b.r2.data()};
+  const double box[3] = {box_[0], box_[1], box_[D - 1]};
+  const double inv[3] = {inv_box_[0], inv_box_[1], inv_box_[D - 1]};
   std::size_t m = b.used;
-  double* __restrict r2 = b.r2.data();
-  const double* __restrict x0 = b.cx[0].data();
-  const double* __restrict x1 = b.cx[1].data();
-  const double* __restrict x2 = b.cx[D - 1].data();
-  const double box0 = box_[0], box1 = box_[1], box2 = box_[D - 1];
-  const double inv0 = inv_box_[0], inv1 = inv_box_[1], inv2 = inv_box_[D - 1];
   b.count.resize(ni + 1);
   for (std::size_t p = 0; p < ni; ++p) {
     b.count[p] = m;
-    const double y0 = x0[p], y1 = x1[p], y2 = x2[p];
-    for (std::size_t q = p + 1; q < nc; ++q) {
-      double r = y0 - x0[q];
-      r -= box0 * std::nearbyint(r * inv0);
-      double sum = r * r;
-      r = y1 - x1[q];
-      r -= box1 * std::nearbyint(r * inv1);
-      sum += r * r;
-      if constexpr (D == 3) {
-        r = y2 - x2[q];
-        r -= box2 * std::nearbyint(r * inv2);
-        sum += r * r;
-      }
-      r2[q] = sum;
-    }
+    const double y[3] = {cs.x0[p], cs.x1[p], cs.x2[p]};
     const auto i = static_cast<std::uint16_t>(first + p - base);
-    for (std::size_t q = p + 1; q < nc; ++q) { // branch-free compaction
-      out_i[m] = i;
-      out_j[m] = cand[q];
-      m += r2[q] < rc2;
-    }
+    m = append_close<D>(cs, y, box, inv, rc2, p + 1, nc, i, b.i.data(), b.j.data(), m);
   }
   b.count[ni] = m;
   // Round-robin over the cell's particles (the k-th pair of every i, then the (k+1)-th, ...):

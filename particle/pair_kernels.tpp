@@ -73,12 +73,9 @@ std::size_t Simulation<M>::pair_geometry(const std::uint32_t*& I, const std::uin
     for (int d = 0; d < D; ++d) {
       const double box = d == 0 ? b0 : d == 1 ? b1 : b2, inv_box = d == 0 ? i0 : d == 1 ? i1 : i2;
       const __m512d zero = _mm512_setzero_pd();
-      c[d] = _mm512_sub_pd(_mm512_mask_i32gather_pd(zero, live, vi, x[d], 8),
-                           _mm512_mask_i32gather_pd(zero, live, vj, x[d], 8));
-      const __m512d image = // nearbyint, as below (simd.hpp)
-          _mm512_maskz_roundscale_pd(0xFF, _mm512_mul_pd(c[d], _mm512_set1_pd(inv_box)),
-                                     _MM_FROUND_CUR_DIRECTION | _MM_FROUND_NO_EXC);
-      c[d] = _mm512_sub_pd(c[d], _mm512_mul_pd(_mm512_set1_pd(box), image));
+      c[d] = minimum_image(_mm512_sub_pd(_mm512_mask_i32gather_pd(zero, live, vi, x[d], 8),
+                                         _mm512_mask_i32gather_pd(zero, live, vj, x[d], 8)),
+                           box, inv_box);
       r2 = _mm512_add_pd(r2, _mm512_mul_pd(c[d], c[d]));
     }
     const __mmask8 keep = _mm512_mask_cmp_pd_mask(live, r2, limit, _CMP_LT_OQ);

@@ -30,14 +30,9 @@ std::size_t append_close(const Candidates& c, const double* y, const double* box
 #ifdef TWINFLOW_AVX512
   const __m128i wide_i = _mm_set1_epi16(static_cast<short>(i));
   const __m512d limit = _mm512_set1_pd(rc2);
-  // x_i - x_q - box nearbyint((x_i - x_q) / box): nearbyint rounds in the current mode (0x4),
-  // without exceptions (0x8), as std::nearbyint does.
   auto component = [&](const double* x, int d, __mmask8 live, std::size_t q) {
     const __m512d r = _mm512_sub_pd(_mm512_set1_pd(y[d]), _mm512_maskz_loadu_pd(live, x + q));
-    const __m512d image = // (simd.hpp)
-        _mm512_maskz_roundscale_pd(0xFF, _mm512_mul_pd(r, _mm512_set1_pd(inv[d])),
-                                   _MM_FROUND_CUR_DIRECTION | _MM_FROUND_NO_EXC);
-    return _mm512_sub_pd(r, _mm512_mul_pd(_mm512_set1_pd(box[d]), image));
+    return minimum_image(r, box[d], inv[d]);
   };
   for (std::size_t q = from; q < to; q += 8) {
     const __mmask8 live =

@@ -49,13 +49,23 @@ if perf:
     print("\n(ratios: 2 threads, in brackets 1 thread)\n")
     print("cost exponent b in time per step ~ N^b (least squares over N = %s):\n" %
           ", ".join(map(str, sizes)))
+    def slope(pts):
+        mx = st.mean(p[0] for p in pts)
+        my = st.mean(p[1] for p in pts)
+        return sum((x - mx) * (y - my) for x, y in pts) / sum((x - mx) ** 2 for x, _ in pts)
+
     for c, name in zip(cfg, names):
-        pts = [(math.log(n), math.log(n / med(perf[c + (n,)]))) for n in sizes if perf.get(c + (n,))]
-        if len(pts) >= 2:
-            mx = st.mean(p[0] for p in pts)
-            my = st.mean(p[1] for p in pts)
-            b = sum((x - mx) * (y - my) for x, y in pts) / sum((x - mx) ** 2 for x, _ in pts)
-            print("- %s: b = %.3f" % (name, b))
+        have = [n for n in sizes if perf.get(c + (n,))]
+        if len(have) >= 2:
+            b = slope([(math.log(n), math.log(n / med(perf[c + (n,)]))) for n in have])
+            # Each repeat ran its sizes back to back: its own fit shows how much the machine's
+            # load moved the exponent between repeats.
+            runs = min(len(perf[c + (n,)]) for n in have)
+            each = sorted(slope([(math.log(n), math.log(n / perf[c + (n,)][k][0])) for n in have])
+                          for k in range(runs))
+            spread = " (per repeat: median %.3f, %.3f-%.3f)" % (
+                st.median(each), each[0], each[-1]) if runs > 1 else ""
+            print("- %s: b = %.3f%s" % (name, b, spread))
     print("\nmemory: peak-RSS difference between the largest and smallest N, per particle "
           "(median RSS):\n")
     for c, name in zip(cfg, names):

@@ -54,8 +54,9 @@ struct ParticleParameters {
   Integrator integrator = Integrator::Shardlow;
   bool energy_offset = false; // seed 002's per-particle K+P offset, for euler and shardlow
   double dt = 0.005;
-  // Pairs within largest_cutoff() + skin are listed; the list is kept until a particle has moved
-  // skin/2 (ec-verlet, shardlow). 0: a new list every step.
+  // Pairs within largest_cutoff() + skin are listed; the list is kept while no pair closer than
+  // the cutoff can be missing (Simulation::update_neighbours; ec-verlet, shardlow). 0: a new list
+  // every step.
   double neighbour_skin = 0.2;
   bool uniform_noise = false; // pair noises uniform with unit variance instead of Gaussian
   long equilibration_steps = 0;

@@ -2,6 +2,8 @@
 // One DPDE (or isothermal DPD) particle system and its three integrators. The model is a
 // compile-time combination of pair terms (pair_terms.hpp); the integrator is chosen per run.
 
+#include <omp.h>
+
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -62,6 +64,7 @@ public:
   // it).
   void resort() { update_neighbours(true); }
   long pair_list_builds() const { return list_builds_; }
+  long pair_list_kept_past_bound() const { return list_kept_past_bound_; }
   void prepare(); // forces at the current state (call after changing the state)
 
   // Everything a restart needs, listed once (particle/archive.hpp). Scratch arrays are not in
@@ -93,11 +96,13 @@ private:
                        double r2, const std::array<std::vector<double>, D>& v) const;
 
   void update_neighbours(bool force);
+  bool list_still_complete(double largest, std::size_t moved);
   void list_positions(); // x_listed_ = x rounded to float
   void step_ec_verlet();
   void step_euler();
   void step_shardlow();
-  void conservative_pass(bool with_velocity_terms); // ec-verlet / VV force evaluation
+  // ec-verlet / VV force evaluation
+  void conservative_pass(bool with_velocity_terms, bool zeroed = false);
   void potential_pass();
   // Pair passes over the grid's pair list (pair_kernels.tpp).
   std::size_t pair_geometry(const std::uint32_t*& i, const std::uint32_t*& j, std::size_t n,
@@ -129,6 +134,8 @@ private:
   // Positions the list was built from (skin > 0), rounded to float.
   typename CellGrid<D>::ListedPositions x_listed_;
   long list_builds_ = 0;
+  long list_kept_past_bound_ = 0; // steps the list was kept after a particle moved skin/2
+  std::vector<std::vector<std::uint32_t>> moved_far_; // per thread: those particles
   long step_ = 0;
   double dt_, sqrt_dt_, inv_sqrt_dt_;
   std::array<std::vector<double>, D> v_old_;

@@ -78,15 +78,18 @@ Simulation<M>::Simulation(const M& model, const ParticleParameters& p)
   prepare();
 }
 
-// Verlet list: the pairs closer than rc + skin, kept while every particle is within skin/2 of
-// where it was when they were listed (then no pair closer than rc is missing); otherwise the
-// particles are re-sorted and listed anew. The decision depends on the positions alone, so the
-// rebuild steps are the same for any thread count, and a checkpoint holds the listed positions.
+// Verlet list: the pairs closer than rc + skin, kept while no pair closer than rc can be missing:
+// while every particle is within skin/2 of where it was when they were listed, or, past that,
+// while list_still_complete finds none; otherwise the particles are re-sorted and listed anew.
+// The decision depends on the positions alone, so the rebuild steps are the same for any thread
+// count, and a checkpoint holds the listed positions.
 template <class M> void Simulation<M>::update_neighbours(bool force) {
   if (!force && skin_ > 0 && grid_.has_pairs()) {
     const long n = static_cast<long>(state_.size());
-    double largest = 0; // max |x_i - x_listed_i|^2, minimum image
-#pragma omp parallel for schedule(static) reduction(max : largest)
+    const double half_skin2 = 0.25 * skin_ * skin_;
+    double largest = 0;    // max |x_i - x_listed_i|^2, minimum image
+    std::size_t moved = 0; // particles farther than skin/2
+#pragma omp parallel for schedule(static) reduction(max : largest) reduction(+ : moved)
     for (long i = 0; i < n; ++i) {
       double r2 = 0;
       for (int d = 0; d < D; ++d) {
@@ -97,8 +100,13 @@ template <class M> void Simulation<M>::update_neighbours(bool force) {
         r2 += r * r;
       }
       largest = std::max(largest, r2);
+      moved += r2 >= half_skin2;
     }
-    if (largest < 0.25 * skin_ * skin_) return;
+    if (largest < half_skin2) return;
+    if (list_still_complete(largest, moved)) {
+      ++list_kept_past_bound_;
+      return;
+    }
   }
   ++list_builds_;
   if (skin_ == 0 || p_.integrator == Integrator::Euler) {
@@ -113,6 +121,69 @@ template <class M> void Simulation<M>::update_neighbours(bool force) {
   grid_.sort(state_, carried_, &x_listed_, false);
   list_positions(); // in the sorted order
   grid_.build_pairs(x_listed_, state_.size(), list_cutoff_);
+}
+
+// A pair the list lacks was at least rc + skin apart when listed and is now closer than rc, so
+// |d_i| + |d_j| > skin (d: displacement since listing): one of the two moved farther than skin/2.
+// While those are few (8 + N/256), each is checked against every particle that was within two
+// cells of it: a missing pair has both that and |x_i - x_j| < rc now. The global bound alone
+// rebuilds when the fastest of N particles has moved skin/2, which comes sooner the larger N is
+// (the largest of N Maxwell speeds grows as sqrt(ln N)); this keeps a list's life nearly
+// independent of N. The limit N/256 (checking ~650 neighbours of each costs ~1 us): with N/1024
+// lists lived 4.3 steps instead of 5.3 and ec-verlet ran 3% slower at N = 384000; N/128 and
+// N/64 were no faster. largest: max |d_i|^2, moved: how many moved farther than skin/2.
+template <class M> bool Simulation<M>::list_still_complete(double largest, std::size_t moved) {
+  const std::size_t n = state_.size();
+  // A missing pair was closer than rc + 2 max|d| when listed: two cells apart at most, if that
+  // is under two cell sides.
+  if (moved > 8 + n / 256 || model_.rc + 2 * std::sqrt(largest) >= 2 * grid_.smallest_side())
+    return false;
+  const double half_skin2 = 0.25 * skin_ * skin_;
+  const int threads = omp_get_max_threads();
+  moved_far_.resize(static_cast<std::size_t>(threads));
+#pragma omp parallel num_threads(threads)
+  { // static schedule: thread t holds the t-th range, so the lists join in storage order
+    auto& mine = moved_far_[static_cast<std::size_t>(omp_get_thread_num())];
+    mine.clear();
+#pragma omp for schedule(static)
+    for (long i = 0; i < static_cast<long>(n); ++i) {
+      double r2 = 0;
+      for (int d = 0; d < D; ++d) {
+        double r = state_.x[d][i] - x_listed_[d][i];
+        r -= grid_.image_box(d) * std::nearbyint(r * grid_.inv_box(d));
+        r2 += r * r;
+      }
+      if (r2 >= half_skin2) mine.push_back(static_cast<std::uint32_t>(i));
+    }
+  }
+  std::vector<std::uint32_t> far;
+  for (const auto& part : moved_far_) far.insert(far.end(), part.begin(), part.end());
+  const double rc2 = model_.rc * model_.rc;
+  // Listed pairs are those closer than rc + skin as the list build rounds; a margin far above
+  // rounding counts a pair at the edge as missing (a rebuild, never a lost pair).
+  const double listed2 = list_cutoff_ * list_cutoff_ * (1 - 1e-9);
+  const long count = static_cast<long>(far.size());
+  bool missing = false;
+#pragma omp parallel for schedule(static) reduction(|| : missing)
+  for (long k = 0; k < count; ++k) {
+    const std::size_t i = far[k];
+    float listed_i[D];
+    for (int d = 0; d < D; ++d) listed_i[d] = x_listed_[d][i];
+    grid_.for_each_near(listed_i, 2, [&](std::size_t j) {
+      if (j == i) return;
+      double now2 = 0, then2 = 0;
+      for (int d = 0; d < D; ++d) {
+        double r = state_.x[d][i] - state_.x[d][j];
+        r -= grid_.image_box(d) * std::nearbyint(r * grid_.inv_box(d));
+        now2 += r * r;
+        double l = static_cast<double>(listed_i[d]) - static_cast<double>(x_listed_[d][j]);
+        l -= grid_.image_box(d) * std::nearbyint(l * grid_.inv_box(d));
+        then2 += l * l;
+      }
+      missing |= now2 < rc2 && then2 >= listed2;
+    });
+  }
+  return !missing;
 }
 
 template <class M> void Simulation<M>::list_positions() {
@@ -167,12 +238,19 @@ Simulation<M>::pair_force(const PairNoise& noise, std::size_t i, std::size_t j, 
   return pf;
 }
 
-template <class M> void Simulation<M>::conservative_pass(bool with_velocity_terms) {
-  const std::size_t n = state_.size();
-  for (int d = 0; d < D; ++d) std::fill(carried_.f[d].begin(), carried_.f[d].end(), 0.0);
-  std::fill(carried_.q.begin(), carried_.q.end(), 0.0);
-  std::fill(carried_.potential.begin(), carried_.potential.end(), 0.0);
-  (void)n;
+// zeroed: the step's first kick already set f, q and the potentials to 0 while it read them (one
+// pass less over memory, and no serial fill), and no sort has reused f's storage since.
+template <class M> void Simulation<M>::conservative_pass(bool with_velocity_terms, bool zeroed) {
+  if (!zeroed) {
+    const long n = static_cast<long>(state_.size());
+    const bool heat_rates = !carried_.q.empty();
+#pragma omp parallel for schedule(static)
+    for (long i = 0; i < n; ++i) {
+      for (int d = 0; d < D; ++d) carried_.f[d][i] = 0;
+      if (heat_rates) carried_.q[i] = 0;
+      carried_.potential[i] = 0;
+    }
+  }
   const PairNoise noise = pair_noise();
   if (with_velocity_terms)
     force_blocks(noise);
@@ -377,15 +455,19 @@ template <class M> void Simulation<M>::step_ec_verlet() {
     for (int d = 0; d < D; ++d) {
       k_old += v[d][i] * v[d][i];
       v[d][i] += half * carried_.f[d][i]; // 002:(A1)
+      carried_.f[d][i] = 0;
       k_half += v[d][i] * v[d][i];
       state_.x[d][i] += v[d][i] * dt_; // 002:(A3)
     }
     if constexpr (M::has_energy) // 002:(A2); + P_i(t) is the first half of (A5)'s -[P(t+dt) - P(t)]
       state_.u[i] += 0.5 * dt_ * carried_.q[i] - m2 * (k_half - k_old) + carried_.potential[i];
+    carried_.q[i] = 0, carried_.potential[i] = 0;
   }
+  const long builds = list_builds_;
   update_neighbours(false);
-  conservative_pass(true); // F, q, P at t + dt from r(t+dt), v(t+dt/2), u(t+dt/2)
-  bool bad = false;        // a non-finite velocity or non-positive energy (check_energies)
+  // F, q, P at t + dt from r(t+dt), v(t+dt/2), u(t+dt/2)
+  conservative_pass(true, list_builds_ == builds);
+  bool bad = false; // a non-finite velocity or non-positive energy (check_energies)
 #pragma omp parallel for schedule(static) reduction(|| : bad)
   for (std::size_t i = 0; i < n; ++i) {
     double k_half = 0, k_new = 0;
@@ -487,17 +569,19 @@ template <class M> void Simulation<M>::step_shardlow() {
     double k_old = 0, k_half = 0;
     for (int d = 0; d < D; ++d) {
       k_old += v[d][i] * v[d][i];
-      if (kicks) v[d][i] += half * carried_.f[d][i];
+      if (kicks) v[d][i] += half * carried_.f[d][i], carried_.f[d][i] = 0;
       k_half += v[d][i] * v[d][i];
       state_.x[d][i] += v[d][i] * dt_;
     }
     if constexpr (M::has_energy)
       if (offset) state_.u[i] += carried_.potential[i] - m2 * (k_half - k_old);
+    if (kicks) carried_.potential[i] = 0;
   }
   if (p_.has_walls()) reflect_at_walls();
+  const long builds = list_builds_;
   update_neighbours(false);
   if (kicks) {
-    conservative_pass(false);
+    conservative_pass(false, list_builds_ == builds);
 #pragma omp parallel for schedule(static)
     for (std::size_t i = 0; i < n; ++i) {
       double k_half = 0, k_new = 0;

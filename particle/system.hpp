@@ -87,6 +87,39 @@ public:
   std::size_t begin(int c) const { return start_[c]; }
   std::size_t end(int c) const { return start_[c + 1]; }
   double side(int d) const { return box_[d] / n_[d]; }
+  double smallest_side() const {
+    double s = side(0);
+    for (int d = 1; d < D; ++d) s = std::min(s, side(d));
+    return s;
+  }
+  // Calls fn(j) for every particle of the cells within `reach` cells of pos's cell in every
+  // direction, each cell once (periodic directions wrap; walls end the range).
+  template <class T, class Fn> void for_each_near(const T* pos, int reach, Fn&& fn) const {
+    double p[D];
+    for (int d = 0; d < D; ++d) p[d] = pos[d];
+    int rem = cell_of(p);
+    std::array<int, D> lo, hi, k;
+    for (int d = 0; d < D; ++d) {
+      const int idx = rem % n_[d];
+      rem /= n_[d];
+      if (periodic_[d] && 2 * reach + 1 >= n_[d])
+        lo[d] = 0, hi[d] = n_[d] - 1;
+      else if (periodic_[d])
+        lo[d] = idx - reach, hi[d] = idx + reach;
+      else
+        lo[d] = std::max(idx - reach, 0), hi[d] = std::min(idx + reach, n_[d] - 1);
+    }
+    k = lo;
+    while (true) {
+      int c = 0;
+      for (int d = D - 1; d >= 0; --d) c = c * n_[d] + (k[d] + n_[d]) % n_[d];
+      for (std::size_t j = start_[c]; j < start_[c + 1]; ++j) fn(j);
+      int d = 0;
+      while (d < D && k[d] == hi[d]) k[d] = lo[d], ++d;
+      if (d == D) break;
+      ++k[d];
+    }
+  }
 
   int cell_of(const double* pos) const {
     int c = 0;

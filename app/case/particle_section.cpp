@@ -26,8 +26,10 @@ void declare_particle(Registry& r) {
   r.declare(p + "Time step", "0.005", Double(), "Time step dt (units of tau), > 0.", kPositive);
   r.declare(p + "Neighbour skin", "0.2", Double(),
             "ec-verlet and shardlow list the pairs closer than the cutoff + skin and keep the "
-            "list until a particle has moved skin/2 (a performance setting: the physics is the "
-            "same for any skin). 0: a new list every step. In [0, 1).");
+            "list while no pair closer than the cutoff can be missing (every particle within "
+            "skin/2 of where it was listed, or, past that, a check of the few that are not: "
+            "a performance setting, the physics is the same for any skin). 0: a new list every "
+            "step. In [0, 1).");
   r.declare(
       p + "Noise", "gaussian", Selection("gaussian|uniform"),
       "Distribution of the pair noises xi_ij (friction) and zeta_ij (heat): standard "

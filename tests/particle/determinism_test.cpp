@@ -121,42 +121,112 @@ TEST(Noise, UniformPairNoiseHasUnitVariance) {
   EXPECT_NEAR(u.m[4], 1.8, 5 * std::sqrt(9 - 3.24) * u.se); // E g^8 = 3^4 / 9
 }
 
-// The Verlet list (pairs within rc + skin, kept until a particle has moved skin/2) misses no pair
-// closer than rc: after every step, the potential energy summed over the list equals an O(N^2)
-// sum over all pairs, while the list is rebuilt only every few steps.
-// (A constant a0: the potential then depends on positions alone.)
+// The Verlet list (pairs within rc + skin) misses no pair closer than rc while it is kept, also
+// past the global bound (a particle moved skin/2) where list_still_complete decides: after every
+// step the listed pairs closer than rc are exactly those of an O(N^2) search, while the list is
+// rebuilt only every few steps and is kept past the global bound in some of them. Hot particles
+// (T = 4) and a 2D case with walls make the kept-past-bound steps frequent.
 TEST(Neighbours, SkinListMissesNoPairBetweenRebuilds) {
   using Constant = Model<3, ConstantRepulsion, ConstantSigma, InverseSeed002Heat>;
-  for (const auto integrator : {Integrator::EcVerlet, Integrator::Shardlow}) {
-    auto p = seed002(integrator, 0.01);
+  struct Case {
+    Integrator integrator;
+    bool walls;
+  };
+  for (const auto c : {Case{Integrator::EcVerlet, false}, Case{Integrator::Shardlow, false},
+                       Case{Integrator::Shardlow, true}}) {
+    auto p = seed002(c.integrator, 0.005);
     p.box = {{9, 9, 6}};
     p.conservative = ConservativeForce::Constant;
     p.neighbour_skin = 0.2;
+    if (c.walls) p.walls[2] = WallPair{true, {{true, true}}, {{1, 1}}, true};
     const auto s002 = seed002_model(p);
     Simulation<Constant> sim(
         Constant{ConstantRepulsion{p.a0, 1, 1}, s002.friction, s002.heat, 1, p.cv, 1}, p);
     const auto& s = sim.state();
-    const auto& model = sim.model();
+    const std::string name = std::string(to_string(c.integrator)) + (c.walls ? " with walls" : "");
     const long builds = sim.pair_list_builds();
-    const int steps = 60;
+    const int steps = 200;
     for (int k = 0; k < steps; ++k) {
       sim.step();
-      double brute = 0;
+      long brute = 0;
       for (std::size_t i = 0; i < s.size(); ++i)
         for (std::size_t j = i + 1; j < s.size(); ++j) {
           double dx[3], r2 = 0;
           sim.grid().separation(s, i, j, dx);
           for (int d = 0; d < 3; ++d) r2 += dx[d] * dx[d];
-          if (r2 >= 1) continue;
-          double f, phi;
-          model.conservative.eval(std::sqrt(r2), 1, 1, f, phi);
-          brute += phi;
+          brute += r2 < 1;
         }
-      ASSERT_NEAR(sim.potential_energy(), brute, 1e-10 * std::fabs(brute))
-          << to_string(integrator) << " step " << k;
+      long listed = 0;
+      sim.grid().for_each_pair_block(
+          [&](const std::uint32_t* I, const std::uint32_t* J, std::size_t n) {
+            long mine = 0;
+            for (std::size_t q = 0; q < n; ++q) {
+              double dx[3], r2 = 0;
+              sim.grid().separation(s, I[q], J[q], dx);
+              for (int d = 0; d < 3; ++d) r2 += dx[d] * dx[d];
+              mine += r2 < 1;
+            }
+#pragma omp atomic
+            listed += mine;
+          });
+      ASSERT_EQ(listed, brute) << name << " step " << k;
     }
     const long rebuilt = sim.pair_list_builds() - builds;
-    EXPECT_LT(rebuilt, steps / 2) << "the list is kept across steps";
-    EXPECT_GT(rebuilt, 0) << "and rebuilt when particles have moved";
+    EXPECT_LT(rebuilt, steps / 2) << name << ": the list is kept across steps";
+    EXPECT_GT(rebuilt, 0) << name << ": and rebuilt when particles have moved";
+    EXPECT_GT(sim.pair_list_kept_past_bound(), 0) << name << ": the check past the bound ran";
+  }
+}
+
+// The check past the global bound finds a pair that is about to be missing: particle A, 0.15 per
+// step towards B, which was listed 1.25 apart (beyond rc + skin = 1.2), the others far away.
+// After one step A has moved past skin/2 but is 1.1 from B: the list is kept. After the second
+// it is 0.95 from B, a pair the list lacks: the list must be rebuilt, and then holds it.
+TEST(Neighbours, ListKeptPastTheBoundIsRebuiltForAnApproachingPair) {
+  using Constant = Model<3, ConstantRepulsion, ConstantSigma, InverseSeed002Heat>;
+  for (const auto integrator : {Integrator::EcVerlet, Integrator::Shardlow}) {
+    auto p = seed002(integrator, 0.005);
+    p.box = {{12, 12, 12}};
+    p.density = 8.0 / 1728;
+    p.conservative = ConservativeForce::Constant;
+    p.neighbour_skin = 0.2;
+    const auto s002 = seed002_model(p);
+    Simulation<Constant> sim(
+        Constant{ConstantRepulsion{p.a0, 1, 1}, s002.friction, s002.heat, 1, p.cv, 1}, p);
+    auto& s = sim.state();
+    ASSERT_EQ(s.size(), 8u);
+    for (std::size_t k = 0; k < 8; ++k) { // A, B, and six alone at least 4 from everything
+      const double far[6][3] = {{8, 2, 2}, {8, 8, 2}, {2, 8, 8}, {8, 2, 8}, {8, 8, 8}, {2, 2, 10}};
+      const double at[3] = {k == 0   ? 2.0
+                            : k == 1 ? 3.25
+                                     : far[k - 2][0],
+                            k < 2 ? 6 : far[k - 2][1], k < 2 ? 6 : far[k - 2][2]};
+      for (int d = 0; d < 3; ++d) s.x[d][k] = at[d], s.v[d][k] = 0;
+    }
+    s.v[0][0] = 0.15 / p.dt; // particle A (storage index 0 before the sort)
+    sim.resort();
+    sim.prepare();
+    auto close_pairs = [&] {
+      long listed = 0;
+      sim.grid().for_each_pair_block(
+          [&](const std::uint32_t* I, const std::uint32_t* J, std::size_t n) {
+            for (std::size_t q = 0; q < n; ++q) {
+              double dx[3], r2 = 0;
+              sim.grid().separation(s, I[q], J[q], dx);
+              for (int d = 0; d < 3; ++d) r2 += dx[d] * dx[d];
+#pragma omp atomic
+              listed += r2 < 1;
+            }
+          });
+      return listed;
+    };
+    const long builds = sim.pair_list_builds();
+    sim.step();
+    EXPECT_EQ(sim.pair_list_builds(), builds) << to_string(integrator);
+    EXPECT_EQ(sim.pair_list_kept_past_bound(), 1) << to_string(integrator);
+    EXPECT_EQ(close_pairs(), 0) << to_string(integrator);
+    sim.step();
+    EXPECT_EQ(sim.pair_list_builds(), builds + 1) << to_string(integrator);
+    EXPECT_EQ(close_pairs(), 1) << to_string(integrator) << ": A and B, now 0.95 apart";
   }
 }

@@ -35,9 +35,10 @@ TEST(RepeatedMeasurement, ErrorIsTheLargerOfSpreadAndFits) {
 }
 
 // A small 2D ideal DPDE box: the heat and the transverse momentum modes both decay and give
-// positive coefficients; each repeat has its own seed (they differ), and the mean's error is at
-// least the spread's. Against theory only the order of magnitude, within a factor 3 (the 2D
-// estimates are off by up to ~2 at these states: README, transport table).
+// positive coefficients (a repeat whose fit failed left out); each repeat has its own seed (they
+// differ), and the mean's error is at least the spread's. Against theory only the order of
+// magnitude, within a factor 3 (the 2D estimates are off by up to ~2 at these states: README,
+// transport table).
 TEST(RelaxationMeasurement, HeatAndShearModesGiveCoefficientsWithRepeatErrors) {
   auto p = particle::testing::ideal(2, particle::Integrator::Shardlow, 10);
   p.box = {{8, 8, 1}};
@@ -47,9 +48,13 @@ TEST(RelaxationMeasurement, HeatAndShearModesGiveCoefficientsWithRepeatErrors) {
   ASSERT_EQ(m.conductivity.repeats.size(), 3u);
   ASSERT_EQ(m.viscosity.repeats.size(), 3u);
   EXPECT_NE(m.conductivity.repeats[0].mean, m.conductivity.repeats[1].mean);
+  // In a box this small the heat mode can sink into its noise before the fit has its points:
+  // such a repeat is dropped and counted. Measured over seeds 1000-20000 (60 runs): 3 heat-mode
+  // fits failed with one version of the pair list's rebuild rule, 0 with the next; no shear-mode
+  // fit. Two of three failing would be a ~1% event.
   for (const Repeated* r : {&m.conductivity, &m.viscosity}) {
     EXPECT_TRUE(std::isfinite(r->value.mean));
-    EXPECT_EQ(r->failed, 0);
+    EXPECT_LE(r->failed, 1);
     EXPECT_GT(r->value.stderr_, 0);
   }
   // The runs' own temperature: near the state point, a little above it (the shear mode's

@@ -95,8 +95,18 @@ private:
   PairForce pair_force(const PairNoise& noise, std::size_t i, std::size_t j, const double* dx,
                        double r2, const std::array<std::vector<double>, D>& v) const;
 
-  void update_neighbours(bool force);
+  bool update_neighbours(bool force);
   bool list_still_complete(double largest, std::size_t moved);
+  // |x_i - x_listed_i|^2, minimum image: how far particle i moved since the list was built.
+  double displacement2(std::size_t i) const {
+    double r2 = 0;
+    for (int d = 0; d < D; ++d) {
+      double r = state_.x[d][i] - x_listed_[d][i];
+      r -= grid_.image_box(d) * std::nearbyint(r * grid_.inv_box(d));
+      r2 += r * r;
+    }
+    return r2;
+  }
   void list_positions(); // x_listed_ = x rounded to float
   void step_ec_verlet();
   void step_euler();

@@ -82,8 +82,8 @@ Simulation<M>::Simulation(const M& model, const ParticleParameters& p)
 // while every particle is within skin/2 of where it was when they were listed, or, past that,
 // while list_still_complete finds none; otherwise the particles are re-sorted and listed anew.
 // The decision depends on the positions alone, so the rebuild steps are the same for any thread
-// count, and a checkpoint holds the listed positions.
-template <class M> void Simulation<M>::update_neighbours(bool force) {
+// count, and a checkpoint holds the listed positions. Returns whether it re-sorted.
+template <class M> bool Simulation<M>::update_neighbours(bool force) {
   if (!force && skin_ > 0 && grid_.has_pairs()) {
     const long n = static_cast<long>(state_.size());
     const double half_skin2 = 0.25 * skin_ * skin_;
@@ -91,28 +91,22 @@ template <class M> void Simulation<M>::update_neighbours(bool force) {
     std::size_t moved = 0; // particles farther than skin/2
 #pragma omp parallel for schedule(static) reduction(max : largest) reduction(+ : moved)
     for (long i = 0; i < n; ++i) {
-      double r2 = 0;
-      for (int d = 0; d < D; ++d) {
-        double& x = state_.x[d][i];
-        x = grid_.wrapped(x, d);
-        double r = x - x_listed_[d][i];
-        r -= grid_.image_box(d) * std::nearbyint(r * grid_.inv_box(d));
-        r2 += r * r;
-      }
+      for (int d = 0; d < D; ++d) state_.x[d][i] = grid_.wrapped(state_.x[d][i], d);
+      const double r2 = displacement2(i);
       largest = std::max(largest, r2);
       moved += r2 >= half_skin2;
     }
-    if (largest < half_skin2) return;
+    if (largest < half_skin2) return false;
     if (list_still_complete(largest, moved)) {
       ++list_kept_past_bound_;
-      return;
+      return false;
     }
   }
   ++list_builds_;
   if (skin_ == 0 || p_.integrator == Integrator::Euler) {
     grid_.sort(state_, carried_, nullptr, false);
     if (p_.integrator != Integrator::Euler) grid_.build_pairs(state_, list_cutoff_);
-    return; // euler walks the cells (for_each_pair) instead
+    return true; // euler walks the cells (for_each_pair) instead
   }
   // A Verlet list is built from the positions rounded to float, kept as the reference of the
   // displacement test: the bound holds exactly for them, and they cost half the memory.
@@ -121,6 +115,7 @@ template <class M> void Simulation<M>::update_neighbours(bool force) {
   grid_.sort(state_, carried_, &x_listed_, false);
   list_positions(); // in the sorted order
   grid_.build_pairs(x_listed_, state_.size(), list_cutoff_);
+  return true;
 }
 
 // A pair the list lacks was at least rc + skin apart when listed and is now closer than rc, so
@@ -146,15 +141,8 @@ template <class M> bool Simulation<M>::list_still_complete(double largest, std::
     auto& mine = moved_far_[static_cast<std::size_t>(omp_get_thread_num())];
     mine.clear();
 #pragma omp for schedule(static)
-    for (long i = 0; i < static_cast<long>(n); ++i) {
-      double r2 = 0;
-      for (int d = 0; d < D; ++d) {
-        double r = state_.x[d][i] - x_listed_[d][i];
-        r -= grid_.image_box(d) * std::nearbyint(r * grid_.inv_box(d));
-        r2 += r * r;
-      }
-      if (r2 >= half_skin2) mine.push_back(static_cast<std::uint32_t>(i));
-    }
+    for (long i = 0; i < static_cast<long>(n); ++i)
+      if (displacement2(i) >= half_skin2) mine.push_back(static_cast<std::uint32_t>(i));
   }
   std::vector<std::uint32_t> far;
   for (const auto& part : moved_far_) far.insert(far.end(), part.begin(), part.end());
@@ -171,11 +159,10 @@ template <class M> bool Simulation<M>::list_still_complete(double largest, std::
     for (int d = 0; d < D; ++d) listed_i[d] = x_listed_[d][i];
     grid_.for_each_near(listed_i, 2, [&](std::size_t j) {
       if (j == i) return;
-      double now2 = 0, then2 = 0;
+      double dx[D], now2 = 0, then2 = 0;
+      grid_.separation(state_, i, j, dx);
       for (int d = 0; d < D; ++d) {
-        double r = state_.x[d][i] - state_.x[d][j];
-        r -= grid_.image_box(d) * std::nearbyint(r * grid_.inv_box(d));
-        now2 += r * r;
+        now2 += dx[d] * dx[d];
         double l = static_cast<double>(listed_i[d]) - static_cast<double>(x_listed_[d][j]);
         l -= grid_.image_box(d) * std::nearbyint(l * grid_.inv_box(d));
         then2 += l * l;
@@ -463,11 +450,9 @@ template <class M> void Simulation<M>::step_ec_verlet() {
       state_.u[i] += 0.5 * dt_ * carried_.q[i] - m2 * (k_half - k_old) + carried_.potential[i];
     carried_.q[i] = 0, carried_.potential[i] = 0;
   }
-  const long builds = list_builds_;
-  update_neighbours(false);
-  // F, q, P at t + dt from r(t+dt), v(t+dt/2), u(t+dt/2)
-  conservative_pass(true, list_builds_ == builds);
-  bool bad = false; // a non-finite velocity or non-positive energy (check_energies)
+  const bool sorted = update_neighbours(false);
+  conservative_pass(true, !sorted); // F, q, P at t + dt from r(t+dt), v(t+dt/2), u(t+dt/2)
+  bool bad = false;                 // a non-finite velocity or non-positive energy (check_energies)
 #pragma omp parallel for schedule(static) reduction(|| : bad)
   for (std::size_t i = 0; i < n; ++i) {
     double k_half = 0, k_new = 0;
@@ -578,10 +563,9 @@ template <class M> void Simulation<M>::step_shardlow() {
     if (kicks) carried_.potential[i] = 0;
   }
   if (p_.has_walls()) reflect_at_walls();
-  const long builds = list_builds_;
-  update_neighbours(false);
+  const bool sorted = update_neighbours(false);
   if (kicks) {
-    conservative_pass(false, list_builds_ == builds);
+    conservative_pass(false, !sorted);
 #pragma omp parallel for schedule(static)
     for (std::size_t i = 0; i < n; ++i) {
       double k_half = 0, k_new = 0;

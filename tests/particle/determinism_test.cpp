@@ -121,6 +121,24 @@ TEST(Noise, UniformPairNoiseHasUnitVariance) {
   EXPECT_NEAR(u.m[4], 1.8, 5 * std::sqrt(9 - 3.24) * u.se); // E g^8 = 3^4 / 9
 }
 
+// The pairs of the grid's list closer than rc = 1 now (the list also holds its skin's pairs).
+template <class Sim> long listed_pairs_closer_than_rc(const Sim& sim) {
+  long listed = 0;
+  sim.grid().for_each_pair_block(
+      [&](const std::uint32_t* I, const std::uint32_t* J, std::size_t n) {
+        long mine = 0;
+        for (std::size_t q = 0; q < n; ++q) {
+          double dx[3], r2 = 0;
+          sim.grid().separation(sim.state(), I[q], J[q], dx);
+          for (int d = 0; d < 3; ++d) r2 += dx[d] * dx[d];
+          mine += r2 < 1;
+        }
+#pragma omp atomic
+        listed += mine;
+      });
+  return listed;
+}
+
 // The Verlet list (pairs within rc + skin) misses no pair closer than rc while it is kept, also
 // past the global bound (a particle moved skin/2) where list_still_complete decides: after every
 // step the listed pairs closer than rc are exactly those of an O(N^2) search, while the list is
@@ -156,19 +174,7 @@ TEST(Neighbours, SkinListMissesNoPairBetweenRebuilds) {
           for (int d = 0; d < 3; ++d) r2 += dx[d] * dx[d];
           brute += r2 < 1;
         }
-      long listed = 0;
-      sim.grid().for_each_pair_block(
-          [&](const std::uint32_t* I, const std::uint32_t* J, std::size_t n) {
-            long mine = 0;
-            for (std::size_t q = 0; q < n; ++q) {
-              double dx[3], r2 = 0;
-              sim.grid().separation(s, I[q], J[q], dx);
-              for (int d = 0; d < 3; ++d) r2 += dx[d] * dx[d];
-              mine += r2 < 1;
-            }
-#pragma omp atomic
-            listed += mine;
-          });
+      const long listed = listed_pairs_closer_than_rc(sim);
       ASSERT_EQ(listed, brute) << name << " step " << k;
     }
     const long rebuilt = sim.pair_list_builds() - builds;
@@ -206,27 +212,14 @@ TEST(Neighbours, ListKeptPastTheBoundIsRebuiltForAnApproachingPair) {
     s.v[0][0] = 0.15 / p.dt; // particle A (storage index 0 before the sort)
     sim.resort();
     sim.prepare();
-    auto close_pairs = [&] {
-      long listed = 0;
-      sim.grid().for_each_pair_block(
-          [&](const std::uint32_t* I, const std::uint32_t* J, std::size_t n) {
-            for (std::size_t q = 0; q < n; ++q) {
-              double dx[3], r2 = 0;
-              sim.grid().separation(s, I[q], J[q], dx);
-              for (int d = 0; d < 3; ++d) r2 += dx[d] * dx[d];
-#pragma omp atomic
-              listed += r2 < 1;
-            }
-          });
-      return listed;
-    };
     const long builds = sim.pair_list_builds();
     sim.step();
     EXPECT_EQ(sim.pair_list_builds(), builds) << to_string(integrator);
     EXPECT_EQ(sim.pair_list_kept_past_bound(), 1) << to_string(integrator);
-    EXPECT_EQ(close_pairs(), 0) << to_string(integrator);
+    EXPECT_EQ(listed_pairs_closer_than_rc(sim), 0) << to_string(integrator);
     sim.step();
     EXPECT_EQ(sim.pair_list_builds(), builds + 1) << to_string(integrator);
-    EXPECT_EQ(close_pairs(), 1) << to_string(integrator) << ": A and B, now 0.95 apart";
+    EXPECT_EQ(listed_pairs_closer_than_rc(sim), 1)
+        << to_string(integrator) << ": A and B, now 0.95 apart";
   }
 }

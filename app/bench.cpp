@@ -18,6 +18,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <iostream>
 #include <sstream>
@@ -253,6 +254,11 @@ int bench(const CommandLine& cl) {
   io::Json summary = io::Json::object();
   summary["stage"] = "bench";
   summary["provenance"] = io::provenance();
+  // How idle threads waited: app/main.cpp's default or the user's choice.
+  io::Json wait = io::Json::object();
+  for (const char* name : {"OMP_WAIT_POLICY", "GOMP_SPINCOUNT"})
+    if (const char* value = std::getenv(name)) wait[name] = std::string(value);
+  summary["openmp_wait"] = wait;
   summary["results"] = rows;
   io::write_file_atomically(stage.file("bench.md"), table.str());
   io::write_file_atomically(stage.file("summary.json"), summary.dump());

@@ -15,8 +15,9 @@
 # env: TWINFLOW (default build/app/twinflow), LMP (default /opt/lammps-dpd/build/lmp_dpd, built by
 #      ../shared/peers/lammps/build-lammps-dpd.sh; this script builds nothing), SIZES (default
 #      "6000 48000 384000"), REPS (default 3), PS (particle-steps per timed run, default 6e6),
-#      OUT (default bench/runs), OMP_WAIT_POLICY (default passive, see below), NOISES (ours'
-#      pair noises, default "gaussian uniform": Particle/Noise; LAMMPS draws Gaussians)
+#      OUT (default bench/runs), OMP_WAIT_POLICY / GOMP_SPINCOUNT (default: twinflow's, see
+#      below), NOISES (ours' pair noises, default "gaussian uniform": Particle/Noise; LAMMPS
+#      draws Gaussians)
 set -euo pipefail
 HERE=$(cd "$(dirname "$0")" && pwd)
 ROOT=$(cd "$HERE/.." && pwd)
@@ -38,11 +39,9 @@ if [ ! -x "$LMP" ]; then
   echo "        ../shared/peers/lammps/build-lammps-dpd.sh, or set LMP)"
 fi
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
-# Threads that wait sleep instead of spinning: on a machine shared with other jobs a spinning
-# thread can hold the core its partner needs (measured at N = 6000, 2 threads, load ~6:
-# 1.4e6 particle-steps/s passive against 0.05-0.5e6 active). On an idle machine active is a few
-# percent faster: OMP_WAIT_POLICY=active bench/vs_lammps.sh.
-export OMP_WAIT_POLICY=${OMP_WAIT_POLICY:-passive}
+# Ours runs with twinflow's own default of how idle threads wait (a short spin, then sleep:
+# GOMP_SPINCOUNT=1000, app/main.cpp), as a user gets it; OMP_WAIT_POLICY=passive or active, or
+# GOMP_SPINCOUNT, in the environment measure another choice.
 RAW=$OUT/raw.txt # one line per measurement: kind key values
 : >"$RAW"
 

@@ -325,6 +325,29 @@ TEST(Cli, RunReusesAParticleStageRunOnItsOwn) {
   EXPECT_NE(all.output.find("run: particle: inputs unchanged"), std::string::npos) << all.output;
 }
 
+// Idle OpenMP threads spin briefly, then sleep (app/main.cpp): twinflow sets GOMP_SPINCOUNT=1000
+// for itself unless the user chose how threads wait; bench records which way they waited.
+TEST(Cli, IdleThreadsSpinBrieflyUnlessTheUserChose) {
+  const auto waited = [](const std::string& env) { // "NAME=value ..." as bench recorded them
+    const fs::path dir = fresh_dir("wait");
+    const Result r = twinflow::testing::run_twinflow(
+        "bench --set Bench/N=600 --set Bench/Scenes=ideal --set Bench/Integrators=ec-verlet "
+        "--set Bench/Threads=2 --set Bench/Steps=5 --out " +
+            dir.string(),
+        "off", env);
+    EXPECT_EQ(r.code, 0) << r.output;
+    const auto summary =
+        twinflow::io::Json::parse(twinflow::io::read_file(dir / "bench" / "summary.json"));
+    std::string s;
+    for (const auto& [name, value] : summary.find("openmp_wait")->items())
+      s += (s.empty() ? "" : " ") + name + "=" + value.string();
+    return s;
+  };
+  EXPECT_EQ(waited("env -u OMP_WAIT_POLICY -u GOMP_SPINCOUNT"), "GOMP_SPINCOUNT=1000");
+  EXPECT_EQ(waited("env -u GOMP_SPINCOUNT OMP_WAIT_POLICY=passive"), "OMP_WAIT_POLICY=passive");
+  EXPECT_EQ(waited("env -u OMP_WAIT_POLICY GOMP_SPINCOUNT=20"), "GOMP_SPINCOUNT=20");
+}
+
 // The transport stage's measurements are cached across run directories by what they depend on:
 // another case directory with a different gravity and box reuses them (byte-identical table); a
 // different fluid does not.

@@ -14,10 +14,12 @@ struct Result {
   std::string output;
 };
 
-// The transport cache is off unless a test names one (tests measure, they do not reuse).
-inline Result run_twinflow(const std::string& args, const std::string& cache = "off") {
-  const std::string cmd =
-      "TWINFLOW_CACHE='" + cache + "' " + std::string(TWINFLOW_BINARY) + " " + args + " 2>&1";
+// The transport cache is off unless a test names one (tests measure, they do not reuse). env:
+// a prefix for the binary, e.g. "env -u GOMP_SPINCOUNT".
+inline Result run_twinflow(const std::string& args, const std::string& cache = "off",
+                           const std::string& env = "") {
+  const std::string cmd = "TWINFLOW_CACHE='" + cache + "' " + env + " " +
+                          std::string(TWINFLOW_BINARY) + " " + args + " 2>&1";
   FILE* pipe = popen(cmd.c_str(), "r");
   std::string out;
   std::array<char, 4096> buf{};

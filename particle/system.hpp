@@ -11,6 +11,8 @@
 #include <numeric>
 #include <vector>
 
+#include <omp.h>
+
 namespace twinflow::particle {
 
 template <int D> struct State {
@@ -54,8 +56,9 @@ public:
   // Cell side >= rc. Through its half-shell pairs a plane of cells z (3D; a row y in 2D)
   // touches only its own particles and those of the next plane, so planes of one parity touch
   // disjoint particles. The unit of parallel work is a plane (2D: a row), its rows of cells
-  // along x in y order: even units run in parallel, then odd ones, so a pass has two phases
-  // and a plane's particles stay in cache while its rows pass. Across the wrap this needs a
+  // along x in y order: even units run in parallel, then odd ones, as two phases would
+  // (for_each_row: each odd unit after its two even neighbours, the planes still in cache; a
+  // plane's particles stay in cache while its rows pass). Across the wrap this needs a
   // periodic cell count that is even and >= 4 in the last direction, >= 3 in the others, or 1
   // when the box is too small. A direction with walls has no wrap and no minimum image.
   CellGrid(const std::array<double, D>& box, double rc,
@@ -207,14 +210,34 @@ public:
   }
 
 private:
-  // fn(row) for every row of slot_cell_ (index into its rows): phases in turn, the units of a
-  // phase in parallel, the rows of a unit in order.
+  // fn(row) for every row of slot_cell_ (index into its rows), the rows of a unit in order. An
+  // odd unit 2k + 1 runs after both even units it shares planes with (2k and 2k + 2), and that
+  // is the only order that matters: each particle then sees the pairs of its even unit, then
+  // those of its odd one, as if all even units ran first (the two phases of the constructor),
+  // so the result is the same for any thread count. Each thread takes a block of even units
+  // and follows each with the odd unit behind it (e0, e1, o0, e2, o1, ...; e_k = unit 2k, o_k =
+  // unit 2k + 1): the planes it reaches stay in cache for the odd unit instead of being read
+  // again after a sweep over all of them. The odd unit between two threads' blocks waits for
+  // the barrier.
   template <class RowFn> void for_each_row(RowFn&& fn) const {
-    for (std::size_t phase = 0; phase + 1 < phase_begin_.size(); ++phase) {
-      const long first = phase_begin_[phase], last = phase_begin_[phase + 1];
-#pragma omp parallel for schedule(static)
-      for (long unit = first; unit < last; ++unit)
-        for (long row = unit_begin_[unit]; row < unit_begin_[unit + 1]; ++row) fn(row);
+    const long evens = phase_begin_.size() > 1 ? phase_begin_[1] : 0;
+    const long odds = phase_begin_.size() > 2 ? phase_begin_[2] - evens : 0;
+    auto unit = [&](long u) {
+      for (long row = unit_begin_[u]; row < unit_begin_[u + 1]; ++row) fn(row);
+    };
+    auto odd = [&](long k) {
+      if (k < odds) unit(evens + k);
+    };
+#pragma omp parallel
+    {
+      const long threads = omp_get_num_threads(), t = omp_get_thread_num();
+      const long first = evens * t / threads, last = evens * (t + 1) / threads;
+      for (long k = first; k < last; ++k) {
+        unit(k);
+        if (k > first) odd(k - 1);
+      }
+#pragma omp barrier
+      if (last > first) odd(last - 1);
     }
   }
   template <class PairFn> void visit_cell(const State<D>& s, int c, double rc2, PairFn& fn) const {

@@ -1,4 +1,4 @@
-// Same seed, same result: bitwise for 1 and 2 threads, and whatever the storage order.
+// Same seed, same result: bitwise for 1 to 4 threads, and whatever the storage order.
 #include <gtest/gtest.h>
 
 #include <omp.h>
@@ -32,7 +32,7 @@ std::vector<double> snapshot(const State<3>& s) {
 std::vector<double> run(Integrator integrator, int threads, bool shuffle) {
   omp_set_num_threads(threads);
   auto p = seed002(integrator, 0.01);
-  p.box = {{9, 9, 6}};
+  p.box = {{9, 9, 12}}; // 10 planes of cells: 5 even units, split unevenly by 3 and 4 threads
   Simulation<M> sim(seed002_model(p), p);
   if (shuffle) { // scramble the storage order; the sort must restore the canonical one
     auto& s = sim.state();
@@ -54,10 +54,12 @@ std::vector<double> run(Integrator integrator, int threads, bool shuffle) {
 }
 } // namespace
 
-TEST(Determinism, BitwiseForOneAndTwoThreadsAndAnyStorageOrder) {
+TEST(Determinism, BitwiseForOneToFourThreadsAndAnyStorageOrder) {
   for (const auto integrator : {Integrator::EcVerlet, Integrator::Shardlow, Integrator::Euler}) {
     const auto one = run(integrator, 1, false);
-    EXPECT_TRUE(one == run(integrator, 2, false)) << to_string(integrator) << ": threads";
+    for (const int threads : {2, 3, 4})
+      EXPECT_TRUE(one == run(integrator, threads, false))
+          << to_string(integrator) << ": " << threads << " threads";
     EXPECT_TRUE(one == run(integrator, 2, true)) << to_string(integrator) << ": storage order";
   }
 }
@@ -153,7 +155,7 @@ TEST(Neighbours, SkinListMissesNoPairBetweenRebuilds) {
   for (const auto c : {Case{Integrator::EcVerlet, false}, Case{Integrator::Shardlow, false},
                        Case{Integrator::Shardlow, true}}) {
     auto p = seed002(c.integrator, 0.005);
-    p.box = {{9, 9, 6}};
+    p.box = {{9, 9, 12}}; // 10 planes of cells: 5 even units, split unevenly by 3 and 4 threads
     p.conservative = ConservativeForce::Constant;
     p.neighbour_skin = 0.2;
     if (c.walls) p.walls[2] = WallPair{true, {{true, true}}, {{1, 1}}, true};

@@ -101,8 +101,7 @@ private:
   double displacement2(std::size_t i) const {
     double r2 = 0;
     for (int d = 0; d < D; ++d) {
-      double r = state_.x[d][i] - x_listed_[d][i];
-      r -= grid_.image_box(d) * std::nearbyint(r * grid_.inv_box(d));
+      const double r = grid_.minimum_image(state_.x[d][i] - x_listed_[d][i], d);
       r2 += r * r;
     }
     return r2;

@@ -163,8 +163,8 @@ template <class M> bool Simulation<M>::list_still_complete(double largest, std::
       grid_.separation(state_, i, j, dx);
       for (int d = 0; d < D; ++d) {
         now2 += dx[d] * dx[d];
-        double l = static_cast<double>(listed_i[d]) - static_cast<double>(x_listed_[d][j]);
-        l -= grid_.image_box(d) * std::nearbyint(l * grid_.inv_box(d));
+        const double l = grid_.minimum_image(
+            static_cast<double>(listed_i[d]) - static_cast<double>(x_listed_[d][j]), d);
         then2 += l * l;
       }
       missing |= now2 < rc2 && then2 >= listed2;

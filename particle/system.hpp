@@ -150,13 +150,13 @@ public:
     return x >= box_[d] ? 0 : x; // -tiny wraps to box exactly
   }
 
+  // Minimum image of a difference r along d (r itself in a direction with walls).
+  double minimum_image(double r, int d) const {
+    return r - box_[d] * std::nearbyint(r * inv_box_[d]);
+  }
   // Minimum-image separation x_i - x_j.
   void separation(const State<D>& s, std::size_t i, std::size_t j, double* dx) const {
-    for (int d = 0; d < D; ++d) {
-      double r = s.x[d][i] - s.x[d][j];
-      r -= box_[d] * std::nearbyint(r * inv_box_[d]);
-      dx[d] = r;
-    }
+    for (int d = 0; d < D; ++d) dx[d] = minimum_image(s.x[d][i] - s.x[d][j], d);
   }
 
   // Calls fn(i, j, dx, r2) once for every pair closer than rc (dx = x_i - x_j). Phases run in
@@ -198,7 +198,7 @@ public:
       }
     });
   }
-  // Minimum image: r - image_box(d) nearbyint(r inv_box(d)) (0 in wall directions).
+  // minimum_image's factors, for the vector loops (inv_box 0 in wall directions).
   double image_box(int d) const { return box_[d]; }
   double inv_box(int d) const { return inv_box_[d]; }
 
@@ -262,8 +262,7 @@ private:
         for (std::size_t j = same ? i + 1 : start_[nb]; j < start_[nb + 1]; ++j) {
           double r2 = 0;
           for (int d = 0; d < D; ++d) {
-            double r = s.x[d][i] - s.x[d][j];
-            r -= box_[d] * std::nearbyint(r * inv_box_[d]);
+            const double r = minimum_image(s.x[d][i] - s.x[d][j], d);
             dx[d] = r;
             r2 += r * r;
           }

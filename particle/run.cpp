@@ -561,7 +561,7 @@ private:
         vs[t * D + d] = s.v[d][i];
         double dx = s.x[d][i] - last_wrapped_[t * D + d];
         if (sample_count_ > 0)
-          dx -= p_.box[d] * std::nearbyint(dx / p_.box[d]);
+          dx = sim_.grid().minimum_image(dx, d);
         else
           dx = 0, unwrapped_[t * D + d] = s.x[d][i];
         unwrapped_[t * D + d] += dx;

@@ -214,7 +214,7 @@ int bench(const CommandLine& cl) {
                 p.steps = o.thermo;
                 p.sample_interval = std::max(1L, o.thermo / 200);
                 const io::Json s = run_particles(p).summary;
-                auto num = [&](const char* k) { return s.find(k)->number(); };
+                auto num = [&](const char* k) { return io::number(s, {k}); };
                 const double drift = num("energy_relative_drift_max");
                 std::snprintf(line, sizeof line,
                               "| %d | %ld | %s | %s | %d | %g | %s | %ld | %.2e | %.5f +- %.5f | "
@@ -261,7 +261,7 @@ int bench(const CommandLine& cl) {
   summary["openmp_wait"] = wait;
   summary["results"] = rows;
   io::write_file_atomically(stage.file("bench.md"), table.str());
-  io::write_file_atomically(stage.file("summary.json"), summary.dump());
+  io::write_file_atomically(stage.file("summary.json"), io::dump(summary));
   std::cout << "outputs: " << std::filesystem::absolute(stage.path()).string() << "\n";
   return 0;
 }

@@ -7,9 +7,7 @@
 #include <string>
 #include <vector>
 
-namespace twinflow::io {
-class Json;
-}
+#include "io/json.hpp"
 
 namespace twinflow::app {
 
@@ -30,12 +28,11 @@ struct CommandLine {
   int jobs = 0;                  // points run at once; 0: cores / threads per point
 };
 
-// Shared by the stages (app/compare_stage.cpp): a number at a path of nested JSON objects (NaN
-// where absent), a wall's name in the particle summary ("x_lower", ...), a wall's heat-flux
-// error in that summary (the largest over its blockings, 1, 2 and 4 blocks merged; runs before
-// the blockings were recorded: the 20-block one), and the scene's heated direction (the walled
-// direction whose two thermal walls differ in temperature; -1: none).
-double number(const io::Json& j, std::initializer_list<const char*> path);
+// Shared by the stages (app/compare_stage.cpp): a wall's name in the particle summary
+// ("x_lower", ...), a wall's heat-flux error in that summary (the largest over its blockings, 1,
+// 2 and 4 blocks merged; runs before the blockings were recorded: the 20-block one), and the
+// scene's heated direction (the walled direction whose two thermal walls differ in temperature;
+// -1: none).
 std::string wall_name(int d, int side);
 double largest_stderr(const io::Json& results, const std::string& wall);
 int heated_direction(const SceneParameters& s);

@@ -20,11 +20,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-io::Json read_json(const fs::path& file, const std::string& hint) {
-  if (!fs::exists(file)) throw io::InputError(file.string() + ": missing; " + hint);
-  return io::Json::parse(io::read_file(file));
-}
-
 // What compare needs of a finished particle run.
 struct ParticleRun {
   io::Json summary;
@@ -43,14 +38,12 @@ struct ParticleRun {
 ParticleRun load_particle_run(const fs::path& run_dir, const std::vector<std::string>& overrides) {
   ParticleRun r;
   const fs::path dir = run_dir / "particle";
-  r.summary =
-      read_json(dir / "summary.json", "the particle stage has not finished in " + run_dir.string() +
-                                          " (twinflow run CASE --out " + run_dir.string() + ")");
+  r.summary = io::read_json(dir / "summary.json",
+                            "the particle stage has not finished in " + run_dir.string() +
+                                " (twinflow run CASE --out " + run_dir.string() + ")");
   Case c;
-  const io::Json* case_name = r.summary.find("case");
   r.parameters =
-      c.load_resolved(*r.summary.find("parameters"),
-                      case_name && case_name->is_string() ? case_name->string() : "", overrides);
+      c.load_resolved(r.summary.at("parameters"), io::text(r.summary, {"case"}), overrides);
   if (!fs::exists(dir / "fields.h5"))
     throw io::InputError((dir / "fields.h5").string() +
                          ": missing; the particle scene has no field bins to compare");
@@ -65,15 +58,6 @@ ParticleRun load_particle_run(const fs::path& run_dir, const std::vector<std::st
 }
 
 } // namespace
-
-double number(const io::Json& j, std::initializer_list<const char*> path) {
-  const io::Json* v = &j;
-  for (const char* key : path) {
-    v = v->is_object() ? v->find(key) : nullptr;
-    if (!v) return std::nan("");
-  }
-  return v->is_number() ? v->number() : std::nan("");
-}
 
 static const char* kAxis = "xyz";
 std::string wall_name(int d, int side) {
@@ -118,10 +102,9 @@ void write_report(const fs::path& dir) {
 }
 
 double largest_stderr(const io::Json& results, const std::string& wall) {
-  double e = number(results, {"walls", wall.c_str(), "heat_flux_in_stderr"});
-  const io::Json* w = results.find("walls") ? results.find("walls")->find(wall) : nullptr;
-  if (const io::Json* b = w ? w->find("heat_flux_in_stderr_blocking") : nullptr)
-    for (const auto& x : b->elements()) e = std::max(e, x.number());
+  double e = io::number(results, {"walls", wall.c_str(), "heat_flux_in_stderr"});
+  if (const io::Json* b = io::find(results, {"walls", wall, "heat_flux_in_stderr_blocking"}))
+    for (const auto& x : *b) e = std::max(e, x.get<double>());
   return e;
 }
 
@@ -146,7 +129,7 @@ std::vector<std::string> calibrated_twin_overrides(const std::string& run_dir,
   conductances << std::setprecision(8);
   errors << std::setprecision(4);
   positions << std::setprecision(6);
-  const io::Json& walls = *run.summary.find("results");
+  const io::Json& walls = run.summary.at("results");
   const SceneParameters& scene = run.parameters.scene;
   // The twin's walls: the scene's, or the particle walls' effective positions (Gibbs depths).
   std::array<double, 6> plane{};
@@ -154,7 +137,7 @@ std::vector<std::string> calibrated_twin_overrides(const std::string& run_dir,
     for (int side = 0; side < 2; ++side)
       if (run.parameters.compare.effective_walls && !scene.boundary[d].periodic) {
         const double depth =
-            number(walls, {"walls", wall_name(d, side).c_str(), "effective_position"});
+            io::number(walls, {"walls", wall_name(d, side).c_str(), "effective_position"});
         if (!std::isfinite(depth))
           throw io::InputError(run_dir + "/particle/summary.json: no wall effective_position "
                                          "(a run from before wall_layers.csv); re-run the "
@@ -177,7 +160,7 @@ std::vector<std::string> calibrated_twin_overrides(const std::string& run_dir,
             compare::wall_fluid_temperature(particle, interior, d, side, plane[2 * d + side]);
         // h_K = q / (T_wall - T_fluid at the wall), from the particle wall's measured heat flow
         const std::string name = wall_name(d, side);
-        const double q = area_ratio * number(walls, {"walls", name.c_str(), "heat_flux_in"});
+        const double q = area_ratio * io::number(walls, {"walls", name.c_str(), "heat_flux_in"});
         const double q_stderr = area_ratio * largest_stderr(walls, name);
         const double jump = b.temperature[side] - w.value;
         if (kapitza && std::isfinite(q) && q * jump > 0) {
@@ -209,9 +192,10 @@ std::vector<std::string> calibrated_twin_overrides(const std::string& run_dir,
     // Navier slip from the particle wall's friction per area zeta, acting at its mean depth
     // h_f: eta u'(plane) = zeta u(h_f), u(h_f) ~ u(plane) + u' (h_f - plane), so
     // b = eta / zeta - (h_f - plane) (eta of the nominal twin, at its reference temperature).
-    const io::Json nominal = read_json(fs::path(run_dir) / "continuum" / "summary.json",
-                                       "the nominal twin runs before the calibrated one");
-    const double eta = number(nominal, {"continuum_parameters", "viscosity", "value_at_reference"});
+    const io::Json nominal = io::read_json(fs::path(run_dir) / "continuum" / "summary.json",
+                                           "the nominal twin runs before the calibrated one");
+    const double eta =
+        io::number(nominal, {"continuum_parameters", "viscosity", "value_at_reference"});
     std::ostringstream slips;
     slips << std::setprecision(6);
     for (int d = 0; d < scene.dim; ++d)
@@ -219,8 +203,8 @@ std::vector<std::string> calibrated_twin_overrides(const std::string& run_dir,
         const std::string name = wall_name(d, side);
         double b = 0;
         if (!scene.boundary[d].periodic && scene.boundary[d].no_slip) {
-          const double zeta = number(walls, {"walls", name.c_str(), "friction_per_area"});
-          const double depth = number(walls, {"walls", name.c_str(), "friction_depth"});
+          const double zeta = io::number(walls, {"walls", name.c_str(), "friction_per_area"});
+          const double depth = io::number(walls, {"walls", name.c_str(), "friction_depth"});
           if (!(zeta > 0) || !std::isfinite(eta))
             throw io::InputError(run_dir + "/particle/summary.json: no wall friction_per_area "
                                            "(a run from before it); re-run the particle stage "
@@ -256,7 +240,7 @@ int compare_stage(const CommandLine& cl) {
     ContinuumTwin t;
     t.name = name;
     t.stage = stage;
-    t.summary = read_json(dir / "summary.json", "");
+    t.summary = io::read_json(dir / "summary.json", "");
     t.state = compare::continuum_state(grid, dir / "bins.csv");
     twins.push_back(std::move(t));
   }
@@ -282,8 +266,8 @@ int compare_stage(const CommandLine& cl) {
     dT = hi - lo;
   }
   const double speed_scale =
-      number(nominal.summary, {"results", "max_speed_chi_over_H"}) *
-      number(nominal.summary, {"dimensionless", "velocity_scale_chi_over_H"});
+      io::number(nominal.summary, {"results", "max_speed_chi_over_H"}) *
+      io::number(nominal.summary, {"dimensionless", "velocity_scale_chi_over_H"});
   const bool compare_velocity = std::isfinite(speed_scale) && speed_scale > 0;
 
   io::Json metrics = io::Json::object();
@@ -310,22 +294,23 @@ int compare_stage(const CommandLine& cl) {
   metrics["density_scale"] = scene.density; // the mean number density
   metrics["temperature_field"] = "T_kinetic (particle) against T (continuum), / temperature_scale";
 
-  const io::Json& presults = *run.summary.find("results");
+  const io::Json& presults = run.summary.at("results");
   io::Json table = io::Json::object();
-  table["wall_seconds_particle"] = number(presults, {"wall_seconds"});
-  table["particle_steps"] = number(presults, {"N"}) * (number(presults, {"steps"}) +
-                                                       number(presults, {"equilibration_steps"}));
+  table["wall_seconds_particle"] = io::number(presults, {"wall_seconds"});
+  table["particle_steps"] =
+      io::number(presults, {"N"}) *
+      (io::number(presults, {"steps"}) + io::number(presults, {"equilibration_steps"}));
 
   // Particle heat flow through the heated direction's walls, as a Nusselt number against the
   // nominal twin's conduction flux kappa dT / H (the same kappa for every twin).
   io::Json particle = io::Json::object();
-  const double q0 = number(nominal.summary, {"dimensionless", "conduction_flux"});
+  const double q0 = io::number(nominal.summary, {"dimensionless", "conduction_flux"});
   double q_particle = std::nan("");
   if (heated >= 0) {
     const int hot =
         scene.boundary[heated].temperature[0] > scene.boundary[heated].temperature[1] ? 0 : 1;
     const auto flux = [&](int side, const char* key) {
-      return number(presults, {"walls", wall_name(heated, side).c_str(), key});
+      return io::number(presults, {"walls", wall_name(heated, side).c_str(), key});
     };
     const double q_in = flux(hot, "heat_flux_in"), q_out = -flux(1 - hot, "heat_flux_in");
     const double se =
@@ -370,11 +355,11 @@ int compare_stage(const CommandLine& cl) {
       j["jump"] = b.temperature[side] - w.value;
       j["extrapolated_from_distance"] = w.extrapolated_from;
       const double plane =
-          number(presults, {"walls", wall_name(d, side).c_str(), "effective_position"});
+          io::number(presults, {"walls", wall_name(d, side).c_str(), "effective_position"});
       if (std::isfinite(plane)) { // the same at the wall's effective position
         j["effective_position"] = plane;
-        j["effective_position_stderr"] =
-            number(presults, {"walls", wall_name(d, side).c_str(), "effective_position_stderr"});
+        j["effective_position_stderr"] = io::number(
+            presults, {"walls", wall_name(d, side).c_str(), "effective_position_stderr"});
         const auto at = compare::wall_fluid_temperature(final_state, interior, d, side, plane);
         j["fluid_temperature_at_effective_position"] = at.value;
         j["jump_at_effective_position"] = b.temperature[side] - at.value;
@@ -383,7 +368,7 @@ int compare_stage(const CommandLine& cl) {
     }
   }
   particle["wall_temperature_jumps"] = jumps;
-  particle["wall_seconds"] = number(presults, {"wall_seconds"});
+  particle["wall_seconds"] = io::number(presults, {"wall_seconds"});
   metrics["particle"] = particle;
 
   io::Json twins_json = io::Json::object();
@@ -393,11 +378,11 @@ int compare_stage(const CommandLine& cl) {
   if (compare_velocity) std::cout << ", velocity scale " << speed_scale;
   std::cout << "\n";
   if (heated >= 0)
-    std::cout << "compare: particle Nu = " << number(particle, {"nusselt"}) << " +- "
-              << number(particle, {"nusselt_stderr"}) << " (hot wall "
-              << number(particle, {"nusselt_hot_wall"}) << ", cold wall "
-              << number(particle, {"nusselt_cold_wall"}) << "; with 20 blocks: +- "
-              << number(particle, {"nusselt_stderr_20_blocks"}) << ")\n";
+    std::cout << "compare: particle Nu = " << io::number(particle, {"nusselt"}) << " +- "
+              << io::number(particle, {"nusselt_stderr"}) << " (hot wall "
+              << io::number(particle, {"nusselt_hot_wall"}) << ", cold wall "
+              << io::number(particle, {"nusselt_cold_wall"}) << "; with 20 blocks: +- "
+              << io::number(particle, {"nusselt_stderr_20_blocks"}) << ")\n";
   for (const ContinuumTwin& t : twins) {
     io::Json j = io::Json::object();
     j["stage"] = t.stage;
@@ -442,18 +427,18 @@ int compare_stage(const CommandLine& cl) {
       std::cout << "; density L2 " << n.l2 << " +- " << n.l2_stderr << " (noise " << n.noise << ")";
     }
     std::cout << "\n";
-    const double nu_own = number(t.summary, {"results", "nusselt_volume_average"});
-    const double q_own = number(t.summary, {"dimensionless", "conduction_flux"});
+    const double nu_own = io::number(t.summary, {"results", "nusselt_volume_average"});
+    const double q_own = io::number(t.summary, {"dimensionless", "conduction_flux"});
     if (heated >= 0 && std::isfinite(nu_own)) {
       // Its heat flow over the scene's wall area, as the particle's (a twin with its walls
       // moved in has a smaller wall; flux per own area = Nu_own kappa dT / H_own).
       double area_ratio = 1;
-      const io::Json* twin = t.summary.find("continuum_parameters");
-      const io::Json* own_box = twin ? twin->find("box") : nullptr;
-      if (own_box && own_box->is_array() && own_box->elements().size() == std::size_t(scene.dim))
+      const io::Json* own_box = io::find(t.summary, {"continuum_parameters", "box"});
+      if (own_box && own_box->is_array() && own_box->size() == std::size_t(scene.dim))
         for (int e = 0; e < scene.dim; ++e)
-          if (e != heated) area_ratio *= own_box->elements()[e].number() / scene.box[e];
-      if (twin && twin->find("scene_box")) j["wall_area_over_scene"] = area_ratio;
+          if (e != heated) area_ratio *= (*own_box)[e].get<double>() / scene.box[e];
+      if (io::find(t.summary, {"continuum_parameters", "scene_box"}))
+        j["wall_area_over_scene"] = area_ratio;
       const double q = nu_own * q_own * area_ratio;
       j["nusselt_own"] = nu_own; // against this twin's own wall temperature difference
       j["heat_flux"] = q;
@@ -464,7 +449,7 @@ int compare_stage(const CommandLine& cl) {
       // The twin's own error: its heat flux's response to the measured coefficients' errors
       // (and, calibrated, to its Kapitza conductances').
       const double rel =
-          number(t.summary, {"coefficient_uncertainty", "heat_flux_relative_stderr"});
+          io::number(t.summary, {"coefficient_uncertainty", "heat_flux_relative_stderr"});
       j["nusselt_stderr_from_coefficients"] = rel * q / q0;
       table["nusselt_" + t.name + "_stderr"] = rel * q / q0;
       std::cout << "compare: " << t.name << " twin: Nu = " << q / q0;
@@ -476,14 +461,14 @@ int compare_stage(const CommandLine& cl) {
       std::cout << " (own dT: " << nu_own
                 << "); particle / twin heat flux - 1 = " << q_particle / q - 1 << "\n";
     }
-    j["rayleigh"] = number(t.summary, {"dimensionless", "rayleigh"});
-    table["rayleigh_" + t.name] = number(t.summary, {"dimensionless", "rayleigh"});
+    j["rayleigh"] = io::number(t.summary, {"dimensionless", "rayleigh"});
+    table["rayleigh_" + t.name] = io::number(t.summary, {"dimensionless", "rayleigh"});
     table["wall_seconds_continuum" + std::string(t.name == "nominal" ? "" : "_" + t.name)] =
-        number(t.summary, {"stage_wall_time_s"});
+        io::number(t.summary, {"stage_wall_time_s"});
     twins_json[t.name] = j;
   }
-  table["rayleigh"] = number(nominal.summary, {"dimensionless", "rayleigh"});
-  table["prandtl"] = number(nominal.summary, {"dimensionless", "prandtl"});
+  table["rayleigh"] = io::number(nominal.summary, {"dimensionless", "rayleigh"});
+  table["prandtl"] = io::number(nominal.summary, {"dimensionless", "prandtl"});
   metrics["twins"] = twins_json;
 
   // Error against run time: the same distances for each cumulative snapshot of the run.
@@ -529,7 +514,7 @@ int compare_stage(const CommandLine& cl) {
   io::write_file_atomically(stage.file("profiles.csv"),
                             compare::midline_profiles_csv(final_state, continua));
   io::write_file_atomically(stage.file("error_vs_time.csv"), series.str());
-  io::write_file_atomically(stage.file("metrics.json"), metrics.dump()); // last: complete
+  io::write_file_atomically(stage.file("metrics.json"), io::dump(metrics)); // last: complete
   std::cout << "compare: results in " << stage.path().string()
             << " (metrics.json, bins.csv, profiles.csv, error_vs_time.csv)" << std::endl;
   write_report(run_dir);

@@ -26,42 +26,35 @@ CoefficientErrors coefficients_from_transport(const std::filesystem::path& run_d
                                               const std::string& source,
                                               continuum::ContinuumParameters& p) {
   const auto file = run_dir / "transport" / "summary.json";
-  if (!std::filesystem::exists(file))
-    throw io::InputError(file.string() +
-                         ": missing; Continuum/Coefficients/Source = transport "
-                         "needs `twinflow transport CASE --out " +
-                         run_dir.string() + "` first");
-  const io::Json summary = io::Json::parse(io::read_file(file));
-  const io::Json& results = *summary.find("results");
-  const io::Json& estimate = *results.find("estimated_measured_g");
-  const io::Json* measured = results.find("measured");
+  const io::Json summary = io::read_json(file, "Continuum/Coefficients/Source = transport "
+                                               "needs `twinflow transport CASE --out " +
+                                                   run_dir.string() + "` first");
+  const io::Json& results = summary.at("results");
+  const io::Json& estimate = results.at("estimated_measured_g");
   bool used_measured = false;
   auto pick = [&](const char* estimate_key, const char* measured_key, const char* what) {
-    const io::Json* m = measured ? measured->find(measured_key) : nullptr;
-    const bool use = source == "measured" && m && m->is_number() && std::isfinite(m->number());
-    const double v = use ? m->number() : estimate.find(estimate_key)->number();
+    const double m = io::number(results, {"measured", measured_key});
+    const bool use = source == "measured" && std::isfinite(m);
+    const double v = use ? m : estimate.at(estimate_key).get<double>();
     std::cout << "continuum: " << what << " = " << v << " (" << (use ? "measured" : "estimated")
               << ", from " << file.string() << ")\n";
     used_measured = use;
     return v;
   };
-  const auto measured_number = [&](const char* key) {
-    const io::Json* m = measured ? measured->find(key) : nullptr;
-    return m && m->is_number() ? m->number() : std::nan("");
+  const auto measured_number = [&](const std::string& key) {
+    return io::number(results, {"measured", key});
   };
   // Measured power laws c (T / T_m)^n: rescaled to the twin's reference temperature, the error
   // with the exponent's (sigma^2 = s^2 [sigma_c^2 + c^2 ln^2(T_ref / T_m) sigma_n^2]).
-  const io::Json* state = results.find("state_point");
-  const io::Json* t_m = state ? state->find("measured_temperature") : nullptr;
-  const double t_measured = t_m ? t_m->number() : std::nan("");
+  const double t_measured = io::number(results, {"state_point", "measured_temperature"});
   const auto take = [&](continuum::PowerLaw& law, double& error, const char* key,
                         const char* what) {
-    error = measured_number((std::string(key) + "_stderr").c_str());
-    const double n = measured_number((std::string(key) + "_exponent").c_str());
+    error = measured_number(std::string(key) + "_stderr");
+    const double n = measured_number(std::string(key) + "_exponent");
     if (!std::isfinite(n) || !std::isfinite(t_measured)) return;
     const double log_ratio = std::log(p.reference_temperature / t_measured);
     const double scale = std::exp(n * log_ratio);
-    const double n_se = measured_number((std::string(key) + "_exponent_stderr").c_str());
+    const double n_se = measured_number(std::string(key) + "_exponent_stderr");
     error = scale * std::hypot(error, law.value_at_reference * log_ratio * n_se);
     law.exponent = n;
     law.value_at_reference *= scale;
@@ -211,7 +204,7 @@ int continuum_twin(const CommandLine& cl, const std::string& stage_name) {
     summary["coefficient_uncertainty"] = coefficient_uncertainty(
         p, coefficient_errors, result.nusselt * result.numbers.conduction_flux);
     std::cout << "continuum: heat flux +- "
-              << 100 * summary["coefficient_uncertainty"]["heat_flux_relative_stderr"].number()
+              << 100 * summary["coefficient_uncertainty"]["heat_flux_relative_stderr"].get<double>()
               << "% from the measured coefficients' errors"
               << (has_kapitza_errors(p) ? " and the Kapitza conductances'" : "") << "\n";
   }
@@ -219,7 +212,7 @@ int continuum_twin(const CommandLine& cl, const std::string& stage_name) {
   for (const auto& f : files) summary["files"].push_back(f);
   summary["stage_wall_time_s"] =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  io::write_file_atomically(stage.file("summary.json"), summary.dump());
+  io::write_file_atomically(stage.file("summary.json"), io::dump(summary));
 
   if (result.model == "boussinesq" || result.model == "low-mach") {
     std::cout << "continuum: ";

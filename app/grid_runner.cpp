@@ -292,18 +292,6 @@ int run_children(const std::vector<ChildTask>& tasks, int jobs,
   return signals_received > 0 ? static_cast<int>(last_signal) : 0;
 }
 
-double number_at(const io::Json& j, const std::string& dotted_path) {
-  const io::Json* v = &j;
-  std::size_t start = 0;
-  while (v) {
-    const std::size_t dot = dotted_path.find('.', start);
-    v = v->find(dotted_path.substr(start, dot - start));
-    if (dot == std::string::npos) break;
-    start = dot + 1;
-  }
-  return v && v->is_number() ? v->number() : std::nan("");
-}
-
 io::Json number_or_null(double v) {
   return std::isfinite(v) ? io::Json(v) : io::Json();
 }
@@ -313,12 +301,12 @@ namespace {
 std::string csv_cell(const io::Json* v) {
   if (!v || v->is_null()) return "";
   if (v->is_number()) {
-    if (!std::isfinite(v->number())) return "";
+    if (!std::isfinite(v->get<double>())) return "";
     char text[32];
-    std::snprintf(text, sizeof text, "%.10g", v->number());
+    std::snprintf(text, sizeof text, "%.10g", v->get<double>());
     return text;
   }
-  std::string s = v->is_string() ? v->string() : trim(v->dump()); // true, false
+  std::string s = v->is_string() ? v->get<std::string>() : trim(v->dump()); // true, false
   if (s.size() > 200) s = s.substr(0, 200) + "... (see log.txt)";
   if (s.find_first_of(",\"\n") == std::string::npos) return s;
   std::string quoted = "\"";
@@ -367,7 +355,7 @@ void write_table(const fs::path& dir, const Study& s, const std::vector<std::str
   json["points"] = io::Json::array();
   for (std::size_t i = 0; i < rows.size(); ++i) {
     for (std::size_t c = 0; c < columns.size(); ++c)
-      csv << (c ? "," : "") << csv_cell(rows[i].find(columns[c]));
+      csv << (c ? "," : "") << csv_cell(io::find(rows[i], {columns[c]}));
     csv << "\n";
     io::Json point = io::Json::object();
     point["row"] = rows[i];
@@ -377,7 +365,7 @@ void write_table(const fs::path& dir, const Study& s, const std::vector<std::str
     json["points"].push_back(point);
   }
   io::write_file_atomically(dir / (s.name + ".csv"), csv.str());
-  io::write_file_atomically(dir / (s.name + ".json"), json.dump());
+  io::write_file_atomically(dir / (s.name + ".json"), io::dump(json));
 }
 
 bool has_stage_folder(const fs::path& point_dir) {
@@ -394,7 +382,7 @@ int run_study(const CommandLine& cl, Study& s, std::vector<Point>& points) {
                                       : fs::path(cl.out);
   const fs::path json_path = dir / (s.name + ".json");
   std::vector<std::string> varied;
-  for (const auto& key : s.grid.find("vary")->items()) varied.push_back(key.first);
+  for (const auto& [key, values] : s.grid.at("vary").items()) varied.push_back(key);
 
   // Everything is decided before the first write: a refused directory stays untouched.
   if (fs::exists(dir) && !fs::is_directory(dir))
@@ -404,20 +392,20 @@ int run_study(const CommandLine& cl, Study& s, std::vector<Point>& points) {
   if (fs::exists(json_path) && !cl.force) {
     io::Json old;
     try {
-      old = io::Json::parse(io::read_file(json_path));
-    } catch (const std::runtime_error&) {
+      old = io::read_json(json_path);
+    } catch (const io::InputError&) {
       throw io::InputError(json_path.string() +
                            ": unreadable; use --force to start afresh or another --out");
     }
-    const io::Json* grid = old.find("grid");
-    if (!grid || grid->dump() != s.grid.dump())
+    const io::Json* grid = io::find(old, {"grid"});
+    if (!grid || *grid != s.grid)
       throw io::InputError(json_path.string() + ": holds another grid (case file, its " +
                            "parameters, --set, --vary or --rayleigh differ); use --force to " +
                            "start afresh (deletes its points) or another --out");
-    if (const io::Json* old_points = old.find("points"))
-      for (const auto& p : old_points->elements())
-        if (const io::Json* row = p.find("row"); row && row->find("point"))
-          previous[row->find("point")->string()] = *row;
+    if (const io::Json* old_points = io::find(old, {"points"}))
+      for (const auto& p : *old_points)
+        if (const io::Json* row = io::find(p, {"row"}); row && io::find(*row, {"point"}))
+          previous[io::text(*row, {"point"})] = *row;
   } else if (fs::exists(dir) && !fs::is_empty(dir) && !cl.force) {
     throw io::InputError(dir.string() + ": exists and holds no " + s.name +
                          ".json; use --force to use it anyway or another --out");
@@ -443,13 +431,12 @@ int run_study(const CommandLine& cl, Study& s, std::vector<Point>& points) {
     row["reason"] = "";
     row["exit_code"] = io::Json();
     for (std::size_t a = 0; a < varied.size(); ++a)
-      row[varied[a]] = s.grid.find("vary")->find(varied[a])->elements()[p.value_index[a]];
+      row[varied[a]] = s.grid.at("vary").at(varied[a]).at(p.value_index[a]);
     for (const auto& [key, value] : p.columns.items()) row[key] = value;
     const auto prev = previous.find(p.name);
     const io::Json* previous_row = prev == previous.end() ? nullptr : &prev->second;
-    row["wall_seconds"] = previous_row && previous_row->find("wall_seconds")
-                              ? *previous_row->find("wall_seconds")
-                              : io::Json();
+    row["wall_seconds"] =
+        previous_row ? previous_row->value("wall_seconds", io::Json()) : io::Json();
     if (!p.rejected.empty()) {
       row["status"] = "failed";
       row["exit_code"] = 2;
@@ -459,7 +446,7 @@ int run_study(const CommandLine& cl, Study& s, std::vector<Point>& points) {
     }
     if (!afresh && s.finished(p, point_dir, previous_row, row)) {
       std::cerr << s.name << ": point " << p.name
-                << " skipped (finished earlier: " << row.find("status")->string() << ")\n";
+                << " skipped (finished earlier: " << io::text(row, {"status"}) << ")\n";
       ++settled;
       continue;
     }
@@ -501,8 +488,8 @@ int run_study(const CommandLine& cl, Study& s, std::vector<Point>& points) {
     row["reason"] = result.exit_code == 0 ? "" : result.message;
     s.describe(points[i], point_dir, result, row);
     // A continued particle run adds to the wall time of its earlier attempts.
-    const io::Json* before = row.find("wall_seconds");
-    const double earlier = restarted[t] && before && before->is_number() ? before->number() : 0;
+    const double before = io::number(row, {"wall_seconds"});
+    const double earlier = restarted[t] && std::isfinite(before) ? before : 0;
     row["wall_seconds"] = earlier + result.wall_seconds;
     write_table(dir, s, varied, points, rows);
     wall_sum += result.wall_seconds;
@@ -510,11 +497,11 @@ int run_study(const CommandLine& cl, Study& s, std::vector<Point>& points) {
     ++settled;
     const double eta = wall_sum / done_now * static_cast<double>(tasks.size() - done_now) / jobs;
     std::cerr << s.name << ": point " << settled << "/" << points.size() << " done ("
-              << row.find("status")->string() << "), ETA "
+              << io::text(row, {"status"}) << "), ETA "
               << (done_now == tasks.size() ? "0s" : duration_text(eta)) << "\n";
   });
   std::map<std::string, int> counts;
-  for (const auto& row : rows) ++counts[row.find("status")->string()];
+  for (const auto& row : rows) ++counts[io::text(row, {"status"})];
   std::cerr << s.name << ":";
   for (const auto& [status, n] : counts) std::cerr << " " << n << " " << status;
   std::cerr << "; table: " << (dir / (s.name + ".csv")).string() << "\n";

@@ -87,7 +87,6 @@ struct Study {
 int run_study(const CommandLine&, Study&, std::vector<Point>& points);
 
 // Helpers for the commands' columns.
-double number_at(const io::Json& j, const std::string& dotted_path); // NaN when absent
 io::Json number_or_null(double v);
 
 } // namespace twinflow::app::grid

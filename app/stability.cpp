@@ -43,7 +43,7 @@ double run_target_temperature(const SceneParameters& scene, const io::Json& summ
   const double before_run = target_temperature(scene, &thermal_walls);
   // 000:(3.21) E/N = (d/2) k T + (c_v + k) T, evaluated by the particle run
   const double energy_equation_of_state =
-      grid::number_at(summary, "results.T_energy_equation_of_state");
+      io::number(summary, {"results", "T_energy_equation_of_state"});
   return thermal_walls == 0 && std::isfinite(energy_equation_of_state) ? energy_equation_of_state
                                                                        : before_run;
 }
@@ -97,19 +97,19 @@ std::string classify_instability(const std::string& message) {
 
 // A finished particle run: non-finite results, energy drift, temperature off target, or stable.
 void classify_summary(const CaseParameters& c, const fs::path& point_dir, io::Json& row) {
-  using grid::number_at, grid::number_or_null;
+  using grid::number_or_null;
   io::Json summary = io::Json::object();
   try {
-    summary = io::Json::parse(io::read_file(point_dir / "particle" / "summary.json"));
-  } catch (const std::runtime_error& e) {
+    summary = io::read_json(point_dir / "particle" / "summary.json");
+  } catch (const io::InputError& e) {
     row["status"] = "failed";
     row["reason"] = e.what();
     return;
   }
   const bool has_energy = c.particle.energy == particle::EnergyModel::Dpde;
-  const double drift = number_at(summary, "results.energy_relative_drift_max");
-  const double tk = number_at(summary, "results.T_kinetic");
-  const double ti = number_at(summary, "results.T_internal");
+  const double drift = io::number(summary, {"results", "energy_relative_drift_max"});
+  const double tk = io::number(summary, {"results", "T_kinetic"});
+  const double ti = io::number(summary, {"results", "T_internal"});
   const double target = run_target_temperature(c.scene, summary);
   double error = std::abs(tk / target - 1);
   if (has_energy) error = std::max(error, std::abs(ti / target - 1));
@@ -182,8 +182,7 @@ int stability(const CommandLine& cl) {
 
   s.finished = [&](const grid::Point& p, const fs::path& point_dir, const io::Json* previous,
                    io::Json& row) {
-    const io::Json* status = previous ? previous->find("status") : nullptr;
-    if (status && status->is_string() && kInstabilities.count(status->string())) {
+    if (previous && kInstabilities.count(io::text(*previous, {"status"}))) {
       row = *previous; // a blow-up is a result: the same inputs blow up again
       return true;
     }

@@ -56,7 +56,7 @@ StageInputs stage_inputs(const CommandLine& cl, std::initializer_list<const char
   if (method) s.inputs["method"] = method; // a changed measurement: not reused
   s.hash = io::content_hash(s.inputs.dump());
   const io::Json provenance = io::provenance();
-  s.inputs["twinflow_git_revision"] = *provenance.find("twinflow_git_revision");
+  s.inputs["twinflow_git_revision"] = provenance.at("twinflow_git_revision");
   s.inputs["hash"] = s.hash;
   return s;
 }
@@ -64,15 +64,13 @@ StageInputs stage_inputs(const CommandLine& cl, std::initializer_list<const char
 // Inputs recorded before a parameter was added lack it: the same inputs if it has its default
 // (a new key does not invalidate hours of particle data), and all the others are equal.
 bool same_inputs(const io::Json& recorded, const StageInputs& s) {
-  const io::Json* then = recorded.find("parameters");
-  const io::Json* upstream = recorded.find("upstream");
-  if (!then || !upstream || upstream->dump() != s.inputs.find("upstream")->dump()) return false;
-  const io::Json* method = recorded.find("method");
-  const io::Json* now = s.inputs.find("method");
-  if ((method ? method->dump() : "") != (now ? now->dump() : "")) return false;
-  for (const auto& [path, value] : s.inputs.find("parameters")->items()) {
-    const io::Json* old = then->find(path);
-    if (old ? old->dump() != value.dump() : value.string() != s.defaults.at(path)) return false;
+  const io::Json* then = io::find(recorded, {"parameters"});
+  const io::Json* upstream = io::find(recorded, {"upstream"});
+  if (!then || !upstream || *upstream != s.inputs.at("upstream")) return false;
+  if (recorded.value("method", io::Json()) != s.inputs.value("method", io::Json())) return false;
+  for (const auto& [path, value] : s.inputs.at("parameters").items()) {
+    const io::Json* old = io::find(*then, {path});
+    if (old ? *old != value : value.get<std::string>() != s.defaults.at(path)) return false;
   }
   return true;
 }
@@ -81,14 +79,14 @@ bool same_inputs(const io::Json& recorded, const StageInputs& s) {
 bool reusable(const fs::path& stage_dir, const StageInputs& s) {
   if (!fs::exists(stage_dir / "summary.json") || !fs::exists(stage_dir / "inputs.json"))
     return false;
-  const io::Json recorded = io::Json::parse(io::read_file(stage_dir / "inputs.json"));
-  const io::Json* h = recorded.find("hash");
-  if (!h || !h->is_string() || (h->string() != s.hash && !same_inputs(recorded, s))) return false;
-  const io::Json* then = recorded.find("twinflow_git_revision");
-  const io::Json* now = s.inputs.find("twinflow_git_revision");
-  if (then && now && then->is_string() && now->is_string() && then->string() != now->string())
-    std::cout << "run: " << stage_dir.filename().string() << ": made by revision " << then->string()
-              << " (this is " << now->string() << ")\n";
+  const io::Json recorded = io::read_json(stage_dir / "inputs.json");
+  const std::string hash = io::text(recorded, {"hash"});
+  if (hash.empty() || (hash != s.hash && !same_inputs(recorded, s))) return false;
+  const std::string then = io::text(recorded, {"twinflow_git_revision"});
+  const std::string now = io::text(s.inputs, {"twinflow_git_revision"});
+  if (!then.empty() && !now.empty() && then != now)
+    std::cout << "run: " << stage_dir.filename().string() << ": made by revision " << then
+              << " (this is " << now << ")\n";
   return true;
 }
 
@@ -102,7 +100,7 @@ int run_or_reuse(const fs::path& stage_dir, const StageInputs& s, bool force, St
   }
   fs::remove(stage_dir / "inputs.json"); // stale until the stage finishes again
   const int rc = stage();
-  if (rc == 0) io::write_file_atomically(stage_dir / "inputs.json", s.inputs.dump());
+  if (rc == 0) io::write_file_atomically(stage_dir / "inputs.json", io::dump(s.inputs));
   return rc;
 }
 
@@ -206,22 +204,20 @@ int particle_stage(const CommandLine& cl) {
   summary["provenance"] = io::provenance();
   summary["results"] = out.summary;
   summary["parameters"] = c.registry().resolved_json();
-  io::write_file_atomically(stage.file("summary.json"), summary.dump()); // written last: complete
-  fs::remove(checkpoint_path); // finished: nothing to continue
+  io::write_file_atomically(stage.file("summary.json"),
+                            io::dump(summary)); // written last: complete
+  fs::remove(checkpoint_path);                  // finished: nothing to continue
   const auto& r = out.summary;
-  std::cout << "particle: N = " << r.find("N")->number() << ", "
-            << r.find("particle_steps_per_second")->number()
-            << " particle-steps/s, T_kinetic = " << r.find("T_kinetic")->number() << " +- "
-            << r.find("T_kinetic_stderr")->number()
-            << ", T_internal = " << r.find("T_internal")->number() << " +- "
-            << r.find("T_internal_stderr")->number()
-            << ", max |dE/E| = " << r.find("energy_relative_drift_max")->number() << "\n"
+  std::cout << "particle: N = " << io::number(r, {"N"}) << ", "
+            << io::number(r, {"particle_steps_per_second"})
+            << " particle-steps/s, T_kinetic = " << io::number(r, {"T_kinetic"}) << " +- "
+            << io::number(r, {"T_kinetic_stderr"})
+            << ", T_internal = " << io::number(r, {"T_internal"}) << " +- "
+            << io::number(r, {"T_internal_stderr"})
+            << ", max |dE/E| = " << io::number(r, {"energy_relative_drift_max"}) << "\n"
             << "outputs: " << fs::absolute(stage.path()).string() << "\n";
   if (!convection.is_null()) {
-    const auto get = [&](const char* key) {
-      const io::Json* v = convection.find(key);
-      return v ? v->number() : std::nan("");
-    };
+    const auto get = [&](const char* key) { return io::number(convection, {key}); };
     std::cout << "convection (estimates): Ra = " << get("rayleigh") << ", Pr = " << get("prandtl")
               << ", dT/T = " << get("delta_T_over_T")
               << ", g H/c^2 = " << get("stratification_g_H_over_c2")
@@ -238,7 +234,7 @@ int particle_command(const CommandLine& cl) {
   const StageInputs inputs = stage_inputs(cl, {"Scene/", "Particle/"}, {});
   const fs::path stage_dir = run_directory(cl, p) / "particle";
   const int rc = particle_stage(cl);
-  if (rc == 0) io::write_file_atomically(stage_dir / "inputs.json", inputs.inputs.dump());
+  if (rc == 0) io::write_file_atomically(stage_dir / "inputs.json", io::dump(inputs.inputs));
   return rc;
 }
 
@@ -267,11 +263,11 @@ int run_all(const CommandLine& cl) {
     return rc;
   // The coefficients at the temperature the particle fluid actually has, unless the case says.
   if (p.transport.temperature == 0) {
-    const io::Json s = io::Json::parse(io::read_file(run_dir / "particle" / "summary.json"));
-    const io::Json* T = s.find("results") ? s.find("results")->find("T_kinetic") : nullptr;
-    if (T && T->is_number() && T->number() > 0) {
+    const double T =
+        io::number(io::read_json(run_dir / "particle" / "summary.json"), {"results", "T_kinetic"});
+    if (T > 0) {
       std::ostringstream o;
-      o << std::setprecision(4) << "Transport/Temperature=" << T->number();
+      o << std::setprecision(4) << "Transport/Temperature=" << T;
       later.overrides.push_back(o.str());
       std::cout << "run: transport at the particle fluid's mean temperature: --set '" << o.str()
                 << "'\n";

@@ -27,10 +27,10 @@ bool run_finished(const fs::path& point_dir) {
   return !fs::exists(point_dir / "compare") && fs::exists(point_dir / "continuum" / "summary.json");
 }
 
-io::Json read_json(const fs::path& file) {
+io::Json read_json_or_empty(const fs::path& file) {
   try {
-    return io::Json::parse(io::read_file(file));
-  } catch (const std::runtime_error&) { // missing or unreadable: its columns stay empty
+    return io::read_json(file);
+  } catch (const io::InputError&) { // missing or unreadable: its columns stay empty
     return io::Json::object();
   }
 }
@@ -43,23 +43,24 @@ void add_metrics(const fs::path& point_dir, const std::set<std::string>& reserve
   };
   const fs::path metrics = point_dir / "compare" / "metrics.json";
   if (fs::exists(metrics)) {
-    const io::Json recorded = read_json(metrics);
-    if (const io::Json* table_row = recorded.find("table_row"))
+    const io::Json recorded = read_json_or_empty(metrics);
+    if (const io::Json* table_row = io::find(recorded, {"table_row"}))
       if (table_row->is_object())
         for (const auto& [key, value] : table_row->items()) put(key, value);
     return;
   }
-  using grid::number_at, grid::number_or_null;
-  const io::Json continuum = read_json(point_dir / "continuum" / "summary.json");
-  put("rayleigh", number_or_null(number_at(continuum, "dimensionless.rayleigh")));
-  put("prandtl", number_or_null(number_at(continuum, "dimensionless.prandtl")));
-  put("nusselt_nominal", number_or_null(number_at(continuum, "results.nusselt_volume_average")));
-  put("wall_seconds_continuum", number_or_null(number_at(continuum, "stage_wall_time_s")));
-  const io::Json particle = read_json(point_dir / "particle" / "summary.json");
-  put("wall_seconds_particle", number_or_null(number_at(particle, "results.wall_seconds")));
-  put("particle_steps", number_or_null(number_at(particle, "results.N") *
-                                       (number_at(particle, "results.steps") +
-                                        number_at(particle, "results.equilibration_steps"))));
+  using grid::number_or_null;
+  const io::Json continuum = read_json_or_empty(point_dir / "continuum" / "summary.json");
+  put("rayleigh", number_or_null(io::number(continuum, {"dimensionless", "rayleigh"})));
+  put("prandtl", number_or_null(io::number(continuum, {"dimensionless", "prandtl"})));
+  put("nusselt_nominal",
+      number_or_null(io::number(continuum, {"results", "nusselt_volume_average"})));
+  put("wall_seconds_continuum", number_or_null(io::number(continuum, {"stage_wall_time_s"})));
+  const io::Json particle = read_json_or_empty(point_dir / "particle" / "summary.json");
+  put("wall_seconds_particle", number_or_null(io::number(particle, {"results", "wall_seconds"})));
+  put("particle_steps", number_or_null(io::number(particle, {"results", "N"}) *
+                                       (io::number(particle, {"results", "steps"}) +
+                                        io::number(particle, {"results", "equilibration_steps"}))));
 }
 
 std::string status_of(int exit_code) {
@@ -77,13 +78,12 @@ struct Coefficients {
 };
 Coefficients coefficients_from(const io::Json& summary, const std::string& source) {
   const auto pick = [&](const char* estimate_key, const char* measured_key) {
-    const double measured =
-        grid::number_at(summary, std::string("results.measured.") + measured_key);
+    const double measured = io::number(summary, {"results", "measured", measured_key});
     if (source == "measured" && std::isfinite(measured)) return measured;
-    return grid::number_at(summary, std::string("results.estimated_measured_g.") + estimate_key);
+    return io::number(summary, {"results", "estimated_measured_g", estimate_key});
   };
   return {pick("viscosity", "viscosity"), pick("conductivity", "conductivity"),
-          grid::number_at(summary, "results.estimated_measured_g.heat_capacity_p_per_particle"),
+          io::number(summary, {"results", "estimated_measured_g", "heat_capacity_p_per_particle"}),
           pick("thermal_expansion", "thermal_expansion")};
 }
 
@@ -226,7 +226,7 @@ int sweep(const CommandLine& cl) {
         return 1;
       }
     }
-    const io::Json summary = io::Json::parse(io::read_file(summary_file));
+    const io::Json summary = io::read_json(summary_file);
     for (std::size_t i = 0; i < points.size(); ++i) {
       grid::Point& p = points[i];
       if (!p.rejected.empty()) continue;

@@ -83,19 +83,19 @@ bool restore_from_cache(const fs::path& entry, const io::StageDirectory& stage, 
     if (!fs::exists(entry / f)) return false;
   io::Json summary;
   try {
-    summary = io::Json::parse(io::read_file(entry / "summary.json"));
+    summary = io::read_json(entry / "summary.json");
   } catch (const std::exception& e) {
     std::cerr << "transport: cache entry " << entry.string() << " unreadable (" << e.what()
               << "): measuring\n";
     return false;
   }
-  const io::Json* made_by = summary.find("provenance");
+  const io::Json* made_by = io::find(summary, {"provenance"});
   if (!made_by) return false; // not an entry this code wrote
-  const io::Json* revision = made_by->find("twinflow_git_revision");
+  const io::Json* revision = io::find(*made_by, {"twinflow_git_revision"});
   const io::Json now = io::provenance();
-  if (revision && revision->dump() != now.find("twinflow_git_revision")->dump())
+  if (revision && *revision != now.at("twinflow_git_revision"))
     std::cout << "transport: the cached measurements were made by twinflow " << revision->dump()
-              << " (this is " << now.find("twinflow_git_revision")->dump()
+              << " (this is " << now.at("twinflow_git_revision").dump()
               << "); --force or TWINFLOW_CACHE=off measures again\n";
   io::Json cache = io::Json::object();
   cache["entry"] = entry.string();
@@ -108,7 +108,7 @@ bool restore_from_cache(const fs::path& entry, const io::StageDirectory& stage, 
   io::write_file_atomically(stage.file("coefficients.csv"),
                             io::read_file(entry / "coefficients.csv"));
   io::write_file_atomically(stage.file("rdf.csv"), io::read_file(entry / "rdf.csv"));
-  io::write_file_atomically(stage.file("summary.json"), summary.dump());
+  io::write_file_atomically(stage.file("summary.json"), io::dump(summary));
   return true;
 }
 // Transport/Kappa from walls: conduction between the scene's thermal walls of its heated
@@ -153,8 +153,8 @@ WallKappa kappa_from_walls(const CaseParameters& cp, const particle::ParticlePar
   control.progress = isatty(STDERR_FILENO); // a progress line with ETA on a terminal only
   const particle::RunOutput out = particle::run_particles(w, control);
   const auto lower = wall_name(heated, 0), upper = wall_name(heated, 1);
-  const double q_lo = number(out.summary, {"walls", lower.c_str(), "heat_flux_in"});
-  const double q_up = number(out.summary, {"walls", upper.c_str(), "heat_flux_in"});
+  const double q_lo = io::number(out.summary, {"walls", lower.c_str(), "heat_flux_in"});
+  const double q_up = io::number(out.summary, {"walls", upper.c_str(), "heat_flux_in"});
   const double se_q =
       0.5 * std::hypot(largest_stderr(out.summary, lower), largest_stderr(out.summary, upper));
   const double q = 0.5 * (q_lo - q_up); // from the lower wall to the upper one
@@ -164,8 +164,8 @@ WallKappa kappa_from_walls(const CaseParameters& cp, const particle::ParticlePar
     std::printf("transport: kappa from the walls: the walls' heat flows differ by %.1f standard "
                 "errors (%.4g in, %.4g out): not yet steady; raise Transport/Wall steps\n",
                 std::fabs(imbalance), q_lo, -q_up);
-  const double slope = number(out.summary, {"wall_profile", "slope"}),
-               se_slope = number(out.summary, {"wall_profile", "slope_stderr"});
+  const double slope = io::number(out.summary, {"wall_profile", "slope"}),
+               se_slope = io::number(out.summary, {"wall_profile", "slope_stderr"});
   WallKappa r;
   r.kappa.mean = -q / slope; // Fourier: q = -kappa dT/dx
   r.kappa.stderr_ = std::fabs(r.kappa.mean) * std::hypot(se_q / q, se_slope / slope);
@@ -180,8 +180,9 @@ WallKappa kappa_from_walls(const CaseParameters& cp, const particle::ParticlePar
   r.json["wall_imbalance_over_stderr"] = imbalance;
   r.json["slope"] = slope, r.json["slope_stderr"] = se_slope;
   r.json["conductivity"] = r.kappa.mean, r.json["conductivity_stderr"] = r.kappa.stderr_;
-  r.json["T_internal"] = number(out.summary, {"T_internal"});
-  if (const io::Json* profile = out.summary.find("wall_profile")) r.json["wall_profile"] = *profile;
+  r.json["T_internal"] = io::number(out.summary, {"T_internal"});
+  if (const io::Json* profile = io::find(out.summary, {"wall_profile"}))
+    r.json["wall_profile"] = *profile;
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   r.json["seconds"] = seconds;
@@ -424,16 +425,16 @@ int transport_stage(const CommandLine& cl) {
     summary["results"]["measured"]["conductivity_note"] = note.str();
   }
   summary["measurement_key"] = key;
-  io::write_file_atomically(stage.file("summary.json"), summary.dump());
+  io::write_file_atomically(stage.file("summary.json"), io::dump(summary));
   if (!cache.empty()) {
     // summary.json last: an interrupted copy leaves no entry. Best effort (read-only home, full
     // disk): the stage's own results are already written.
     try {
       fs::create_directories(cache);
-      io::write_file_atomically(cache / "inputs.json", key_inputs.dump());
+      io::write_file_atomically(cache / "inputs.json", io::dump(key_inputs));
       io::write_file_atomically(cache / "coefficients.csv", table.str());
       io::write_file_atomically(cache / "rdf.csv", m.rdf_csv);
-      io::write_file_atomically(cache / "summary.json", summary.dump());
+      io::write_file_atomically(cache / "summary.json", io::dump(summary));
     } catch (const std::exception& e) {
       std::cerr << "transport: not cached (" << e.what() << ")\n";
     }

@@ -215,22 +215,22 @@ io::Json slab_fit(const ParticleParameters& p, const BinnedFields& f) {
 io::Json heat_relaxation_fit(const ParticleParameters& p, const std::vector<double>& t,
                              const std::vector<double>& a) {
   io::Json j = decay_fit(2 * M_PI / p.box[0], t, a, "chi");
-  if (!j.find("chi")) return j;
+  if (!j.contains("chi")) return j;
   // kappa = rho c_p chi with the ideal DPDE fluid's c_p = c_v + k + (d/2) k + k per particle
   // (physics.md); the transport stage converts chi itself, with the c_p of its estimate.
   const double scale = p.density * (p.cv + 2 + 0.5 * p.dim);
-  j["kappa_ideal_cp"] = scale * j["chi"].number();
-  j["kappa_ideal_cp_stderr"] = scale * j["chi_stderr"].number();
+  j["kappa_ideal_cp"] = scale * j["chi"].get<double>();
+  j["kappa_ideal_cp_stderr"] = scale * j["chi_stderr"].get<double>();
   return j;
 }
 
 io::Json shear_relaxation_fit(const ParticleParameters& p, const std::vector<double>& t,
                               const std::vector<double>& a) {
   io::Json j = decay_fit(2 * M_PI / p.box[0], t, a, "nu");
-  if (!j.find("nu")) return j;
+  if (!j.contains("nu")) return j;
   const double scale = p.density * p.mass; // eta = rho m nu
-  j["viscosity"] = scale * j["nu"].number();
-  j["viscosity_stderr"] = scale * j["nu_stderr"].number();
+  j["viscosity"] = scale * j["nu"].get<double>();
+  j["viscosity_stderr"] = scale * j["nu_stderr"].get<double>();
   return j;
 }
 
@@ -738,7 +738,7 @@ private:
       out_.slab_profile_csv = profile.csv();
       if (M::has_energy && p_.heat_slabs.size() == 2) {
         j["heat_slabs"] = slab_fit(p_, profile);
-        const double j0 = j["heat_slabs"]["J0"].number();
+        const double j0 = j["heat_slabs"]["J0"].get<double>();
         j["heat_slabs"]["flux_decomposition"] = flux_at_planes(p_, profile, j0);
       }
     }

@@ -4,7 +4,7 @@ set -euo pipefail
 packages=(
   build-essential cmake clang-format
   libdeal.ii-dev libeigen3-dev libboost-program-options-dev libgtest-dev
-  librandom123-dev libhdf5-openmpi-dev hdf5-tools
+  librandom123-dev libhdf5-openmpi-dev hdf5-tools nlohmann-json3-dev
   python3-h5py python3-matplotlib libxml2-utils openmpi-bin
 )
 missing=()

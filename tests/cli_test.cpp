@@ -185,18 +185,17 @@ TEST(Cli, RunComparesTheTwinsAndReusesUnchangedStages) {
   const fs::path dir = fresh_dir("reuse");
   const Result first = run("run " + tiny + " --out " + dir.string());
   ASSERT_EQ(first.code, 0) << first.output;
-  const auto metrics =
-      twinflow::io::Json::parse(twinflow::io::read_file(dir / "compare" / "metrics.json"));
-  const auto* row = metrics.find("table_row");
+  const auto metrics = twinflow::io::read_json(dir / "compare" / "metrics.json");
+  const auto* row = twinflow::io::find(metrics, {"table_row"});
   ASSERT_NE(row, nullptr);
   for (const char* key :
        {"nusselt_particle", "nusselt_particle_stderr", "nusselt_nominal", "nusselt_calibrated",
         "temperature_l2_nominal", "temperature_l2_calibrated", "temperature_l2_noise"}) {
-    ASSERT_NE(row->find(key), nullptr) << key;
-    EXPECT_TRUE(std::isfinite(row->find(key)->number())) << key;
+    ASSERT_NE(twinflow::io::find(*row, {key}), nullptr) << key;
+    EXPECT_TRUE(std::isfinite(twinflow::io::find(*row, {key})->get<double>())) << key;
   }
   // 5 x 5 bins of 2 rc, wall layer 1 rc: the 3 x 3 interior
-  EXPECT_EQ(metrics.find("interior_bins")->number(), 9);
+  EXPECT_EQ(twinflow::io::find(metrics, {"interior_bins"})->get<double>(), 9);
   for (const char* f : {"bins.csv", "profiles.csv", "error_vs_time.csv"})
     EXPECT_TRUE(fs::exists(dir / "compare" / f)) << f;
   // The Kapitza twin's heat-flux error includes its conductances' errors (one solve per wall
@@ -204,28 +203,27 @@ TEST(Cli, RunComparesTheTwinsAndReusesUnchangedStages) {
   // part. (A wall whose measured jump has the wrong sign in this tiny run gets the fluid's wall
   // temperature instead, and no h_K: which walls have one depends on the realisation.)
   {
-    const auto calibrated = twinflow::io::Json::parse(
-        twinflow::io::read_file(dir / "continuum_calibrated" / "summary.json"));
-    const auto* u = calibrated.find("coefficient_uncertainty");
+    const auto calibrated = twinflow::io::read_json(dir / "continuum_calibrated" / "summary.json");
+    const auto* u = twinflow::io::find(calibrated, {"coefficient_uncertainty"});
     ASSERT_NE(u, nullptr) << first.output;
-    const double total = u->find("heat_flux_relative_stderr")->number();
-    const auto* parameters = calibrated.find("continuum_parameters");
+    const double total = twinflow::io::find(*u, {"heat_flux_relative_stderr"})->get<double>();
+    const auto* parameters = twinflow::io::find(calibrated, {"continuum_parameters"});
     ASSERT_NE(parameters, nullptr);
-    const auto* boundaries = parameters->find("boundaries");
+    const auto* boundaries = twinflow::io::find(*parameters, {"boundaries"});
     ASSERT_TRUE(boundaries != nullptr && boundaries->is_array());
-    const auto& x_walls = boundaries->elements().at(0);
+    const auto& x_walls = boundaries->at(0);
     int with_conductance = 0;
     for (const char* side : {"lower", "upper"}) {
-      const auto* wall_side = x_walls.find(side);
+      const auto* wall_side = twinflow::io::find(x_walls, {side});
       ASSERT_NE(wall_side, nullptr) << side;
-      const auto* h = wall_side->find("kapitza_conductance_stderr");
-      if (h == nullptr || !(h->number() > 0)) continue;
+      const auto* h = twinflow::io::find(*wall_side, {"kapitza_conductance_stderr"});
+      if (h == nullptr || !(h->get<double>() > 0)) continue;
       ++with_conductance;
       const std::string wall = std::string("kapitza_x_") + side;
-      const auto* k = u->find(wall);
+      const auto* k = twinflow::io::find(*u, {wall});
       ASSERT_NE(k, nullptr) << wall << "\n" << first.output;
-      EXPECT_EQ(k->find("stderr")->number(), h->number()) << wall;
-      const double change = k->find("heat_flux_relative_change")->number();
+      EXPECT_EQ(twinflow::io::find(*k, {"stderr"})->get<double>(), h->get<double>()) << wall;
+      const double change = twinflow::io::find(*k, {"heat_flux_relative_change"})->get<double>();
       EXPECT_GT(change, 0) << wall;
       EXPECT_GE(total, change) << wall;
     }
@@ -249,14 +247,14 @@ TEST(Cli, RunComparesTheTwinsAndReusesUnchangedStages) {
   // A record made before a parameter existed lacks it: still the same inputs when the new
   // parameter has its default (here: drop one from particle/inputs.json and spoil its hash).
   {
-    auto inputs =
-        twinflow::io::Json::parse(twinflow::io::read_file(dir / "particle" / "inputs.json"));
+    auto inputs = twinflow::io::read_json(dir / "particle" / "inputs.json");
     twinflow::io::Json older = twinflow::io::Json::object();
-    for (const auto& [key, value] : inputs.find("parameters")->items())
+    for (const auto& [key, value] : twinflow::io::find(inputs, {"parameters"})->items())
       if (key != "Scene/Temperature perturbation") older[key] = value;
     inputs["parameters"] = older;
     inputs["hash"] = "0000000000000000";
-    twinflow::io::write_file_atomically(dir / "particle" / "inputs.json", inputs.dump());
+    twinflow::io::write_file_atomically(dir / "particle" / "inputs.json",
+                                        twinflow::io::dump(inputs));
     const Result old_record = run("run " + tiny + " --out " + dir.string());
     ASSERT_EQ(old_record.code, 0) << old_record.output;
     EXPECT_NE(old_record.output.find("run: particle: inputs unchanged"), std::string::npos)
@@ -294,21 +292,20 @@ TEST(Cli, RunComparesTheTwinsAndReusesUnchangedStages) {
   ASSERT_EQ(effective.code, 0) << effective.output;
   EXPECT_NE(effective.output.find("Continuum/Wall positions="), std::string::npos);
   EXPECT_NE(effective.output.find("Continuum/Slip lengths="), std::string::npos);
-  const auto twin = twinflow::io::Json::parse(
-      twinflow::io::read_file(dir / "continuum_calibrated" / "summary.json"));
-  const auto& p = *twin.find("continuum_parameters");
-  ASSERT_NE(p.find("scene_box"), nullptr) << effective.output;
+  const auto twin = twinflow::io::read_json(dir / "continuum_calibrated" / "summary.json");
+  const auto& p = *twinflow::io::find(twin, {"continuum_parameters"});
+  ASSERT_NE(twinflow::io::find(p, {"scene_box"}), nullptr) << effective.output;
   for (int d = 0; d < 2; ++d) {
-    const double own = p.find("box")->elements()[d].number();
+    const double own = (*twinflow::io::find(p, {"box"}))[d].get<double>();
     EXPECT_LT(own, 10.0) << d; // the tiny cavity's 10 rc, less two Gibbs depths (~0.5 each)
     EXPECT_GT(own, 8.0) << d;
   }
-  for (const auto& wall : p.find("boundaries")->elements())
+  for (const auto& wall : (*twinflow::io::find(p, {"boundaries"})))
     for (const char* side : {"lower", "upper"})
-      EXPECT_GT(wall.find(side)->find("slip_length")->number(), 0) << side;
-  const auto m =
-      twinflow::io::Json::parse(twinflow::io::read_file(dir / "compare" / "metrics.json"));
-  const double area = m.find("twins")->find("calibrated")->find("wall_area_over_scene")->number();
+      EXPECT_GT(twinflow::io::find(wall, {side, "slip_length"})->get<double>(), 0) << side;
+  const auto m = twinflow::io::read_json(dir / "compare" / "metrics.json");
+  const double area =
+      twinflow::io::find(m, {"twins", "calibrated", "wall_area_over_scene"})->get<double>();
   EXPECT_GT(area, 0.8);
   EXPECT_LT(area, 1.0);
 }
@@ -336,11 +333,10 @@ TEST(Cli, IdleThreadsSpinBrieflyUnlessTheUserChose) {
             dir.string(),
         "off", env);
     EXPECT_EQ(r.code, 0) << r.output;
-    const auto summary =
-        twinflow::io::Json::parse(twinflow::io::read_file(dir / "bench" / "summary.json"));
+    const auto summary = twinflow::io::read_json(dir / "bench" / "summary.json");
     std::string s;
-    for (const auto& [name, value] : summary.find("openmp_wait")->items())
-      s += (s.empty() ? "" : " ") + name + "=" + value.string();
+    for (const auto& [name, value] : twinflow::io::find(summary, {"openmp_wait"})->items())
+      s += (s.empty() ? "" : " ") + name + "=" + value.get<std::string>();
     return s;
   };
   EXPECT_EQ(waited("env -u OMP_WAIT_POLICY -u GOMP_SPINCOUNT"), "GOMP_SPINCOUNT=1000");
@@ -370,9 +366,8 @@ TEST(Cli, TransportReusesCachedMeasurementsAcrossRunDirectories) {
   EXPECT_NE(second.output.find("reused from the cache"), std::string::npos) << second.output;
   EXPECT_EQ(twinflow::io::read_file(a / "transport" / "coefficients.csv"),
             twinflow::io::read_file(b / "transport" / "coefficients.csv"));
-  const auto summary =
-      twinflow::io::Json::parse(twinflow::io::read_file(b / "transport" / "summary.json"));
-  EXPECT_NE(summary.find("cache"), nullptr);
+  const auto summary = twinflow::io::read_json(b / "transport" / "summary.json");
+  EXPECT_NE(twinflow::io::find(summary, {"cache"}), nullptr);
   const Result other = twinflow::testing::run_twinflow(
       "transport " + base + " --set 'Particle/Dissipation/sigma=2' --out " + c.string(),
       cache.string());
@@ -393,22 +388,22 @@ TEST(Cli, KappaFromWallsIsFouriersLawOfTheWallRun) {
   const Result r =
       twinflow::testing::run_twinflow("transport " + base + " --out " + dir.string(), "off");
   ASSERT_EQ(r.code, 0) << r.output;
-  const auto summary =
-      twinflow::io::Json::parse(twinflow::io::read_file(dir / "transport" / "summary.json"));
-  const auto& measured = *summary.find("results")->find("measured");
-  const auto& walls = *measured.find("walls");
-  const double kappa = measured.find("conductivity")->number();
-  EXPECT_DOUBLE_EQ(kappa, -walls.find("heat_flux")->number() / walls.find("slope")->number());
-  EXPECT_GT(measured.find("conductivity_stderr")->number(), 0);
-  EXPECT_EQ(walls.find("particles")->number(), 4000); // 20 x 100 at density 2
+  const auto summary = twinflow::io::read_json(dir / "transport" / "summary.json");
+  const auto& measured = *twinflow::io::find(summary, {"results", "measured"});
+  const auto& walls = *twinflow::io::find(measured, {"walls"});
+  const double kappa = twinflow::io::find(measured, {"conductivity"})->get<double>();
+  EXPECT_DOUBLE_EQ(kappa, -twinflow::io::find(walls, {"heat_flux"})->get<double>() /
+                              twinflow::io::find(walls, {"slope"})->get<double>());
+  EXPECT_GT(twinflow::io::find(measured, {"conductivity_stderr"})->get<double>(), 0);
+  EXPECT_EQ(twinflow::io::find(walls, {"particles"})->get<double>(), 4000); // 20 x 100 at density 2
   // The slope's error: the largest of the fit's (bins independent) and the blocks' slopes'
   // (20 blocks, 2 and 4 merged), which see the fluctuations the bins share.
-  const auto& profile = *walls.find("wall_profile");
-  const auto& blocking = profile.find("slope_stderr_blocking")->elements();
+  const auto& profile = *twinflow::io::find(walls, {"wall_profile"});
+  const auto& blocking = (*twinflow::io::find(profile, {"slope_stderr_blocking"}));
   ASSERT_EQ(blocking.size(), 3u);
-  double largest = profile.find("slope_stderr_fit")->number();
-  for (const auto& e : blocking) largest = std::max(largest, e.number());
-  EXPECT_EQ(walls.find("slope_stderr")->number(), largest);
+  double largest = twinflow::io::find(profile, {"slope_stderr_fit"})->get<double>();
+  for (const auto& e : blocking) largest = std::max(largest, e.get<double>());
+  EXPECT_EQ(twinflow::io::find(walls, {"slope_stderr"})->get<double>(), largest);
   const fs::path none = fresh_dir("kappa_walls_none");
   const Result bad = twinflow::testing::run_twinflow(
       "transport " + base + " --set 'Scene/x boundaries/Upper wall temperature=1.5' --out " +

@@ -38,19 +38,18 @@ std::string shipped(const std::string& name) {
 // The rows of DIR/<command>.json, in point order.
 std::vector<Json> rows(const fs::path& table) {
   std::vector<Json> out;
-  const Json j = Json::parse(twinflow::io::read_file(table));
-  for (const auto& p : j.find("points")->elements()) out.push_back(*p.find("row"));
+  const Json j = twinflow::io::read_json(table);
+  for (const auto& p : (*twinflow::io::find(j, {"points"})))
+    out.push_back(*twinflow::io::find(p, {"row"}));
   return out;
 }
 
 std::string text(const Json& row, const std::string& key) {
-  const Json* v = row.find(key);
-  return v && v->is_string() ? v->string() : "";
+  return twinflow::io::text(row, {key});
 }
 
 double number(const Json& row, const std::string& key) {
-  const Json* v = row.find(key);
-  return v && v->is_number() ? v->number() : std::nan("");
+  return twinflow::io::number(row, {key});
 }
 
 std::string file_text(const fs::path& file) {
@@ -200,8 +199,10 @@ TEST(Stability, ClassifiesPointsBesideTheoryLimits) {
     EXPECT_DOUBLE_EQ(number(*row, "fluctuation_number"),
                      twinflow::particle::fluctuation_stability_number(p));
   }
-  EXPECT_NE(small.find("predicted_stable")->dump().find("true"), std::string::npos);
-  EXPECT_NE(huge.find("predicted_stable")->dump().find("false"), std::string::npos);
+  EXPECT_NE(twinflow::io::find(small, {"predicted_stable"})->dump().find("true"),
+            std::string::npos);
+  EXPECT_NE(twinflow::io::find(huge, {"predicted_stable"})->dump().find("false"),
+            std::string::npos);
 
   const std::string csv = file_text(dir / "stability.csv");
   EXPECT_EQ(csv.rfind("point,status,reason,exit_code,Particle/Time step,dt,predicted_dt_critical,"

@@ -53,8 +53,8 @@ Point run_at(particle::ParticleParameters p, double density, double temperature,
   const auto out = particle::run_particles(p);
   const auto& r = out.summary;
   Point pt;
-  pt.p = {r.find("pressure")->number(), r.find("pressure_stderr")->number()};
-  pt.t = {r.find("T_kinetic")->number(), r.find("T_kinetic_stderr")->number()};
+  pt.p = {io::number(r, {"pressure"}), io::number(r, {"pressure_stderr"})};
+  pt.t = {io::number(r, {"T_kinetic"}), io::number(r, {"T_kinetic_stderr"})};
   pt.rdf = out.rdf_csv;
   pt.corr = out.correlations_csv;
   return pt;
@@ -201,12 +201,10 @@ measure_relaxation(particle::ParticleParameters p, const Estimates& estimate, do
   for (int r = 0; r < repeats; ++r) {
     p.seed = seed + 7919 * static_cast<std::uint64_t>(r);
     const auto run = particle::run_particles(p);
-    const double nan = std::nan("");
     auto fitted = [&](const char* fit, const char* key, double scale) -> Estimate {
-      const io::Json* f = run.summary.find(fit);
-      const io::Json* v = f ? f->find(key) : nullptr;
-      if (!v) return {nan, nan};
-      return {scale * v->number(), scale * f->find(std::string(key) + "_stderr")->number()};
+      const std::string stderr_key = std::string(key) + "_stderr";
+      return {scale * io::number(run.summary, {fit, key}),
+              scale * io::number(run.summary, {fit, stderr_key})};
     };
     kappa.push_back(fitted("relaxation", "chi", p.density * cp)); // kappa = rho c_p chi
     eta.push_back(fitted("shear_relaxation", "viscosity", 1));    // eta = n m nu, by the fit
@@ -214,9 +212,8 @@ measure_relaxation(particle::ParticleParameters p, const Estimates& estimate, do
     // particle, ends as heat (+2% of T at c_v = 10 in 2D), and an NVE start settles on its own.
     // T_internal = 1/<1/theta> leaves the flow's kinetic energy out (the heat mode biases it low
     // by ~A^2/2 at the start, ~0.3% over the run).
-    const io::Json* t = run.summary.find("T_internal");
-    const io::Json* t_se = run.summary.find("T_internal_stderr");
-    temperature.push_back({t ? t->number() : nan, t_se ? t_se->number() : nan});
+    temperature.push_back(
+        {io::number(run.summary, {"T_internal"}), io::number(run.summary, {"T_internal_stderr"})});
     out.conductivity = summarise_repeats(kappa);
     out.viscosity = summarise_repeats(eta);
     out.temperature = summarise_repeats(temperature);

@@ -35,12 +35,12 @@ CaseParameters Case::load_resolved(const io::Json& resolved, const std::string& 
                                    const std::vector<std::string>& overrides) {
   if (!resolved.is_object()) throw io::InputError("recorded case parameters: not an object");
   for (const auto& [path, value] : resolved.items())
-    registry_.set_override(path + "=" + (value.is_string() ? value.string() : value.dump()));
+    registry_.set_override(path + "=" +
+                           (value.is_string() ? value.get<std::string>() : value.dump()));
   for (const auto& o : overrides)
     for (const char* later : {"Transport/", "Continuum/", "Compare/"})
       if (o.rfind(later, 0) == 0) registry_.set_override(o);
-  const io::Json* recorded = resolved.find("Case name");
-  if (!name.empty() && (!recorded || !recorded->is_string() || recorded->string().empty()))
+  if (!name.empty() && io::text(resolved, {"Case name"}).empty())
     registry_.set_override("Case name=" + name);
   return resolve("");
 }

@@ -39,15 +39,16 @@ TEST(ContinuumStage, DeVahlDavisCaseEndToEnd) {
   EXPECT_NE(r.output.find((out / "continuum").string()), std::string::npos) << r.output;
   for (const char* f : {"summary.json", "fields.h5", "fields.xdmf", "bins.csv", "wall_nusselt.csv"})
     EXPECT_TRUE(fs::exists(out / "continuum" / f)) << f;
-  const Json summary = Json::parse(twinflow::io::read_file(out / "continuum" / "summary.json"));
-  const Json* results = summary.find("results");
+  const Json summary = twinflow::io::read_json(out / "continuum" / "summary.json");
+  const Json* results = twinflow::io::find(summary, {"results"});
   ASSERT_NE(results, nullptr);
-  EXPECT_NEAR(results->find("nusselt_volume_average")->number(), 2.2448, 1e-3 * 2.2448);
-  EXPECT_NEAR(summary.find("dimensionless")->find("rayleigh")->number(), 1e4, 1e-6);
-  EXPECT_EQ(results->find("mesh_study")->elements().size(), 2u);
+  EXPECT_NEAR(twinflow::io::find(*results, {"nusselt_volume_average"})->get<double>(), 2.2448,
+              1e-3 * 2.2448);
+  EXPECT_NEAR(twinflow::io::find(summary, {"dimensionless", "rayleigh"})->get<double>(), 1e4, 1e-6);
+  EXPECT_EQ((*twinflow::io::find(*results, {"mesh_study"})).size(), 2u);
   for (const char* phase : {"setup", "assembly", "solve", "total"})
-    EXPECT_TRUE(summary.find("wall_time_s")->find(phase)->is_number()) << phase;
-  EXPECT_NE(summary.find("provenance"), nullptr);
+    EXPECT_TRUE(twinflow::io::find(summary, {"wall_time_s", phase})->is_number()) << phase;
+  EXPECT_NE(twinflow::io::find(summary, {"provenance"}), nullptr);
 
   // A finished stage is not overwritten without --force.
   const Result again = run_twinflow("continuum " + kCase + " --out " + out.string());
@@ -87,17 +88,19 @@ TEST(ContinuumStage, TransientModeEndToEnd) {
   const std::string xdmf = twinflow::io::read_file(dir / "fields.xdmf");
   EXPECT_NE(xdmf.find("CollectionType=\"Temporal\""), std::string::npos) << xdmf;
   EXPECT_NE(xdmf.find("Time Value=\"50\""), std::string::npos) << xdmf;
-  const Json summary = Json::parse(twinflow::io::read_file(dir / "summary.json"));
-  EXPECT_EQ(summary.find("continuum_parameters")->find("mode")->string(), "transient");
-  const Json* results = summary.find("results");
+  const Json summary = twinflow::io::read_json(dir / "summary.json");
+  EXPECT_EQ(twinflow::io::find(summary, {"continuum_parameters", "mode"})->get<std::string>(),
+            "transient");
+  const Json* results = twinflow::io::find(summary, {"results"});
   ASSERT_NE(results, nullptr);
-  EXPECT_EQ(results->find("time_steps")->number(), 5);
-  EXPECT_EQ(results->find("time")->number(), 50);
-  const Json* series = results->find("time_series");
+  EXPECT_EQ(twinflow::io::find(*results, {"time_steps"})->get<double>(), 5);
+  EXPECT_EQ(twinflow::io::find(*results, {"time"})->get<double>(), 50);
+  const Json* series = twinflow::io::find(*results, {"time_series"});
   ASSERT_NE(series, nullptr);
-  EXPECT_EQ(series->find("time")->elements().size(), 6u); // t = 0 and five steps
-  EXPECT_NEAR(series->find("nusselt")->elements().front().number(), 1.0, 1e-10); // conduction
-  EXPECT_GT(series->find("kinetic_energy")->elements().back().number(), 0.0);
+  EXPECT_EQ((*twinflow::io::find(*series, {"time"})).size(), 6u); // t = 0 and five steps
+  EXPECT_NEAR((*twinflow::io::find(*series, {"nusselt"})).front().get<double>(), 1.0,
+              1e-10); // conduction
+  EXPECT_GT((*twinflow::io::find(*series, {"kinetic_energy"})).back().get<double>(), 0.0);
   // CSV: a comment line, the header, one row per step.
   const std::string csv = twinflow::io::read_file(dir / "time_series.csv");
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 8) << csv;

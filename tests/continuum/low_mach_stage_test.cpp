@@ -30,16 +30,19 @@ TEST(LowMachStage, CaseFileEndToEnd) {
   EXPECT_NE(r.output.find("P/p0 = "), std::string::npos) << r.output;
   for (const char* f : {"summary.json", "fields.h5", "fields.xdmf", "bins.csv", "wall_nusselt.csv"})
     EXPECT_TRUE(fs::exists(out / "continuum" / f)) << f;
-  const Json summary = Json::parse(twinflow::io::read_file(out / "continuum" / "summary.json"));
-  const Json* results = summary.find("results");
+  const Json summary = twinflow::io::read_json(out / "continuum" / "summary.json");
+  const Json* results = twinflow::io::find(summary, {"results"});
   ASSERT_NE(results, nullptr);
-  EXPECT_EQ(summary.find("continuum_parameters")->find("model")->string(), "low-mach");
-  EXPECT_NEAR(summary.find("dimensionless")->find("rayleigh")->number(), 1e5, 1e-6);
-  EXPECT_NEAR(summary.find("dimensionless")->find("epsilon")->number(), 0.6, 1e-12);
+  EXPECT_EQ(twinflow::io::find(summary, {"continuum_parameters", "model"})->get<std::string>(),
+            "low-mach");
+  EXPECT_NEAR(twinflow::io::find(summary, {"dimensionless", "rayleigh"})->get<double>(), 1e5, 1e-6);
+  EXPECT_NEAR(twinflow::io::find(summary, {"dimensionless", "epsilon"})->get<double>(), 0.6, 1e-12);
   // 16x16 values of this solver (regression; 64x64: Nu = 4.5516, P/p0 = 0.8518, case header).
-  EXPECT_NEAR(results->find("nusselt_volume_average")->number(), 4.53877, 1e-4);
-  EXPECT_NEAR(results->find("pressure_ratio_P_over_p0")->number(), 0.853259, 1e-5);
-  EXPECT_LT(std::abs(results->find("relative_mass_error")->number()), 1e-12);
+  EXPECT_NEAR(twinflow::io::find(*results, {"nusselt_volume_average"})->get<double>(), 4.53877,
+              1e-4);
+  EXPECT_NEAR(twinflow::io::find(*results, {"pressure_ratio_P_over_p0"})->get<double>(), 0.853259,
+              1e-5);
+  EXPECT_LT(std::abs(twinflow::io::find(*results, {"relative_mass_error"})->get<double>()), 1e-12);
   // The bins carry n(P, T); over the 16 x 16 bins, one per cell, its mean is the mean density 1
   // (mass conservation). The solver conserves mass in its 3-point Gauss rule, the bins integrate
   // on a 6x finer one: they differ by that rule's error for n = P/T on this mesh (6e-6).
@@ -65,16 +68,18 @@ TEST(LowMachStage, ThinPeriodicSliceIsTheTwoDimensionalCavity) {
   const Result r = run_twinflow("continuum " + case_file + " --out " + out.string() +
                                 " --set 'Continuum/Mesh/Refinements=1'");
   ASSERT_EQ(r.code, 0) << r.output;
-  const Json summary = Json::parse(twinflow::io::read_file(out / "continuum" / "summary.json"));
-  const Json* results = summary.find("results");
+  const Json summary = twinflow::io::read_json(out / "continuum" / "summary.json");
+  const Json* results = twinflow::io::find(summary, {"results"});
   ASSERT_NE(results, nullptr);
-  const auto& cells = summary.find("mesh")->find("cells")->elements();
+  const auto& cells = (*twinflow::io::find(summary, {"mesh", "cells"}));
   ASSERT_EQ(cells.size(), 3u);
-  EXPECT_EQ(cells[0].number(), 16);
-  EXPECT_EQ(cells[1].number(), 1);
-  EXPECT_EQ(cells[2].number(), 16);
-  EXPECT_NEAR(results->find("nusselt_volume_average")->number(), 4.53877, 1e-4);
-  EXPECT_NEAR(results->find("pressure_ratio_P_over_p0")->number(), 0.853259, 1e-5);
+  EXPECT_EQ(cells[0].get<double>(), 16);
+  EXPECT_EQ(cells[1].get<double>(), 1);
+  EXPECT_EQ(cells[2].get<double>(), 16);
+  EXPECT_NEAR(twinflow::io::find(*results, {"nusselt_volume_average"})->get<double>(), 4.53877,
+              1e-4);
+  EXPECT_NEAR(twinflow::io::find(*results, {"pressure_ratio_P_over_p0"})->get<double>(), 0.853259,
+              1e-5);
 }
 
 // Free-slip walls around a thin periodic slice: no wall holds the velocity along the slice, so
@@ -87,8 +92,8 @@ TEST(LowMachStage, FreeSlipThinSliceIsTheTwoDimensionalCavity) {
     const Result r = run_twinflow("continuum " + case_file + " --out " + out.string() + slip +
                                   " --set 'Scene/" + other_walls + " boundaries/Slip=free-slip'");
     EXPECT_EQ(r.code, 0) << r.output;
-    const Json summary = Json::parse(twinflow::io::read_file(out / "continuum" / "summary.json"));
-    return summary.find("results")->find("nusselt_volume_average")->number();
+    const Json summary = twinflow::io::read_json(out / "continuum" / "summary.json");
+    return twinflow::io::find(summary, {"results", "nusselt_volume_average"})->get<double>();
   };
   const std::string source = TWINFLOW_SOURCE_DIR;
   const double nu_2d = nusselt(source + "/cases/continuum_low_mach_cavity_2d.prm", "y", "slip_2d");

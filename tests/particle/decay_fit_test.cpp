@@ -31,9 +31,10 @@ TEST(DecayFit, ExactExponentialGivesItsRate) {
   for (int i = 0; i < kSamples; ++i) a[i] = std::exp(-kRate * t[i]);
   const double k = 0.2;
   const auto j = decay_fit(k, t, a, "chi");
-  ASSERT_TRUE(j.find("chi")) << j.dump();
-  EXPECT_NEAR(j.find("decay_rate")->number(), kRate, 1e-9 * kRate);
-  EXPECT_NEAR(j.find("chi")->number(), kRate / (k * k), 1e-9 * kRate / (k * k));
+  ASSERT_TRUE(twinflow::io::find(j, {"chi"})) << j.dump();
+  EXPECT_NEAR(twinflow::io::find(j, {"decay_rate"})->get<double>(), kRate, 1e-9 * kRate);
+  EXPECT_NEAR(twinflow::io::find(j, {"chi"})->get<double>(), kRate / (k * k),
+              1e-9 * kRate / (k * k));
 }
 
 TEST(DecayFit, TooShortARunSaysSo) {
@@ -41,8 +42,8 @@ TEST(DecayFit, TooShortARunSaysSo) {
   std::vector<double> a(kSamples);
   for (int i = 0; i < kSamples; ++i) a[i] = std::exp(-0.1 * kRate * t[i]); // never below 30%
   const auto j = decay_fit(0.2, t, a, "chi");
-  EXPECT_FALSE(j.find("chi"));
-  EXPECT_TRUE(j.find("note"));
+  EXPECT_FALSE(j.contains("chi"));
+  EXPECT_TRUE(j.contains("note"));
 }
 
 // 400 noisy decays at noise 5% of the amplitude (the measured level in the 2D runs): the mean
@@ -65,9 +66,9 @@ TEST(DecayFit, StatedErrorMatchesTheScatterUnderCorrelatedNoise) {
       a[i] = 0.95 * std::exp(-kRate * t[i]) + x;
     }
     const auto j = decay_fit(0.2, t, a, "chi");
-    ASSERT_TRUE(j.find("decay_rate")) << j.dump();
-    rates.push_back(j.find("decay_rate")->number());
-    errors.push_back(j.find("decay_rate_stderr")->number());
+    ASSERT_TRUE(twinflow::io::find(j, {"decay_rate"})) << j.dump();
+    rates.push_back(twinflow::io::find(j, {"decay_rate"})->get<double>());
+    errors.push_back(twinflow::io::find(j, {"decay_rate_stderr"})->get<double>());
   }
   double mean = 0;
   for (const double r : rates) mean += r / draws;

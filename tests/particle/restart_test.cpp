@@ -53,7 +53,9 @@ void expect_identical(const RunOutput& a, const RunOutput& b) {
   }
   for (const char* key : {"energy_relative_drift_max", "T_kinetic", "T_kinetic_stderr",
                           "T_internal", "pressure", "pressure_stderr"})
-    EXPECT_EQ(a.summary.find(key)->number(), b.summary.find(key)->number()) << key;
+    EXPECT_EQ(twinflow::io::find(a.summary, {key})->get<double>(),
+              twinflow::io::find(b.summary, {key})->get<double>())
+        << key;
 }
 
 } // namespace

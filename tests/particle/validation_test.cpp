@@ -77,8 +77,10 @@ TEST(Seed002, InternalAgainstKineticTemperatureAndRdf) {
     p.rdf_bins = 50;
     const RunOutput out = run_particles(p);
     const auto& r = out.summary;
-    const double tk = r.find("T_kinetic")->number(), tks = r.find("T_kinetic_stderr")->number();
-    const double ti = r.find("T_internal")->number(), tis = r.find("T_internal_stderr")->number();
+    const double tk = twinflow::io::find(r, {"T_kinetic"})->get<double>(),
+                 tks = twinflow::io::find(r, {"T_kinetic_stderr"})->get<double>();
+    const double ti = twinflow::io::find(r, {"T_internal"})->get<double>(),
+                 tis = twinflow::io::find(r, {"T_internal_stderr"})->get<double>();
     std::vector<double> g;
     std::istringstream rdf(out.rdf_csv);
     std::string line;
@@ -87,7 +89,7 @@ TEST(Seed002, InternalAgainstKineticTemperatureAndRdf) {
         g.push_back(std::stod(line.substr(line.find(',') + 1)));
     if (g_ref.empty()) g_ref = g;
     double worst = 0;
-    const double samples = static_cast<double>(r.find("samples")->number());
+    const double samples = static_cast<double>(twinflow::io::find(r, {"samples"})->get<double>());
     bool g_ok = true;
     for (std::size_t b = 2; b < g.size(); ++b) { // first bins hold few pairs
       const double diff = std::fabs(g[b] - g_ref[b]);
@@ -154,9 +156,10 @@ TEST(Seed002, SlabConductivity) {
   p.sample_interval = 20;
   p.bins = {{40, 1, 1}};
   const RunOutput out = run_particles(p);
-  const auto& slab = *out.summary.find("heat_slabs");
-  const double kappa = slab.find("kappa")->number(), se = slab.find("kappa_stderr")->number();
-  const double slope = slab.find("cold_to_hot")->find("slope")->number();
+  const auto& slab = *twinflow::io::find(out.summary, {"heat_slabs"});
+  const double kappa = twinflow::io::find(slab, {"kappa"})->get<double>(),
+               se = twinflow::io::find(slab, {"kappa_stderr"})->get<double>();
+  const double slope = twinflow::io::find(slab, {"cold_to_hot", "slope"})->get<double>();
   std::printf("slab: kappa = %.1f +- %.1f, cold-to-hot slope %.5f\n", kappa, se, slope);
   EXPECT_NEAR(kappa, 150, 0.05 * 150 + 4 * se);
   EXPECT_NEAR(slope, 0.018, 0.05 * 0.018);

@@ -29,21 +29,20 @@ inline io::Json run_case(const std::string& name, const std::string& extra,
   if (dir_out) *dir_out = dir;
   if (r.code != 0) return io::Json::object();
   std::cout << r.output;
-  const io::Json summary = io::Json::parse(io::read_file(dir / "particle" / "summary.json"));
-  return *summary.find("results");
+  const io::Json summary = io::read_json(dir / "particle" / "summary.json");
+  return *twinflow::io::find(summary, {"results"});
 }
 
+// The number at "results.walls.x_lower.pressure": a test fails where it is absent.
 inline double number(const io::Json& j, const std::string& dotted) {
-  const io::Json* v = &j;
-  std::size_t start = 0;
-  while (v) {
-    const std::size_t dot = dotted.find('.', start);
-    v = v->find(dotted.substr(start, dot - start));
-    if (dot == std::string::npos) break;
-    start = dot + 1;
+  std::vector<std::string> path;
+  for (std::size_t start = 0, dot = 0; dot != std::string::npos; start = dot + 1) {
+    dot = dotted.find('.', start);
+    path.push_back(dotted.substr(start, dot - start));
   }
+  const io::Json* v = io::find(j, path);
   EXPECT_TRUE(v && v->is_number()) << dotted;
-  return v && v->is_number() ? v->number() : std::nan("");
+  return v && v->is_number() ? v->get<double>() : std::nan("");
 }
 
 } // namespace twinflow::testing

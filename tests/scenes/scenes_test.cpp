@@ -30,9 +30,8 @@ TEST(Scenes, WallLayerFollowsBoltzmann) {
       "--set Particle/Walls/Repulsion=5 --set 'Scene/x boundaries/Slip=no-slip' "
       "--set 'Particle/Equilibration steps=2000' --set Particle/Steps=8000");
   ASSERT_EQ(run.code, 0) << run.output;
-  const twinflow::io::Json summary =
-      twinflow::io::Json::parse(twinflow::io::read_file(dir / "particle" / "summary.json"));
-  const twinflow::io::Json& r = *summary.find("results");
+  const twinflow::io::Json summary = twinflow::io::read_json(dir / "particle" / "summary.json");
+  const twinflow::io::Json& r = *twinflow::io::find(summary, {"results"});
   const double a = 5, range = 1.7536, gamma = 1, kT = number(r, "T_kinetic");
   const int slices = 20; // per range, as the particle stage samples them
   double depth = 0, friction = 0;
@@ -92,21 +91,20 @@ TEST(Scenes, ContinuumTakesCoefficientsFromTheTransportStage) {
   ASSERT_EQ(run_twinflow("transport " + c + " --out " + dir.string() + " --threads 1").code, 0);
   const Result r = run_twinflow("continuum " + c + " --out " + dir.string() + from);
   ASSERT_EQ(r.code, 0) << r.output;
-  const auto transport =
-      twinflow::io::Json::parse(twinflow::io::read_file(dir / "transport" / "summary.json"));
-  const double eta =
-      transport.find("results")->find("estimated_measured_g")->find("viscosity")->number();
+  const auto transport = twinflow::io::read_json(dir / "transport" / "summary.json");
+  const double eta = twinflow::io::find(transport, {"results", "estimated_measured_g", "viscosity"})
+                         ->get<double>();
   std::ostringstream expected;
   expected << "eta = " << eta << " (estimated";
   EXPECT_NE(r.output.find(expected.str()), std::string::npos) << r.output;
   // The ideal DPDE fluid's measured equation of state: alpha = 1/T and c_p - c_v = k, within
   // 4 of their standard errors (propagated from the pressure runs' block errors).
-  const auto& m = *transport.find("results")->find("measured");
-  const double t = m.find("temperature_kinetic")->number();
-  EXPECT_NEAR(m.find("thermal_expansion")->number(), 1 / t,
-              4 * m.find("thermal_expansion_stderr")->number());
-  EXPECT_NEAR(m.find("heat_capacity_cp_minus_cv")->number(), 1.0,
-              4 * m.find("heat_capacity_cp_minus_cv_stderr")->number());
+  const auto& m = *twinflow::io::find(transport, {"results", "measured"});
+  const double t = twinflow::io::find(m, {"temperature_kinetic"})->get<double>();
+  EXPECT_NEAR(twinflow::io::find(m, {"thermal_expansion"})->get<double>(), 1 / t,
+              4 * twinflow::io::find(m, {"thermal_expansion_stderr"})->get<double>());
+  EXPECT_NEAR(twinflow::io::find(m, {"heat_capacity_cp_minus_cv"})->get<double>(), 1.0,
+              4 * twinflow::io::find(m, {"heat_capacity_cp_minus_cv_stderr"})->get<double>());
 }
 
 // Measured power laws reach the twin at its own reference temperature: kappa(T_m) (T_ref /
@@ -131,22 +129,25 @@ TEST(Scenes, ContinuumRescalesMeasuredPowerLawsToItsReferenceTemperature) {
                                 "Continuum/Coefficients/Source=transport --out " +
                                 dir.string());
   ASSERT_EQ(r.code, 0) << r.output;
-  const auto summary =
-      twinflow::io::Json::parse(twinflow::io::read_file(dir / "continuum" / "summary.json"));
-  const auto& law = *summary.find("continuum_parameters")->find("conductivity");
+  const auto summary = twinflow::io::read_json(dir / "continuum" / "summary.json");
+  const auto& law = *twinflow::io::find(summary, {"continuum_parameters", "conductivity"});
   const double t_ref =
-      summary.find("continuum_parameters")->find("reference_temperature")->number();
-  EXPECT_NEAR(law.find("exponent")->number(), n, 1e-12);
-  EXPECT_NEAR(law.find("value_at_reference")->number(), kappa * std::pow(t_ref / t_m, n),
-              1e-9 * kappa);
-  const auto& u = *summary.find("coefficient_uncertainty");
+      twinflow::io::find(summary, {"continuum_parameters", "reference_temperature"})->get<double>();
+  EXPECT_NEAR(twinflow::io::find(law, {"exponent"})->get<double>(), n, 1e-12);
+  EXPECT_NEAR(twinflow::io::find(law, {"value_at_reference"})->get<double>(),
+              kappa * std::pow(t_ref / t_m, n), 1e-9 * kappa);
+  const auto& u = *twinflow::io::find(summary, {"coefficient_uncertainty"});
   const double scale = std::pow(t_ref / t_m, n), log_ratio = std::log(t_ref / t_m);
-  EXPECT_NEAR(u.find("conductivity")->find("stderr")->number(),
+  EXPECT_NEAR(twinflow::io::find(u, {"conductivity", "stderr"})->get<double>(),
               scale * std::hypot(kappa_se, kappa * log_ratio * n_se), 1e-9);
-  EXPECT_NEAR(u.find("viscosity")->find("stderr")->number(), 0.1, 1e-12); // no exponent: as is
+  EXPECT_NEAR(twinflow::io::find(u, {"viscosity", "stderr"})->get<double>(), 0.1,
+              1e-12); // no exponent: as is
   // More kappa carries more heat; the combined error is the two responses in quadrature.
-  const double dk = u.find("conductivity")->find("heat_flux_relative_change")->number();
-  const double de = u.find("viscosity")->find("heat_flux_relative_change")->number();
+  const double dk =
+      twinflow::io::find(u, {"conductivity", "heat_flux_relative_change"})->get<double>();
+  const double de =
+      twinflow::io::find(u, {"viscosity", "heat_flux_relative_change"})->get<double>();
   EXPECT_GT(dk, 0);
-  EXPECT_NEAR(u.find("heat_flux_relative_stderr")->number(), std::hypot(dk, de), 1e-12);
+  EXPECT_NEAR(twinflow::io::find(u, {"heat_flux_relative_stderr"})->get<double>(),
+              std::hypot(dk, de), 1e-12);
 }

@@ -39,10 +39,10 @@ TEST(ScenesValidation, SlabConductionPeriodic) {
   EXPECT_NEAR(kappa / 150, 1, 0.05) << kappa;
   for (const char* half : {"heat_slabs.hot_to_cold.slope", "heat_slabs.cold_to_hot.slope"})
     EXPECT_NEAR(std::fabs(number(r, half)) / 0.018, 1, 0.05) << half;
-  for (const auto& plane : r.find("heat_slabs")->find("flux_decomposition")->elements()) {
-    std::cout << "x = " << plane.find("x")->number();
+  for (const auto& plane : (*twinflow::io::find(r, {"heat_slabs", "flux_decomposition"}))) {
+    std::cout << "x = " << twinflow::io::find(plane, {"x"})->get<double>();
     for (const auto& [key, value] : plane.items())
-      std::cout << "  " << key << " " << value.number();
+      std::cout << "  " << key << " " << value.get<double>();
     std::cout << "\n";
   }
 }

@@ -99,9 +99,9 @@ std::vector<double> parse_rayleigh_list(const std::string& text) {
 // core its partner needs (N = 6000, 2 threads, beside four busy processes: 0.3-1.8e6
 // particle-steps/s against 2.1-3.7e6 with OMP_WAIT_POLICY=passive). Sleeping at once costs ~7%
 // on an idle machine (N = 48000, 2 threads). A spin of 1000 keeps both: as fast as the default
-// when idle, as passive when loaded (README, "Threads"). libgomp reads its environment when it
-// is loaded, before main, so the default is set by running again with it; a user's
-// OMP_WAIT_POLICY or GOMP_SPINCOUNT is left alone.
+// when idle, as passive when loaded (docs/performance.md, "How idle threads wait"). libgomp reads
+// its environment when it is loaded, before main, so the default is set by running again with it; a
+// user's OMP_WAIT_POLICY or GOMP_SPINCOUNT is left alone.
 void default_openmp_wait(char** argv) {
   if (std::getenv("OMP_WAIT_POLICY") || std::getenv("GOMP_SPINCOUNT")) return;
   setenv("GOMP_SPINCOUNT", "1000", 1);

@@ -36,8 +36,8 @@ double target_temperature(const SceneParameters& scene, int* thermal_walls = nul
 }
 
 // A closed ideal DPDE fluid started at T with Maxwell velocities holds more energy than its
-// equilibrium at T and settles at E / (N (d/2 + c_v + 1)) (README, "A start-up convention":
-// 8% below T at c_v = 10); the particle summary states that temperature, and it is the target.
+// equilibrium at T and settles at E / (N (d/2 + c_v + 1)) (docs/case-files.md, "A start-up
+// convention": 8% below T at c_v = 10); the particle summary states it, and it is the target.
 double run_target_temperature(const SceneParameters& scene, const io::Json& summary) {
   int thermal_walls = 0;
   const double before_run = target_temperature(scene, &thermal_walls);

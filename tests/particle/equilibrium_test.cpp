@@ -18,7 +18,7 @@ using namespace twinflow::particle::testing;
 namespace {
 
 constexpr double kZ = 4.0;      // two-sided significance ~6e-5 per check
-constexpr double kBias = 0.003; // stated time-step bias at dt = 0.005 (relative), see README
+constexpr double kBias = 0.003; // stated relative time-step bias at dt = 0.005: docs/validation.md
 
 struct Measured {
   Estimate t_kin, t_int, pressure, u_var, kurtosis, gamma_ratio;
@@ -179,7 +179,7 @@ TEST(Equilibrium, IdealDpdeShardlow) {
 // under the validation label (EquilibriumShapes.EcVerlet) and are reported as not met.
 // ec-verlet at c_v = 10 (2D, linear law) is not here: at dt = 0.005 it goes unstable (negative
 // u) in 2-3 of 6 seeds, and on the others T_K - T_I = -0.015 +- 0.001, the offset's own stationary
-// state (README); it runs in the validation grid. c_v = 100 is stable and unbiased.
+// state (docs/validation.md); it runs in the validation grid. c_v = 100 is stable and unbiased.
 TEST(Equilibrium, IdealDpdeEcVerletTemperatures) {
   run_case<3>(Integrator::EcVerlet, 100, true, false, false);
   run_case<2>(Integrator::EcVerlet, 100, false, true, false);

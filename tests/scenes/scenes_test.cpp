@@ -57,7 +57,8 @@ TEST(Scenes, WallLayerFollowsBoltzmann) {
 
 // The relaxing heat and transverse momentum modes decay; the fits' chi and nu are positive with
 // finite errors, and the decays hold at the smaller box's faster rates. eta = rho m nu near the
-// reverse-Poiseuille 1.54 of the same fluid (README), loosely: one short run, fit errors only.
+// reverse-Poiseuille 1.54 of the same fluid (docs/validation.md, "Particle scenes"), loosely:
+// one short run, fit errors only.
 TEST(Scenes, ThermalRelaxationFitsHeatAndShearDecayRates) {
   const auto r = run_case("thermal_relaxation", "--threads 1 --set 'Scene/Box size=10, 5, 5' "
                                                 "--set Particle/Steps=5000");

@@ -37,8 +37,8 @@ TEST(RepeatedMeasurement, ErrorIsTheLargerOfSpreadAndFits) {
 // A small 2D ideal DPDE box: the heat and the transverse momentum modes both decay and give
 // positive coefficients (a repeat whose fit failed left out); each repeat has its own seed (they
 // differ), and the mean's error is at least the spread's. Against theory only the order of
-// magnitude, within a factor 3 (the 2D estimates are off by up to ~2 at these states: README,
-// transport table).
+// magnitude, within a factor 3 (the 2D estimates are off by up to ~2 at these states:
+// docs/validation.md, "Transport coefficients").
 TEST(RelaxationMeasurement, HeatAndShearModesGiveCoefficientsWithRepeatErrors) {
   auto p = particle::testing::ideal(2, particle::Integrator::Shardlow, 10);
   p.box = {{8, 8, 1}};

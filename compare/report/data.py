@@ -244,7 +244,7 @@ def with_unit(key):
 def varied_keys(table, stop_columns):
     """The columns between exit_code and the first of the command's own columns."""
     header = table.header
-    if "exit_code" not in header:
+    if not table.has("exit_code", optional=False):
         return []
     keys = []
     for column in header[header.index("exit_code") + 1:]:

@@ -17,10 +17,16 @@ WITHIN_NOISE_STDERRS = 2.0
 
 
 def calibration_text(metrics):
-    """How the calibrated twin's walls were set (compare/metrics.json), for captions."""
-    twin = ((metrics or {}).get("twins") or {}).get("calibrated") or {}
-    return twin.get("calibration") or "walls at the fluid's wall temperatures"
+    """How the calibrated twin's walls were set (compare/metrics.json), for captions (only
+    asked when there is a calibrated twin)."""
+    return lookup(metrics, "twins", "calibrated", "calibration") or \
+        "walls at the fluid's wall temperatures"
 
+
+def heat_flow_optional(particle):
+    """Whether the Nusselt keys may be absent: the compare stage writes them only for a scene
+    with a heated direction (metrics.json particle.nusselt is there)."""
+    return lookup(particle, "nusselt", optional=True) is None
 
 
 class RunGeometry:
@@ -29,28 +35,34 @@ class RunGeometry:
     def __init__(self, metrics, particle_summary, nominal_summary, bins):
         parameters = lookup(particle_summary, "parameters") or \
             lookup(nominal_summary, "case_parameters") or {}
+
+        def parameter(key, default):
+            value = lookup(parameters, key)
+            return default if value is None else value
+
         counts = lookup(metrics, "bins") or []
-        self.dim = len(counts) or int(to_float(parameters.get("Scene/Dimension", "2")) or 2)
-        box = [to_float(v) for v in str(parameters.get("Scene/Box size", "")).split(",")]
+        self.dim = len(counts) or int(to_float(parameter("Scene/Dimension", "2")) or 2)
+        box = [to_float(v) for v in str(parameter("Scene/Box size", "")).split(",")]
         if len(box) != self.dim or not all(math.isfinite(v) for v in box):
             box = self._box_from_bins(bins)
         self.box = box
-        self.walled = [parameters.get(f"Scene/{AXES[d]} boundaries/Type", "") == "walls"
+        self.walled = [parameter(f"Scene/{AXES[d]} boundaries/Type", "") == "walls"
                        for d in range(self.dim)]
         # Heated direction: the one whose two walls' temperatures differ (metrics.json), else
         # the continuum's, else x.
         self.heated = None
         jumps = lookup(metrics, "particle", "wall_temperature_jumps") or {}
         for d in range(self.dim):
-            lower = number(jumps, f"{AXES[d]}_lower", "wall_temperature")
-            upper = number(jumps, f"{AXES[d]}_upper", "wall_temperature")
+            # Only thermal walls have a jump.
+            lower = number(lookup(jumps, f"{AXES[d]}_lower", optional=True), "wall_temperature")
+            upper = number(lookup(jumps, f"{AXES[d]}_upper", optional=True), "wall_temperature")
             if finite(lower) and finite(upper) and lower != upper:
                 self.heated = d
                 break
         if self.heated is None:
             d = number(nominal_summary, "dimensionless", "heated_direction")
             self.heated = int(d) if finite(d) and 0 <= d < self.dim else 0
-        gravity = [to_float(v) for v in str(parameters.get("Scene/Gravity", "")).split(",")]
+        gravity = [to_float(v) for v in str(parameter("Scene/Gravity", "")).split(",")]
         self.vertical = None
         if len(gravity) == self.dim and any(finite(g) and g != 0 for g in gravity):
             self.vertical = max(range(self.dim), key=lambda d: abs(gravity[d]))
@@ -60,7 +72,7 @@ class RunGeometry:
     def _box_from_bins(self, bins):
         box = []
         for d in range(self.dim):
-            centres = sorted({to_float(r.get(AXES[d])) for r in (bins.rows if bins else [])})
+            centres = sorted({to_float(lookup(r, AXES[d])) for r in (bins.rows if bins else [])})
             if len(centres) >= 2:
                 box.append(centres[-1] + 0.5 * (centres[1] - centres[0]))
             elif centres:
@@ -85,35 +97,36 @@ def bin_plane(bins, geometry):
     rows = bins.rows
     cut_text, layer = "", None
     if cut is not None:
-        cut_values = sorted({to_float(r[AXES[cut]]) for r in rows})
+        cut_values = sorted({to_float(lookup(r, AXES[cut])) for r in rows})
         layer = cut_values[len(cut_values) // 2]
-        rows = [r for r in rows if to_float(r[AXES[cut]]) == layer]
+        rows = [r for r in rows if to_float(lookup(r, AXES[cut])) == layer]
         where = ("the middle layer" if len(cut_values) % 2 else
                  "the first layer above the mid-plane")
         cut_text = (f"the bin layer at {AXES[cut]} = {fmt(layer)} rc (layer "
                     f"{len(cut_values) // 2 + 1} of {len(cut_values)}, {where})")
-    xs = np.array(sorted({to_float(r[AXES[a]]) for r in rows}))
-    ys = np.array(sorted({to_float(r[AXES[b]]) for r in rows}))
-    index = {(to_float(r[AXES[a]]), to_float(r[AXES[b]])): r for r in rows}
+    xs = np.array(sorted({to_float(lookup(r, AXES[a])) for r in rows}))
+    ys = np.array(sorted({to_float(lookup(r, AXES[b])) for r in rows}))
+    index = {(to_float(lookup(r, AXES[a])), to_float(lookup(r, AXES[b]))): r for r in rows}
 
-    def grid(column):
+    def grid(column, optional=True):
         """A (len(ys), len(xs)) array of the column, NaN where absent."""
         out = np.full((len(ys), len(xs)), np.nan)
-        if not bins.has(column):
+        if not bins.has(column, optional=optional):
             return out
         for j, y in enumerate(ys):
             for i, x in enumerate(xs):
                 r = index.get((x, y))
                 if r is not None:
-                    out[j, i] = to_float(r.get(column))
+                    out[j, i] = to_float(lookup(r, column))
         return out
 
     return a, b, xs, ys, grid, cut_text, layer
 
 
-
-
+# The field maps: temperature (fields.png) and, beside a low-Mach twin, number density
+# (density.png); bins.csv columns <prefix>_particle and <prefix>_<twin>.
 FIELD_MAPS = {
+
     "temperature": {"prefix": "T", "symbol": "T", "unit": "T0", "cmap": "plasma",
                     "particle": "particle (DPDE), T_kinetic", "twin": ", T",
                     "file": "fields.png"},
@@ -133,14 +146,16 @@ def figure_fields(out_dir, bins, geometry, twins, metrics, field="temperature"):
     cut = geometry.plane()[2]
     ex, ey = edges(xs), edges(ys)
     va, vb = f"v{AXES[a]}", f"v{AXES[b]}"
+    # Every twin has a temperature column; only a low-Mach twin has a density one.
     sources = [("particle", spec["particle"])] + \
-        [(t, TWIN_LABEL[t] + spec["twin"]) for t in twins if bins.has(f"{prefix}_{t}")]
-    maps = {name: grid(f"{prefix}_{name}") for name, _ in sources}
+        [(t, TWIN_LABEL[t] + spec["twin"]) for t in twins
+         if bins.has(f"{prefix}_{t}", optional=field == "density")]
+    maps = {name: grid(f"{prefix}_{name}", optional=False) for name, _ in sources}
     # The difference map against the calibrated twin when there is one, else the nominal.
     reference = next((t for t in ("calibrated", "nominal") if t in maps), None)
     t_low = min(np.nanmin(m) for m in maps.values())
     t_high = max(np.nanmax(m) for m in maps.values())
-    interior = grid("interior")
+    interior = grid("interior", optional=False)
     # One arrow scale for every map: the largest bin speed spans ~0.9 of a bin.
     speeds = [np.hypot(grid(f"{va}_{n}"), grid(f"{vb}_{n}")) for n, _ in sources]
     v_max = max((np.nanmax(s) for s in speeds if np.isfinite(s).any()), default=math.nan)
@@ -212,8 +227,9 @@ def figure_profiles(out_dir, profiles, geometry, metrics, twins, excluded):
 
     h, g = geometry.heated, geometry.vertical
     H, G = AXES[h], AXES[g]
-    along = {d: [r for r in profiles.rows if r.get("direction") == AXES[d]]
+    along = {d: [r for r in profiles.rows if lookup(r, "direction") == AXES[d]]
              for d in range(geometry.dim)}
+
     panels = [(h, "T", "T", f"T along {H} at mid-{G}", "T [T0]")]
     if profiles.has(f"v{G}_particle"):
         panels.append((h, f"v{G}", f"v{G}", f"vertical velocity v{G} along {H} at mid-{G}",
@@ -230,7 +246,7 @@ def figure_profiles(out_dir, profiles, geometry, metrics, twins, excluded):
                     yerr=profiles.numbers(f"{quantity}_particle_se", rows), fmt="o", ms=4,
                     capsize=2.5, color=COLOUR["particle"], label="particle ± stderr", zorder=3)
         for twin in twins:
-            if profiles.has(f"{quantity}_{twin}"):
+            if profiles.has(f"{quantity}_{twin}", optional=quantity != "T"):
                 ax.plot(coordinate, profiles.numbers(f"{quantity}_{twin}", rows),
                         LINESTYLE[twin], marker=".", color=COLOUR[twin], label=TWIN_LABEL[twin])
         length = geometry.box[direction]
@@ -255,49 +271,54 @@ def figure_profiles(out_dir, profiles, geometry, metrics, twins, excluded):
 
 def wall_layer_table(doc, particle_summary, calibrated_summary):
     """Each wall's measured layer and the conditions the calibrated twin took from it."""
-    walls = lookup(particle_summary, "results", "walls") or {}
-    if not any(isinstance(w, dict) and "effective_position" in w for w in walls.values()):
+    # A scene without walls has none; a wall has a layer when the particle stage measured one
+    # (effective_position); friction only a no-slip wall; a twin's wall a slip length or a
+    # Kapitza conductance only when the calibration gave it one.
+    walls = lookup(lookup(particle_summary, "results"), "walls", optional=True) or {}
+    if not any(present(w, "effective_position") for w in walls.values()):
         return
     twin_walls = {}  # "x_lower" -> the calibrated twin's boundary entry
     for entry in lookup(calibrated_summary, "continuum_parameters", "boundaries") or []:
-        for side in ("lower", "upper"):
-            if isinstance(entry, dict) and isinstance(entry.get(side), dict):
-                twin_walls[f"{entry.get('direction')}_{side}"] = entry[side]
+        for side in ("lower", "upper"):  # a periodic direction has neither
+            if isinstance(lookup(entry, side, optional=True), dict):
+                twin_walls[f"{lookup(entry, 'direction')}_{side}"] = lookup(entry, side)
     rows = []
     for name, w in walls.items():
-        if not isinstance(w, dict) or "effective_position" not in w:
+        if not present(w, "effective_position"):
             continue
         twin = twin_walls.get(name, {})
-        rows.append([name, fmt_pm(w.get("effective_position"), w.get("effective_position_stderr")),
-                     fmt_pm(w.get("friction_per_area"), w.get("friction_per_area_stderr"))
-                     if "friction_per_area" in w else "(free slip)",
-                     fmt(twin.get("slip_length")) if "slip_length" in twin else "none",
-                     fmt(twin.get("kapitza_conductance")) if "kapitza_conductance" in twin
-                     else "none"])
+        rows.append([name, fmt_pm(lookup(w, "effective_position"),
+                                  lookup(w, "effective_position_stderr")),
+                     fmt_pm(lookup(w, "friction_per_area"), lookup(w, "friction_per_area_stderr"))
+                     if present(w, "friction_per_area") else "(free slip)",
+                     fmt(lookup(twin, "slip_length")) if present(twin, "slip_length") else "none",
+                     fmt(lookup(twin, "kapitza_conductance"))
+                     if present(twin, "kapitza_conductance") else "none"])
     doc.heading("The walls' layers and what the calibrated twin takes from them", 3)
     doc.table(["wall", "effective position (Gibbs depth, rc)", "friction per area zeta",
                "calibrated twin: Navier slip b (rc)", "calibrated twin: Kapitza h_K"], rows)
-    doc.paragraph("From particle/wall_layers.csv (report/wall_layers.png): the Gibbs depth is where "
-                  "a step profile with the layer's particle count would start; zeta the no-slip "
-                  "wall's tangential friction per area and slip velocity, so b = eta / zeta less "
-                  "the depth at which it acts (Compare/Wall slip). Compare/Effective walls moves "
-                  "the twin's walls to the Gibbs depths.")
+    doc.paragraph("From particle/wall_layers.csv (report/wall_layers.png): the Gibbs depth is "
+                  "where a step profile with the layer's particle count would start; zeta the "
+                  "no-slip wall's tangential friction per area and slip velocity, so b = eta / "
+                  "zeta less the depth at which it acts (Compare/Wall slip). Compare/Effective "
+                  "walls moves the twin's walls to the Gibbs depths.")
+
 
 
 def figure_wall_layers(out_dir, layers, particle_summary):
     """Density, temperature and tangential velocity against the distance from each wall."""
     import matplotlib.pyplot as plt
 
-    walls = list(dict.fromkeys(r["wall"] for r in layers.rows))
+    walls = list(dict.fromkeys(lookup(r, "wall") for r in layers.rows))
     fig, axes = plt.subplots(1, 3, figsize=(15, 4.2), layout="constrained")
     for k, wall in enumerate(walls):
-        rows = [r for r in layers.rows if r["wall"] == wall]
+        rows = [r for r in layers.rows if lookup(r, "wall") == wall]
         h = layers.numbers("h", rows)
         colour = f"C{k}"
         # The velocity along the wall: the first axis other than the wall's own.
         along = next((a for a in "xyz" if a != wall[0] and layers.has(f"v{a}")), None)
         for ax, column in zip(axes, ["density", "T_kinetic", f"v{along}" if along else None]):
-            if column is None or not layers.has(column):
+            if column is None or not layers.has(column, optional=column == f"v{along}"):
                 continue
             ax.errorbar(h, layers.numbers(column, rows), yerr=layers.numbers(column + "_se", rows),
                         fmt=".-", ms=3, lw=0.8, capsize=1.5, color=colour,
@@ -321,7 +342,7 @@ def wall_points(ax, metrics, direction, length):
     jumps = lookup(metrics, "particle", "wall_temperature_jumps") or {}
     first = True
     for side, position in (("lower", 0.0), ("upper", length)):
-        jump = jumps.get(f"{AXES[direction]}_{side}")
+        jump = lookup(jumps, f"{AXES[direction]}_{side}", optional=True)  # thermal walls only
         if not jump or not finite(position):
             continue
         ax.plot([position], [number(jump, "wall_temperature")], "s", ms=7, mfc="none",
@@ -332,7 +353,6 @@ def wall_points(ax, metrics, direction, length):
                     color=COLOUR["particle"], mfc="white", clip_on=False, zorder=4,
                     label="particle fluid at the wall (extrapolated)" if first else None)
         first = False
-
 
 
 def figure_error_vs_time(out_dir, series, metrics, twins):
@@ -347,7 +367,7 @@ def figure_error_vs_time(out_dir, series, metrics, twins):
     for ax, (field, noise_column, ylabel) in zip(axes[0], fields):
         for twin in twins:
             column = f"{field}_l2_{twin}"
-            if not series.has(column):
+            if not series.has(column, optional=field != "temperature"):
                 continue
             ax.errorbar(seconds, series.numbers(column), yerr=series.numbers(column + "_stderr"),
                         fmt="o" + LINESTYLE[twin], ms=4, capsize=2.5, color=COLOUR[twin],
@@ -356,7 +376,7 @@ def figure_error_vs_time(out_dir, series, metrics, twins):
             if finite(floor) and floor > 0:
                 ax.axhline(floor, color=COLOUR[twin], ls=":", lw=1.3,
                            label=f"floor (final excess over noise), {twin}: {fmt(floor, 3)}")
-        if series.has(noise_column):
+        if series.has(noise_column, optional=False):
             noise = series.numbers(noise_column)
             ax.plot(seconds, noise, "-", color=COLOUR["noise"], lw=1.6,
                     label="noise (identical twins would show this)")
@@ -384,17 +404,20 @@ def within_noise_sentence(name, distance):
                    "not within noise: a difference between the twins")
         side = "above" if over >= 0 else "below"
         return f"{head}, {fmt(abs(over), 3)} standard errors {side} it — {verdict}."
-    return head + (" — within noise." if l2 <= noise else " — above the noise (no standard error).")
+    return head + (" — within noise." if l2 <= noise else
+                   " — above the noise (no standard error).")
 
 
-def nusselt_sentence(twin, twin_metrics, particle):
-    difference = number(twin_metrics, "nusselt_particle_minus_twin")
-    se = number(particle, "nusselt_stderr")
-    twin_se = number(twin_metrics, "nusselt_stderr_from_coefficients")
+def nusselt_sentence(twin, twin_metrics, particle, optional=False):
+    """optional: the scene may have no heated direction (then no Nusselt keys)."""
+    difference = number(twin_metrics, "nusselt_particle_minus_twin", optional=optional)
+    se = number(particle, "nusselt_stderr", optional=optional)
+    twin_se = number(twin_metrics, "nusselt_stderr_from_coefficients", optional=optional)
     if not finite(difference):
         return None
     text = (f"Nusselt number, {TWIN_LABEL[twin]}: particle − twin = {fmt(difference)}"
             f" ({fmt_percent(number(twin_metrics, 'nusselt_relative_difference'))} of the twin's)")
+
     if finite(twin_se) and finite(se):
         # The twin's error: its heat flux's response to the measured coefficients' errors (and
         # the Kapitza twin's to its conductances').
@@ -427,11 +450,26 @@ def report_run(run_dir, out_dir):
     profiles = read_table(os.path.join(compare_dir, "profiles.csv"))
     series = read_table(os.path.join(compare_dir, "error_vs_time.csv"))
     particle_summary = read_json(os.path.join(run_dir, "particle", "summary.json"))
+    # Every run has a nominal twin; a calibrated one only where the scene has thermal walls.
+    twins = [t for t in TWINS
+             if isinstance(lookup(metrics, "twins", t, optional=t == "calibrated"), dict)]
     summaries = {"nominal": read_json(os.path.join(run_dir, "continuum", "summary.json")),
                  "calibrated": read_json(os.path.join(run_dir, "continuum_calibrated",
-                                                      "summary.json"))}
-    twins = [t for t in TWINS if isinstance(lookup(metrics, "twins", t), dict)]
+                                                      "summary.json"),
+                                         optional="calibrated" not in twins)}
     particle = lookup(metrics, "particle") or {}
+    # What the compare stage writes for some scenes only: velocity distances with a positive
+    # velocity scale (a flow to compare), density distances beside a low-Mach twin, Nusselt
+    # numbers with a heated direction.
+    optional_field = {"temperature": False, "velocity": not number(metrics, "velocity_scale") > 0,
+                      "density": True}
+    nu_optional = heat_flow_optional(particle)
+
+    def twin_number(t, key):
+        """A Nusselt number of metrics.json's twin t."""
+        return number(metrics, "twins", t, key, optional=nu_optional)
+
+
     geometry = RunGeometry(metrics, particle_summary, summaries["nominal"], bins)
     case = lookup(metrics, "case") or lookup(particle_summary, "case") or os.path.basename(
         os.path.abspath(run_dir))
@@ -441,18 +479,21 @@ def report_run(run_dir, out_dir):
                   + (", ".join(TWIN_LABEL[t] for t in twins) or "none") + ". " + UNITS_NOTE + ".")
 
     # Dimensionless numbers, each from the stage that states it.
-    convection = lookup(particle_summary, "results", "convection") or {}
+    # The particle stage's estimates need gravity and a heated direction; the measured Mach
+    # number a flow.
+    convection = lookup(lookup(particle_summary, "results"), "convection", optional=True)
     rows = []
     if convection:
         rows.append(["particle (estimate, particle/summary.json)",
                      fmt(number(convection, "rayleigh")), fmt(number(convection, "prandtl")),
-                     fmt(number(convection, "mach_measured"), 3),
+                     fmt(number(convection, "mach_measured", optional=True), 3),
                      fmt(number(convection, "delta_T_over_T"), 3), "–"])
     for twin in TWINS:
         d = lookup(summaries[twin], "dimensionless")
         if d:
-            rows.append([f"{TWIN_LABEL[twin]} (continuum{'_calibrated' if twin == 'calibrated' else ''}"
-                         "/summary.json)", fmt(number(d, "rayleigh")), fmt(number(d, "prandtl")),
+            stage = "continuum_calibrated" if twin == "calibrated" else "continuum"
+            rows.append([f"{TWIN_LABEL[twin]} ({stage}/summary.json)",
+                         fmt(number(d, "rayleigh")), fmt(number(d, "prandtl")),
                          "–", "–", fmt(number(d, "epsilon"), 3)])
     if rows:
         doc.heading("Dimensionless numbers")
@@ -474,7 +515,7 @@ def report_run(run_dir, out_dir):
         f"Fields: {lookup(metrics, 'temperature_field') or 'temperature'}.",
     ] + ([f"Density scale n0 = {fmt(number(metrics, 'density_scale'))} rc^-d (the mean number "
           "density), for the low-Mach twin's n(P, T) against the particles' bin density."]
-         if any(lookup(metrics, "twins", t, "density") for t in twins) else []))
+         if any(lookup(metrics, "twins", t, "density", optional=True) for t in twins) else []))
 
     # The metrics, one column per twin.
     table_rows = []
@@ -485,9 +526,10 @@ def report_run(run_dir, out_dir):
             table_rows.append([label] + values)
 
         for field, scale in (("temperature", "dT"), ("velocity", "U"), ("density", "n0")):
-            if not any(lookup(metrics, "twins", t, field) for t in twins):
+            d = {t: lookup(metrics, "twins", t, field, optional=optional_field[field])
+                 for t in twins}
+            if not any(d.values()):
                 continue
-            d = {t: lookup(metrics, "twins", t, field) or {} for t in twins}
             row(f"{field} L2 / {scale}",
                 [fmt_pm(number(d[t], "l2"), number(d[t], "l2_stderr")) for t in twins])
             row(f"{field} noise / {scale}", [fmt(number(d[t], "noise")) for t in twins])
@@ -498,30 +540,31 @@ def report_run(run_dir, out_dir):
                  f"({', '.join(fmt(v, 3) for v in (lookup(d[t], 'max_at') or [])[:geometry.dim])})"
                  for t in twins])
         row("Nu particle ± stderr",
-            [fmt_pm(number(particle, "nusselt"), number(particle, "nusselt_stderr"))] * len(twins))
+            [fmt_pm(number(particle, "nusselt", optional=nu_optional),
+                    number(particle, "nusselt_stderr", optional=nu_optional))] * len(twins))
         row("Nu twin ± stderr from its measured coefficients and Kapitza conductances (heat "
             "flux / the nominal conduction flux, as the particle's)",
-            [fmt_pm(number(metrics, "twins", t, "nusselt"),
-                    number(metrics, "twins", t, "nusselt_stderr_from_coefficients"))
+            [fmt_pm(twin_number(t, "nusselt"), twin_number(t, "nusselt_stderr_from_coefficients"))
              for t in twins])
-        row("Nu twin (its own dT)", [fmt(number(metrics, "twins", t, "nusselt_own")) for t in twins])
+        row("Nu twin (its own dT)", [fmt(twin_number(t, "nusselt_own")) for t in twins])
         row("Nu particle − twin",
-            [fmt(number(metrics, "twins", t, "nusselt_particle_minus_twin")) for t in twins])
+            [fmt(twin_number(t, "nusselt_particle_minus_twin")) for t in twins])
         row("Nu relative difference",
-            [fmt_percent(number(metrics, "twins", t, "nusselt_relative_difference")) for t in twins])
+            [fmt_percent(twin_number(t, "nusselt_relative_difference")) for t in twins])
         row("Ra of the twin", [fmt(number(metrics, "twins", t, "rayleigh")) for t in twins])
         doc.table(["quantity"] + [TWIN_LABEL[t] for t in twins], table_rows)
         sentences = []
         for t in twins:
             for field in ("temperature", "velocity", "density"):
-                distance = lookup(metrics, "twins", t, field)
+                distance = lookup(metrics, "twins", t, field, optional=optional_field[field])
                 if distance:
                     sentences.append(within_noise_sentence(f"{field}, {TWIN_LABEL[t]}", distance))
-            s = nusselt_sentence(t, lookup(metrics, "twins", t), particle)
+            s = nusselt_sentence(t, lookup(metrics, "twins", t), particle, optional=nu_optional)
             if s:
                 sentences.append(s)
         stratification = number(convection, "stratification_g_H_over_c2")
-        if any(lookup(metrics, "twins", t, "density") for t in twins) and finite(stratification):
+        if any(lookup(metrics, "twins", t, "density", optional=True) for t in twins) and \
+                finite(stratification):
             # n ~ exp(-m g z / kT): across the height a linear profile of relative slope
             # g H / c^2, whose rms over the box is that / sqrt(12). The low-Mach twin's
             # thermodynamic pressure is uniform: it has no hydrostatic stratification.
@@ -530,18 +573,20 @@ def report_run(run_dir, out_dir):
                 f"{fmt(stratification, 3)}: n ~ exp(−m g z / kT)), which the low-Mach twin "
                 "leaves out (its thermodynamic pressure is uniform); that alone makes an rms "
                 f"density difference of ~{fmt(stratification / math.sqrt(12), 2)} n0.")
+        bound = fmt(WITHIN_NOISE_STDERRS, 2)
         doc.paragraph(f"Within noise? A difference counts as within noise when the L2 exceeds the "
-                      f"noise by at most {fmt(WITHIN_NOISE_STDERRS, 2)} of its standard errors (for "
-                      f"Nu: when |Nu particle − Nu twin| is at most {fmt(WITHIN_NOISE_STDERRS, 2)} "
+                      f"noise by at most {bound} of its standard errors (for Nu: when "
+                      f"|Nu particle − Nu twin| is at most {bound} "
                       "standard errors: the particle's, combined with the twin's where its "
                       "coefficients were measured).")
         doc.bullets(sentences)
 
-    if finite(number(particle, "nusselt")):
+    if finite(number(particle, "nusselt", optional=True)):
         doc.heading("Particle heat flow")
         doc.bullets([
             f"Nu = {fmt_pm(number(particle, 'nusselt'), number(particle, 'nusselt_stderr'))} "
-            f"(mean of the two walls; heat flux {fmt_pm(number(particle, 'heat_flux'), number(particle, 'heat_flux_stderr'))} "
+            "(mean of the two walls; heat flux "
+            f"{fmt_pm(number(particle, 'heat_flux'), number(particle, 'heat_flux_stderr'))} "
             "k T0 / (rc^(d-1) tau)).",
             f"hot wall Nu = {fmt(number(particle, 'nusselt_hot_wall'))}, cold wall Nu = "
             f"{fmt(number(particle, 'nusselt_cold_wall'))}: they differ by "
@@ -552,11 +597,12 @@ def report_run(run_dir, out_dir):
     jumps = lookup(particle, "wall_temperature_jumps") or {}
     if jumps:
         doc.heading("Wall temperature jumps (particle)")
-        calibrated_parameters = lookup(summaries["calibrated"], "case_parameters") or {}
+        calibrated_parameters = lookup(summaries["calibrated"], "case_parameters")
         rows = []
         for wall, j in jumps.items():
             axis, side = wall.split("_", 1) if "_" in wall else (wall, "")
-            calibrated_wall = calibrated_parameters.get(
+            calibrated_wall = lookup(
+                calibrated_parameters,
                 f"Scene/{axis} boundaries/{side.capitalize()} wall temperature")
             rows.append([wall, fmt(number(j, "wall_temperature")),
                          fmt_pm(number(j, "fluid_temperature_at_wall"),
@@ -579,14 +625,15 @@ def report_run(run_dir, out_dir):
                                  fmt_percent(explained)])
 
         for field, scale in (("temperature", "dT"), ("velocity", "U"), ("density", "n0")):
-            gap(f"{field} L2 / {scale}", number(metrics, "twins", "nominal", field, "l2"),
-                number(metrics, "twins", "calibrated", field, "l2"))
+            distance = {t: lookup(metrics, "twins", t, field, optional=optional_field[field])
+                        for t in twins}
+            gap(f"{field} L2 / {scale}", number(distance["nominal"], "l2"),
+                number(distance["calibrated"], "l2"))
             gap(f"{field} excess over noise / {scale}",
-                number(metrics, "twins", "nominal", field, "excess_over_noise"),
-                number(metrics, "twins", "calibrated", field, "excess_over_noise"))
-        gap("|Nu particle − Nu twin|",
-            abs(number(metrics, "twins", "nominal", "nusselt_particle_minus_twin")),
-            abs(number(metrics, "twins", "calibrated", "nusselt_particle_minus_twin")))
+                number(distance["nominal"], "excess_over_noise"),
+                number(distance["calibrated"], "excess_over_noise"))
+        gap("|Nu particle − Nu twin|", abs(twin_number("nominal", "nusselt_particle_minus_twin")),
+            abs(twin_number("calibrated", "nusselt_particle_minus_twin")))
         doc.table(["gap", "nominal twin", f"calibrated twin ({calibration_text(metrics)})",
                    "fraction explained = 1 − calibrated / nominal"], gap_rows)
         differences = parameter_differences(summaries["nominal"], summaries["calibrated"])
@@ -602,7 +649,7 @@ def report_run(run_dir, out_dir):
 
     # Figures.
     doc.heading("Figures")
-    if bins and bins.rows and bins.has("T_particle"):
+    if bins and bins.rows and bins.has("T_particle", optional=False):
         reference, cut_text = figure_fields(out_dir, bins, geometry, twins, metrics)
         where = f"; 3D: {cut_text}" if cut_text else ""
         difference = (f", and particle − {TWIN_LABEL[reference]} on a diverging scale (×: the "
@@ -628,7 +675,9 @@ def report_run(run_dir, out_dir):
                    "bins with their block standard errors, the twins as lines; grey: the "
                    "excluded wall layer; squares: the walls' temperatures; diamonds: the particle "
                    f"fluid's temperature extrapolated to the wall. {UNITS_NOTE}.")
-    layers = read_table(os.path.join(run_dir, "particle", "wall_layers.csv"))
+    # Written by the particle stage for a scene with walls.
+    layers = read_table(os.path.join(run_dir, "particle", "wall_layers.csv"), optional=True)
+
     if layers and layers.rows:
         figure_wall_layers(out_dir, layers, particle_summary)
         doc.figure("wall_layers.png",
@@ -655,7 +704,8 @@ def continuum_accuracy(doc, summaries, twins):
     last change bounds the error of a converging sequence) and the measured coefficients'."""
     rows = []
     for twin in twins:
-        for level in lookup(summaries[twin], "results", "mesh_study") or []:
+        # A transient twin has no mesh study.
+        for level in lookup(lookup(summaries[twin], "results"), "mesh_study", optional=True) or []:
             cells = "×".join(str(int(c)) for c in (lookup(level, "cells") or []))
             change = number(level, "change_in_nusselt")
             rows.append([TWIN_LABEL[twin], fmt(number(level, "level"), 2), cells,
@@ -671,7 +721,8 @@ def continuum_accuracy(doc, summaries, twins):
     doc.table(["twin", "level", "cells", "Nu (own dT)", "change", "wall s"], rows)
     sentences = []
     for twin in twins:
-        u = lookup(summaries[twin], "coefficient_uncertainty")
+        # Only a steady twin with measured coefficients (or Kapitza errors) has one.
+        u = lookup(summaries[twin], "coefficient_uncertainty", optional=True)
         if not u:
             continue
         names = ["conductivity", "viscosity"] + [f"kapitza_{a}_{s}" for a in "xyz"
@@ -679,7 +730,7 @@ def continuum_accuracy(doc, summaries, twins):
         parts = [f"{name.replace('_', ' ')} "
                  f"{fmt_pm(number(u, name, 'value'), number(u, name, 'stderr'))} moves the "
                  f"heat flux by {fmt_percent(number(u, name, 'heat_flux_relative_change'))} per "
-                 "standard error" for name in names if lookup(u, name)]
+                 "standard error" for name in names if lookup(u, name, optional=True)]
         sentences.append(f"{TWIN_LABEL[twin]}: " + "; ".join(parts) + "; together ± "
                          f"{fmt_percent(number(u, 'heat_flux_relative_stderr'))}.")
     if sentences:
@@ -690,10 +741,12 @@ def continuum_accuracy(doc, summaries, twins):
 
 
 def parameter_differences(nominal_summary, calibrated_summary):
-    """(key, nominal value, calibrated value) for every case parameter the twins differ in."""
+    """(key, nominal value, calibrated value) for every case parameter the twins differ in (keys
+    enumerated from the files, none named here: plain dict reads)."""
     a = lookup(nominal_summary, "case_parameters") or {}
     b = lookup(calibrated_summary, "case_parameters") or {}
-    return [(k, a.get(k, "–"), b.get(k, "–")) for k in sorted(set(a) | set(b)) if a.get(k) != b.get(k)]
+    return [(k, a.get(k, "–"), b.get(k, "–")) for k in sorted(set(a) | set(b))
+            if a.get(k) != b.get(k)]
 
 
 def floor_text(doc, series, metrics, twins, fields, particle, summaries):
@@ -701,7 +754,8 @@ def floor_text(doc, series, metrics, twins, fields, particle, summaries):
     seconds = series.numbers("wall_seconds")
     items = []
     for field in fields:
-        noise = series.numbers(f"{field}_noise") if series.has(f"{field}_noise") else None
+        noise = series.numbers(f"{field}_noise") if series.has(f"{field}_noise",
+                                                               optional=False) else None
         if noise is not None and np.isfinite(noise).sum() >= 2:
             items.append(f"{field} noise: {fmt(noise[0], 3)} at {fmt(seconds[0], 3)} s, "
                          f"{fmt(noise[-1], 3)} at {fmt(seconds[-1], 3)} s.")
@@ -710,8 +764,8 @@ def floor_text(doc, series, metrics, twins, fields, particle, summaries):
             if finite(floor):
                 items.append(f"{field} floor, {TWIN_LABEL[twin]}: {fmt(floor, 3)} (final L2 "
                              f"{fmt(number(metrics, 'twins', twin, field, 'l2'), 3)}).")
-    doc.paragraph("The floor. The noise falls as 1/√t with sampling time; what stays as it falls is "
-                  "the twins' physical difference, the excess over noise. Measured:")
+    doc.paragraph("The floor. The noise falls as 1/√t with sampling time; what stays as it falls "
+                  "is the twins' physical difference, the excess over noise. Measured:")
     doc.bullets(items)
     # What sets the floor, in the numbers of this run.
     causes = []
@@ -721,7 +775,8 @@ def floor_text(doc, series, metrics, twins, fields, particle, summaries):
                      number(summaries["nominal"], "results", "temperature_max"))
     if jumps:
         causes.append("Wall temperature jumps of the particle fluid: " + "; ".join(
-            f"{wall}: {fmt(number(j, 'jump'), 3)} T0 ({fmt_percent(number(j, 'jump') / scale)} of dT)"
+            f"{wall}: {fmt(number(j, 'jump'), 3)} T0 "
+            f"({fmt_percent(number(j, 'jump') / scale)} of dT)"
             for wall, j in jumps.items()) +
             (f". The nominal twin's temperature spans {fmt(nominal_range[0], 3)} … "
              f"{fmt(nominal_range[1], 3)} T0, the walls are at " +
@@ -735,9 +790,13 @@ def floor_text(doc, series, metrics, twins, fields, particle, summaries):
             causes.append(f"With {calibration_text(metrics)} (calibrated twin) the "
                           f"temperature floor goes from {fmt(n_floor, 3)} to {fmt(c_floor, 3)} "
                           f"({fmt_percent(c_floor / n_floor)} of the nominal twin's): the rest of "
-                          "the calibrated twin's floor is what that wall condition does not explain.")
+                          "the calibrated twin's floor is what that wall condition does not "
+                          "explain.")
+
     for twin in twins:
-        rel = number(metrics, "twins", twin, "nusselt_relative_difference")
+        rel = number(metrics, "twins", twin, "nusselt_relative_difference",
+                     optional=heat_flow_optional(particle))
+
         if finite(rel):
             causes.append(f"Heat flow: the particle's Nu differs from the {TWIN_LABEL[twin]}'s by "
                           f"{fmt_percent(rel)} of the twin's.")

@@ -3,7 +3,7 @@
 
 import os
 
-from .data import (UNITS_NOTE, Table, finite, fmt, lookup, plain, read_json, study_case_name,
+from .data import (UNITS_NOTE, Table, cell, finite, fmt, lookup, plain, read_json, study_case_name,
                    to_float, varied_keys, with_unit)
 from .document import Document, write_documents
 from .figures import Axis, save_figure
@@ -41,28 +41,29 @@ def report_stability(stability_dir, out_dir):
                 or [f"{k}" for k in keys])
     counts = {}
     for r in rows:
-        counts[r.get("status", "")] = counts.get(r.get("status", ""), 0) + 1
+        counts[cell(r, "status")] = counts.get(cell(r, "status"), 0) + 1
     doc.paragraph(f"{len(rows)} points: " + ", ".join(f"{n} {s}" for s, n in counts.items()) + ".")
 
     if rows and keys:
         x_key = keys[0]
         y_key = keys[1] if len(keys) > 1 else None
-        x_axis = Axis(x_key, [r.get(x_key, "") for r in rows])
-        y_axis = Axis(y_key, [r.get(y_key, "") for r in rows]) if y_key else None
+        x_axis = Axis(x_key, [cell(r, x_key) for r in rows])
+        y_axis = Axis(y_key, [cell(r, y_key) for r in rows]) if y_key else None
         fig, ax = plt.subplots(figsize=(7.6, 5.2 if y_key else 2.9), layout="constrained")
         seen = []
         for r in rows:
-            status = r.get("status", "")
+            status = cell(r, "status")
             colour, marker = STATUS_STYLE.get(status, ("0.75", "o"))
-            x = x_axis.position(r.get(x_key, ""))
-            y = y_axis.position(r.get(y_key, "")) if y_axis else 0.0
-            predicted = r.get("predicted_stable", "").strip().lower()
+            x = x_axis.position(cell(r, x_key))
+            y = y_axis.position(cell(r, y_key)) if y_axis else 0.0
+            predicted = cell(r, "predicted_stable").strip().lower()
             hollow = predicted in ("false", "0", "no")
             ax.plot([x], [y], marker=marker, ms=11, ls="", color=colour,
                     mfc="none" if hollow else colour, mew=2, zorder=3)
             if status not in seen:
                 seen.append(status)
-        seen.sort(key=lambda s: list(STATUS_STYLE).index(s) if s in STATUS_STYLE else len(STATUS_STYLE))
+        seen.sort(key=lambda s: list(STATUS_STYLE).index(s) if s in STATUS_STYLE
+                  else len(STATUS_STYLE))
         handles = [Line2D([], [], marker=STATUS_STYLE.get(s, ("0.75", "o"))[1], ls="", ms=9,
                           color=STATUS_STYLE.get(s, ("0.75", "o"))[0], label=s or "(no status)")
                    for s in seen]
@@ -70,14 +71,14 @@ def report_stability(stability_dir, out_dir):
                     Line2D([], [], marker="o", ls="", ms=9, color="0.3", mfc="none", mew=2,
                            label="predicted unstable (hollow)")]
         # The predicted critical time step (001 eq. (28)) where dt is one of the axes.
-        if TIME_STEP_KEY in (x_key, y_key) and table.has("predicted_dt_critical"):
+        if TIME_STEP_KEY in (x_key, y_key) and table.has("predicted_dt_critical", optional=False):
             other = y_axis if x_key == TIME_STEP_KEY else x_axis
             other_key = y_key if x_key == TIME_STEP_KEY else x_key
             by_other = {}
             for r in rows:
-                dt_c = to_float(r.get("predicted_dt_critical"))
+                dt_c = to_float(cell(r, "predicted_dt_critical"))
                 if finite(dt_c):
-                    key = r.get(other_key, "") if other_key else ""
+                    key = cell(r, other_key) if other_key else ""
                     by_other.setdefault(key, dt_c)
             values = sorted(set(by_other.values()))
             line = dict(color="black", ls="--", lw=1.4, zorder=2)
@@ -127,27 +128,29 @@ def report_stability(stability_dir, out_dir):
                       if TIME_STEP_KEY in keys else "") + f". {UNITS_NOTE}.")
 
     doc.heading("Points")
-    header = ["point", "status"] + keys + ["dt [tau]", "predicted dt_critical", "fluctuation number",
-                                           "predicted stable", "max |dE/E|", "T_kinetic",
-                                           "T_internal", "T relative error", "wall s", "reason"]
+    header = ["point", "status"] + keys + ["dt [tau]", "predicted dt_critical",
+                                           "fluctuation number", "predicted stable", "max |dE/E|",
+                                           "T_kinetic", "T_internal", "T relative error", "wall s",
+                                           "reason"]
     table_rows = []
     for r in rows:
-        table_rows.append([plain(r.get("point")), plain(r.get("status"))]
-                          + [plain(r.get(k)) for k in keys]
-                          + [fmt(to_float(r.get(c))) for c in (
+        table_rows.append([plain(cell(r, "point")), plain(cell(r, "status"))]
+                          + [plain(cell(r, k)) for k in keys]
+                          + [fmt(to_float(cell(r, c))) for c in (
                               "dt", "predicted_dt_critical", "fluctuation_number")]
-                          + [plain(r.get("predicted_stable"))]
-                          + [fmt(to_float(r.get(c)), 3) for c in ("energy_relative_drift_max",)]
-                          + [fmt(to_float(r.get(c)), 5) for c in ("T_kinetic", "T_internal")]
-                          + [fmt(to_float(r.get(c)), 3) for c in (
+                          + [plain(cell(r, "predicted_stable"))]
+                          + [fmt(to_float(cell(r, c)), 3) for c in ("energy_relative_drift_max",)]
+                          + [fmt(to_float(cell(r, c)), 5) for c in ("T_kinetic", "T_internal")]
+                          + [fmt(to_float(cell(r, c)), 3) for c in (
                               "temperature_relative_error", "wall_seconds")]
-                          + [plain(r.get("reason"))])
+                          + [plain(cell(r, "reason"))])
     doc.table(header, table_rows)
-    agree = [r for r in rows if r.get("status") in STATUS_STYLE and r.get("status") != "failed"
-             and r.get("predicted_stable", "").lower() in ("true", "false")]
+    agree = [r for r in rows if cell(r, "status") in STATUS_STYLE and cell(r, "status") != "failed"
+             and cell(r, "predicted_stable").lower() in ("true", "false")]
     if agree:
-        matches = sum((r["status"] == "stable") == (r["predicted_stable"].lower() == "true")
-                      for r in agree)
+        matches = sum((cell(r, "status") == "stable") ==
+                      (cell(r, "predicted_stable").lower() == "true") for r in agree)
+
         doc.paragraph(f"Prediction against observation: {matches} of {len(agree)} points agree "
                       "(predicted stable and observed stable, or predicted unstable and observed "
                       "any other status; failed points left out).")

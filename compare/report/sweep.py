@@ -5,8 +5,8 @@ front of error against cost, realisations over seeds, and the points not done.""
 import math
 import os
 
-from .data import (AXES, TWIN_LABEL, TWINS, UNITS_NOTE, Table, finite, fmt, fmt_percent, fmt_pm,
-                   lookup, plain, read_json, slug, study_case_name, to_float, varied_keys,
+from .data import (AXES, TWIN_LABEL, TWINS, UNITS_NOTE, Table, cell, finite, fmt, fmt_percent,
+                   fmt_pm, lookup, plain, read_json, slug, study_case_name, to_float, varied_keys,
                    with_unit)
 from .document import Document, write_documents
 from .figures import COLOUR, Axis, plain_log_ticks, save_figure
@@ -17,13 +17,21 @@ SWEEP_OWN_COLUMNS = ("target_rayleigh", "gravity", "wall_seconds")
 DE_VAHL_DAVIS_NUSSELT = ((1e3, 1.118), (1e4, 2.243), (1e5, 4.519), (1e6, 8.800))
 
 
+def metric(row, column):
+    """A cell of one of the points' metrics ("" when absent). sweep.csv always has its own
+    columns (point, status, reason, exit_code, the varied keys, target_rayleigh, gravity,
+    wall_seconds: read with cell()); the metrics (compare/metrics.json's table_row) only where
+    some point wrote them, none when every point failed: optional."""
+    return cell(row, column, optional=True)
+
+
 def walls_no_slip(grid):
     """True / False from the base parameters' walled directions' Slip, None when not stated."""
     parameters = lookup(grid, "base_parameters") or {}
     answers = []
     for axis in AXES:
-        if parameters.get(f"Scene/{axis} boundaries/Type") == "walls":
-            slip = parameters.get(f"Scene/{axis} boundaries/Slip")
+        if lookup(parameters, f"Scene/{axis} boundaries/Type") == "walls":
+            slip = lookup(parameters, f"Scene/{axis} boundaries/Slip")
             if slip is not None:
                 answers.append(slip == "no-slip")
     return all(answers) if answers else None
@@ -34,9 +42,9 @@ def sweep_groups(rows, series_key, order):
     group without a series key."""
     if not series_key:
         return [("", rows)]
-    labels = [v for v in order if any(r.get(series_key, "") == v for r in rows)]
-    labels += [v for v in dict.fromkeys(r.get(series_key, "") for r in rows) if v not in labels]
-    return [(f"{series_key} = {label}", [r for r in rows if r.get(series_key, "") == label])
+    labels = [v for v in order if any(cell(r, series_key) == v for r in rows)]
+    labels += [v for v in dict.fromkeys(cell(r, series_key) for r in rows) if v not in labels]
+    return [(f"{series_key} = {label}", [r for r in rows if cell(r, series_key) == label])
             for label in labels]
 
 
@@ -52,7 +60,7 @@ def source_style(index, label):
 def mark_not_done(ax, x_axis, x_column, rows):
     """A red cross on the x axis at each point that did not finish (listed in the report)."""
     from matplotlib.lines import Line2D
-    xs = [x_axis.position(r.get(x_column, "")) for r in rows]
+    xs = [x_axis.position(cell(r, x_column)) for r in rows]
     xs = [x for x in xs if finite(x) and (not x_axis.log or x > 0)]
     if not xs:
         return []
@@ -73,7 +81,7 @@ def draw_sources(ax, table, groups, x_axis, x_column, sources):
     handles = []
     drawn = set()
     for g, (group_label, rows) in enumerate(groups):
-        xs = np.array([x_axis.position(r.get(x_column, "")) for r in rows], dtype=float)
+        xs = np.array([x_axis.position(cell(r, x_column)) for r in rows], dtype=float)
         order = np.argsort(xs, kind="stable")
         for s, (label, column, error_column, colour) in enumerate(sources):
             marker, style = source_style(s, label)
@@ -120,21 +128,21 @@ def figure_pareto(out_dir, done, keys, doc):
     nominal twin's when there is none)."""
     import matplotlib.pyplot as plt
     twin = next((t for t in ("calibrated", "nominal") if any(
-        finite(to_float(r.get(f"temperature_l2_{t}"))) for r in done)), None)
+        finite(to_float(metric(r, f"temperature_l2_{t}"))) for r in done)), None)
     if twin is None:
         return None
-    rows = [r for r in done if finite(to_float(r.get(f"temperature_l2_{twin}")))
-            and finite(to_float(r.get("wall_seconds_particle")))]
+    rows = [r for r in done if finite(to_float(metric(r, f"temperature_l2_{twin}")))
+            and finite(to_float(metric(r, "wall_seconds_particle")))]
     if len(rows) < 2:
         return None
-    points = [(to_float(r["wall_seconds_particle"]), to_float(r[f"temperature_l2_{twin}"]))
-              for r in rows]
+    points = [(to_float(metric(r, "wall_seconds_particle")),
+               to_float(metric(r, f"temperature_l2_{twin}"))) for r in rows]
     front = pareto_front(points)
-    labels = [", ".join(f"{k.split('/')[-1]} {plain(r.get(k))}" for k in keys) or plain(
-        r.get("point")) for r in rows]
+    labels = [", ".join(f"{k.split('/')[-1]} {plain(cell(r, k))}" for k in keys) or plain(
+        cell(r, "point")) for r in rows]
     fig, ax = plt.subplots(figsize=(7.6, 4.8), layout="constrained")
     for i, ((c, e), r) in enumerate(zip(points, rows)):
-        se = to_float(r.get(f"temperature_l2_{twin}_stderr"))
+        se = to_float(metric(r, f"temperature_l2_{twin}_stderr"))
         ax.errorbar([c], [e], yerr=[se] if finite(se) else None, fmt="o",
                     color=COLOUR["calibrated" if i in front else "noise"], ms=6, capsize=2.5)
         same = sum(1 for p in points[:i] if p == (c, e))  # stack the labels of equal points
@@ -142,7 +150,7 @@ def figure_pareto(out_dir, done, keys, doc):
                     fontsize=7)
     ax.step([points[i][0] for i in front], [points[i][1] for i in front], where="post",
             color=COLOUR["calibrated"], lw=1.2, label="Pareto front")
-    noise = [to_float(r.get("temperature_l2_noise")) for r in rows]
+    noise = [to_float(metric(r, "temperature_l2_noise")) for r in rows]
     ax.plot([p[0] for p in points], noise, "x", color=COLOUR["noise"], label="noise (each point)")
     ax.set_xscale("log")
     ax.set_yscale("log")
@@ -157,8 +165,10 @@ def figure_pareto(out_dir, done, keys, doc):
                   + "; ".join(f"{labels[i]} ({fmt(points[i][0], 3)} s, L2 {fmt(points[i][1], 3)})"
                               for i in front) + ".")
     return (name, f"Temperature L2 to the {TWIN_LABEL[twin]} against the particle stage's wall "
-                  "time, one point per sweep point (labels: the varied keys); filled: on the Pareto "
-                  "front; crosses: each point's noise level, the floor no run length removes.")
+                  "time, one point per sweep point (labels: the varied keys); filled: on the "
+                  "Pareto front; crosses: each point's noise level, the floor no run length "
+                  "removes.")
+
 
 
 def realisations_section(doc, done):
@@ -167,14 +177,16 @@ def realisations_section(doc, done):
     standard error from the spread between realisations."""
     rows, relative = [], []
     for r in done:
-        p, ps = to_float(r.get("nusselt_particle")), to_float(r.get("nusselt_particle_stderr"))
-        c, cs = to_float(r.get("nusselt_calibrated")), to_float(r.get("nusselt_calibrated_stderr"))
+        p = to_float(metric(r, "nusselt_particle"))
+        ps = to_float(metric(r, "nusselt_particle_stderr"))
+        c = to_float(metric(r, "nusselt_calibrated"))
+        cs = to_float(metric(r, "nusselt_calibrated_stderr"))
         if not all(finite(v) for v in (p, ps, c)) or c == 0:
             continue
         cs = cs if finite(cs) else 0.0
         allowance = ps + cs + 0.03 * abs(c)
         relative.append(p / c - 1)
-        rows.append([plain(r.get("Particle/Seed")), fmt_pm(p, ps), fmt_pm(c, cs),
+        rows.append([plain(cell(r, "Particle/Seed")), fmt_pm(p, ps), fmt_pm(c, cs),
                      fmt_percent(p / c - 1), fmt(allowance),
                      "within" if abs(p - c) <= allowance else "out"])
     if not rows:
@@ -197,16 +209,16 @@ def report_sweep(sweep_dir, out_dir):
     description = read_json(os.path.join(sweep_dir, "sweep.json")) or {}
     grid = lookup(description, "grid") or {}
     keys = varied_keys(table, SWEEP_OWN_COLUMNS) or list((lookup(grid, "vary") or {}).keys())
-    done = [r for r in table.rows if r.get("status") == "done"]
-    not_done = [r for r in table.rows if r.get("status") != "done"]
-    by_rayleigh = table.has("target_rayleigh") and any(
-        finite(to_float(r.get("target_rayleigh"))) for r in table.rows)
+    done = [r for r in table.rows if cell(r, "status") == "done"]
+    not_done = [r for r in table.rows if cell(r, "status") != "done"]
+    by_rayleigh = table.has("target_rayleigh", optional=False) and any(
+        finite(to_float(cell(r, "target_rayleigh"))) for r in table.rows)
     if by_rayleigh:
         # The continuum's Ra where it ran, else the target.
         x_column = "rayleigh_axis"
         for r in table.rows:
-            measured = to_float(r.get("rayleigh"))
-            r[x_column] = r.get("rayleigh") if finite(measured) else r.get("target_rayleigh", "")
+            measured = to_float(metric(r, "rayleigh"))
+            r[x_column] = metric(r, "rayleigh") if finite(measured) else cell(r, "target_rayleigh")
         x_label, x_name, series_key = "Rayleigh number Ra (nominal twin)", "rayleigh", (
             keys[0] if keys else None)
     elif keys:
@@ -214,7 +226,7 @@ def report_sweep(sweep_dir, out_dir):
         series_key = keys[1] if len(keys) > 1 else None
     else:
         x_column, x_label, x_name, series_key = "point", "point", "point", None
-    x_axis = Axis(x_column, [r.get(x_column, "") for r in done] or [""])
+    x_axis = Axis(x_column, [cell(r, x_column) for r in done] or [""])
     if by_rayleigh:
         x_axis.log = True
     groups = sweep_groups(done, series_key,
@@ -227,7 +239,7 @@ def report_sweep(sweep_dir, out_dir):
                   f"{lookup(grid, 'case_file') or '–'}. {UNITS_NOTE}.")
     grid_items = [f"{k}: {', '.join(map(str, v))}" for k, v in (lookup(grid, "vary") or {}).items()]
     if not grid_items:  # sweep.json without the grid: the values in the table
-        grid_items = [f"{k}: " + ", ".join(dict.fromkeys(r.get(k, "") for r in table.rows))
+        grid_items = [f"{k}: " + ", ".join(dict.fromkeys(cell(r, k) for r in table.rows))
                       for k in keys]
     targets = lookup(grid, "rayleigh")
     if targets:
@@ -255,7 +267,9 @@ def report_sweep(sweep_dir, out_dir):
         # Nusselt numbers.
         fig, ax = plt.subplots(figsize=(8.4, 4.8), layout="constrained")
         handles = draw_sources(ax, table, groups, x_axis, x_column, [
-            ("particle ± stderr", "nusselt_particle", "nusselt_particle_stderr", COLOUR["particle"]),
+            ("particle ± stderr", "nusselt_particle", "nusselt_particle_stderr",
+             COLOUR["particle"]),
+
             ("nominal twin", "nusselt_nominal", None, COLOUR["nominal"]),
             ("calibrated twin", "nusselt_calibrated", None, COLOUR["calibrated"])])
         no_slip = walls_no_slip(grid)
@@ -327,17 +341,20 @@ def report_sweep(sweep_dir, out_dir):
         columns += [("target Ra", "target_rayleigh"), ("Ra", "rayleigh")]
     rows = []
     for r in table.rows:
-        cells = [plain(r.get(c)) if c in ("point", "status") or c in keys else
-                 fmt(to_float(r.get(c))) for _, c in columns]
-        cells += [fmt_pm(to_float(r.get("nusselt_particle")),
-                         to_float(r.get("nusselt_particle_stderr"))),
-                  fmt(to_float(r.get("nusselt_nominal"))), fmt(to_float(r.get("nusselt_calibrated"))),
-                  fmt_pm(to_float(r.get("temperature_l2_nominal")),
-                         to_float(r.get("temperature_l2_nominal_stderr"))),
-                  fmt_pm(to_float(r.get("temperature_l2_calibrated")),
-                         to_float(r.get("temperature_l2_calibrated_stderr"))),
-                  fmt(to_float(r.get("temperature_l2_noise"))),
-                  fmt(to_float(r.get("wall_seconds")))]
+        # (rayleigh, the nominal twin's, is a metric; target_rayleigh the sweep's own)
+        cells = [plain(cell(r, c)) if c in ("point", "status") or c in keys else
+                 fmt(to_float(cell(r, c, optional=c == "rayleigh"))) for _, c in columns]
+        cells += [fmt_pm(to_float(metric(r, "nusselt_particle")),
+                         to_float(metric(r, "nusselt_particle_stderr"))),
+                  fmt(to_float(metric(r, "nusselt_nominal"))),
+                  fmt(to_float(metric(r, "nusselt_calibrated"))),
+
+                  fmt_pm(to_float(metric(r, "temperature_l2_nominal")),
+                         to_float(metric(r, "temperature_l2_nominal_stderr"))),
+                  fmt_pm(to_float(metric(r, "temperature_l2_calibrated")),
+                         to_float(metric(r, "temperature_l2_calibrated_stderr"))),
+                  fmt(to_float(metric(r, "temperature_l2_noise"))),
+                  fmt(to_float(cell(r, "wall_seconds")))]
         rows.append(cells)
     doc.table([c[0] for c in columns] + ["Nu particle", "Nu nominal", "Nu calibrated",
                                           "T L2 nominal", "T L2 calibrated", "T noise",
@@ -347,8 +364,8 @@ def report_sweep(sweep_dir, out_dir):
     doc.heading("Points not done")
     if not_done:
         doc.table(["point", "status", "exit code", "reason"],
-                  [[plain(r.get("point")), plain(r.get("status")), plain(r.get("exit_code")),
-                    plain(r.get("reason"))] for r in not_done])
+                  [[plain(cell(r, "point")), plain(cell(r, "status")), plain(cell(r, "exit_code")),
+                    plain(cell(r, "reason"))] for r in not_done])
     else:
         doc.paragraph("None: every point finished.")
     if figures:

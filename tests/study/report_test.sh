@@ -8,18 +8,7 @@ set -u
 source_dir=${1:?usage: report_test.sh SOURCE_DIR}
 report="$source_dir/compare/report"
 
-python=""
-for candidate in python3 /usr/bin/python3; do
-  if command -v "$candidate" >/dev/null 2>&1 &&
-     "$candidate" -c "import matplotlib, numpy" >/dev/null 2>&1; then
-    python=$candidate
-    break
-  fi
-done
-if [ -z "$python" ]; then
-  echo "skipped: no python3 with matplotlib and numpy (Debian: apt-get install python3-matplotlib)"
-  exit 77
-fi
+source "$source_dir/tests/report/find_python.sh"
 
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT

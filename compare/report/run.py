@@ -126,7 +126,6 @@ def bin_plane(bins, geometry):
 # The field maps: temperature (fields.png) and, beside a low-Mach twin, number density
 # (density.png); bins.csv columns <prefix>_particle and <prefix>_<twin>.
 FIELD_MAPS = {
-
     "temperature": {"prefix": "T", "symbol": "T", "unit": "T0", "cmap": "plasma",
                     "particle": "particle (DPDE), T_kinetic", "twin": ", T",
                     "file": "fields.png"},
@@ -229,7 +228,6 @@ def figure_profiles(out_dir, profiles, geometry, metrics, twins, excluded):
     H, G = AXES[h], AXES[g]
     along = {d: [r for r in profiles.rows if lookup(r, "direction") == AXES[d]]
              for d in range(geometry.dim)}
-
     panels = [(h, "T", "T", f"T along {H} at mid-{G}", "T [T0]")]
     if profiles.has(f"v{G}_particle"):
         panels.append((h, f"v{G}", f"v{G}", f"vertical velocity v{G} along {H} at mid-{G}",
@@ -302,7 +300,6 @@ def wall_layer_table(doc, particle_summary, calibrated_summary):
                   "no-slip wall's tangential friction per area and slip velocity, so b = eta / "
                   "zeta less the depth at which it acts (Compare/Wall slip). Compare/Effective "
                   "walls moves the twin's walls to the Gibbs depths.")
-
 
 
 def figure_wall_layers(out_dir, layers, particle_summary):
@@ -417,7 +414,6 @@ def nusselt_sentence(twin, twin_metrics, particle, optional=False):
         return None
     text = (f"Nusselt number, {TWIN_LABEL[twin]}: particle − twin = {fmt(difference)}"
             f" ({fmt_percent(number(twin_metrics, 'nusselt_relative_difference'))} of the twin's)")
-
     if finite(twin_se) and finite(se):
         # The twin's error: its heat flux's response to the measured coefficients' errors (and
         # the Kapitza twin's to its conductances').
@@ -468,7 +464,6 @@ def report_run(run_dir, out_dir):
     def twin_number(t, key):
         """A Nusselt number of metrics.json's twin t."""
         return number(metrics, "twins", t, key, optional=nu_optional)
-
 
     geometry = RunGeometry(metrics, particle_summary, summaries["nominal"], bins)
     case = lookup(metrics, "case") or lookup(particle_summary, "case") or os.path.basename(
@@ -677,7 +672,6 @@ def report_run(run_dir, out_dir):
                    f"fluid's temperature extrapolated to the wall. {UNITS_NOTE}.")
     # Written by the particle stage for a scene with walls.
     layers = read_table(os.path.join(run_dir, "particle", "wall_layers.csv"), optional=True)
-
     if layers and layers.rows:
         figure_wall_layers(out_dir, layers, particle_summary)
         doc.figure("wall_layers.png",
@@ -792,11 +786,9 @@ def floor_text(doc, series, metrics, twins, fields, particle, summaries):
                           f"({fmt_percent(c_floor / n_floor)} of the nominal twin's): the rest of "
                           "the calibrated twin's floor is what that wall condition does not "
                           "explain.")
-
     for twin in twins:
         rel = number(metrics, "twins", twin, "nusselt_relative_difference",
                      optional=heat_flow_optional(particle))
-
         if finite(rel):
             causes.append(f"Heat flow: the particle's Nu differs from the {TWIN_LABEL[twin]}'s by "
                           f"{fmt_percent(rel)} of the twin's.")

@@ -150,7 +150,6 @@ def report_stability(stability_dir, out_dir):
     if agree:
         matches = sum((cell(r, "status") == "stable") ==
                       (cell(r, "predicted_stable").lower() == "true") for r in agree)
-
         doc.paragraph(f"Prediction against observation: {matches} of {len(agree)} points agree "
                       "(predicted stable and observed stable, or predicted unstable and observed "
                       "any other status; failed points left out).")

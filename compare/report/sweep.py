@@ -170,7 +170,6 @@ def figure_pareto(out_dir, done, keys, doc):
                   "removes.")
 
 
-
 def realisations_section(doc, done):
     """Points that differ only in the seed are realisations of one case: each point's Nu gap to
     the calibrated twin against its allowance (both errors + 3%), and the mean gap with its
@@ -269,7 +268,6 @@ def report_sweep(sweep_dir, out_dir):
         handles = draw_sources(ax, table, groups, x_axis, x_column, [
             ("particle ± stderr", "nusselt_particle", "nusselt_particle_stderr",
              COLOUR["particle"]),
-
             ("nominal twin", "nusselt_nominal", None, COLOUR["nominal"]),
             ("calibrated twin", "nusselt_calibrated", None, COLOUR["calibrated"])])
         no_slip = walls_no_slip(grid)
@@ -348,7 +346,6 @@ def report_sweep(sweep_dir, out_dir):
                          to_float(metric(r, "nusselt_particle_stderr"))),
                   fmt(to_float(metric(r, "nusselt_nominal"))),
                   fmt(to_float(metric(r, "nusselt_calibrated"))),
-
                   fmt_pm(to_float(metric(r, "temperature_l2_nominal")),
                          to_float(metric(r, "temperature_l2_nominal_stderr"))),
                   fmt_pm(to_float(metric(r, "temperature_l2_calibrated")),

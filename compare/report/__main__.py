@@ -1,7 +1,8 @@
 """Figures (PNG) and a report (report.md, report.html) for a twinflow result directory.
 
-    python3 compare/report [--strict] DIR        (the folder as a script, as twinflow runs it)
-    python3 -m report [--strict] DIR              (with compare/ on PYTHONPATH)
+    python3 compare/report [--strict] DIR      (the folder as a script, as twinflow runs it;
+                                                 compare/report/__main__.py works too)
+    python3 -m compare.report [--strict] DIR   (from the source directory)
 
 DIR is one of
   a run        (DIR/compare/metrics.json)           -> DIR/report/

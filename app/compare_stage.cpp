@@ -81,7 +81,7 @@ struct ContinuumTwin {
   compare::BinnedState state;
 };
 
-// Figures and report.md/html by compare/report.py, with the first python3 that has matplotlib
+// Figures and report.md/html by compare/report/ (a Python package), with the first python3 that has matplotlib
 // (Debian's python3-matplotlib). A missing python is not an error of the run: it says so.
 void write_report(const fs::path& dir) {
   std::string quoted = "'";

@@ -1,25 +1,14 @@
 #!/bin/bash
-# ctest StudyReport: compare/report.py on the fixtures of tests/study/fixtures (copied to a
-# temporary directory): every expected figure and report.md/html is written and non-empty, a
-# second report replaces the first, missing columns are tolerated, and a directory that is no
-# run, sweep or stability directory exits 2. Exit 77 (ctest: skipped) when no python3 can import
-# matplotlib and numpy.
+# ctest StudyReport: the report (python3 compare/report DIR) on the fixtures of
+# tests/study/fixtures (copied to a temporary directory): every expected figure and
+# report.md/html is written and non-empty, a second report replaces the first, missing columns
+# are tolerated, and a directory that is no run, sweep or stability directory exits 2. Exit 77
+# (ctest: skipped) when no python3 can import matplotlib and numpy.
 set -u
 source_dir=${1:?usage: report_test.sh SOURCE_DIR}
-report="$source_dir/compare/report.py"
+report="$source_dir/compare/report"
 
-python=""
-for candidate in python3 /usr/bin/python3; do
-  if command -v "$candidate" >/dev/null 2>&1 &&
-     "$candidate" -c "import matplotlib, numpy" >/dev/null 2>&1; then
-    python=$candidate
-    break
-  fi
-done
-if [ -z "$python" ]; then
-  echo "skipped: no python3 with matplotlib and numpy (Debian: apt-get install python3-matplotlib)"
-  exit 77
-fi
+source "$source_dir/tests/report/find_python.sh"
 
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
@@ -31,12 +20,12 @@ fail() {
   failures=$((failures + 1))
 }
 
-# expect_report DIR FILE...: report.py DIR exits 0 and writes report.md, report.html and FILEs.
+# expect_report DIR FILE...: the report of DIR exits 0 and writes report.md, report.html and FILEs.
 expect_report() {
   local dir=$1
   shift
   if ! "$python" "$report" "$work/$dir" >"$work/$dir.log" 2>&1; then
-    fail "report.py $dir exited non-zero:"
+    fail "the report of $dir exited non-zero:"
     cat "$work/$dir.log"
     return
   fi
@@ -133,4 +122,4 @@ if [ "$failures" -gt 0 ]; then
   echo "$failures check(s) failed"
   exit 1
 fi
-echo "report.py: all checks passed"
+echo "report: all checks passed"

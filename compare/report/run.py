@@ -1,0 +1,797 @@
+"""The report of a run directory (DIR/compare/metrics.json): the twins' distances, heat flows,
+wall jumps and calibration, the continuum twins' own errors, and the figures fields.png,
+density.png (low-Mach twin), profiles.png, wall_layers.png and error_vs_time.png."""
+
+import math
+import os
+
+from .data import (AXES, TWIN_LABEL, TWINS, UNITS_NOTE, finite, fmt, fmt_percent, fmt_pm,
+                   lookup, number, present, read_json, read_table, to_float)
+from .document import Document, write_documents
+from .figures import COLOUR, LINESTYLE, colour_bar, edges, nice_arrow, plain_log_ticks, \
+    save_figure
+
+# A difference counts as "within noise" when it exceeds the noise by at most this many standard
+# errors (stated in every report that uses it).
+WITHIN_NOISE_STDERRS = 2.0
+
+
+def calibration_text(metrics):
+    """How the calibrated twin's walls were set (compare/metrics.json), for captions (only
+    asked when there is a calibrated twin)."""
+    return lookup(metrics, "twins", "calibrated", "calibration") or \
+        "walls at the fluid's wall temperatures"
+
+
+def heat_flow_optional(particle):
+    """Whether the Nusselt keys may be absent: the compare stage writes them only for a scene
+    with a heated direction (metrics.json particle.nusselt is there)."""
+    return lookup(particle, "nusselt", optional=True) is None
+
+
+class RunGeometry:
+    """What the figures need of the scene: box, walled directions, heated and vertical axes."""
+
+    def __init__(self, metrics, particle_summary, nominal_summary, bins):
+        parameters = lookup(particle_summary, "parameters") or \
+            lookup(nominal_summary, "case_parameters") or {}
+
+        def parameter(key, default):
+            value = lookup(parameters, key)
+            return default if value is None else value
+
+        counts = lookup(metrics, "bins") or []
+        self.dim = len(counts) or int(to_float(parameter("Scene/Dimension", "2")) or 2)
+        box = [to_float(v) for v in str(parameter("Scene/Box size", "")).split(",")]
+        if len(box) != self.dim or not all(math.isfinite(v) for v in box):
+            box = self._box_from_bins(bins)
+        self.box = box
+        self.walled = [parameter(f"Scene/{AXES[d]} boundaries/Type", "") == "walls"
+                       for d in range(self.dim)]
+        # Heated direction: the one whose two walls' temperatures differ (metrics.json), else
+        # the continuum's, else x.
+        self.heated = None
+        jumps = lookup(metrics, "particle", "wall_temperature_jumps") or {}
+        for d in range(self.dim):
+            # Only thermal walls have a jump.
+            lower = number(lookup(jumps, f"{AXES[d]}_lower", optional=True), "wall_temperature")
+            upper = number(lookup(jumps, f"{AXES[d]}_upper", optional=True), "wall_temperature")
+            if finite(lower) and finite(upper) and lower != upper:
+                self.heated = d
+                break
+        if self.heated is None:
+            d = number(nominal_summary, "dimensionless", "heated_direction")
+            self.heated = int(d) if finite(d) and 0 <= d < self.dim else 0
+        gravity = [to_float(v) for v in str(parameter("Scene/Gravity", "")).split(",")]
+        self.vertical = None
+        if len(gravity) == self.dim and any(finite(g) and g != 0 for g in gravity):
+            self.vertical = max(range(self.dim), key=lambda d: abs(gravity[d]))
+        if self.vertical is None or self.vertical == self.heated:
+            self.vertical = next(d for d in range(self.dim) if d != self.heated)
+
+    def _box_from_bins(self, bins):
+        box = []
+        for d in range(self.dim):
+            centres = sorted({to_float(lookup(r, AXES[d])) for r in (bins.rows if bins else [])})
+            if len(centres) >= 2:
+                box.append(centres[-1] + 0.5 * (centres[1] - centres[0]))
+            elif centres:
+                box.append(2 * centres[0])
+            else:
+                box.append(math.nan)
+        return box
+
+    def plane(self):
+        """The two axes shown in a field map (horizontal, vertical) and the cut axis (3D)."""
+        if self.dim == 2:
+            return 0, 1, None
+        a, b = self.heated, self.vertical
+        cut = next(d for d in range(3) if d not in (a, b))
+        return a, b, cut
+
+
+def bin_plane(bins, geometry):
+    """The bins of the plane shown: centres along both axes, row lookup, and the cut's text."""
+    import numpy as np
+    a, b, cut = geometry.plane()
+    rows = bins.rows
+    cut_text, layer = "", None
+    if cut is not None:
+        cut_values = sorted({to_float(lookup(r, AXES[cut])) for r in rows})
+        layer = cut_values[len(cut_values) // 2]
+        rows = [r for r in rows if to_float(lookup(r, AXES[cut])) == layer]
+        where = ("the middle layer" if len(cut_values) % 2 else
+                 "the first layer above the mid-plane")
+        cut_text = (f"the bin layer at {AXES[cut]} = {fmt(layer)} rc (layer "
+                    f"{len(cut_values) // 2 + 1} of {len(cut_values)}, {where})")
+    xs = np.array(sorted({to_float(lookup(r, AXES[a])) for r in rows}))
+    ys = np.array(sorted({to_float(lookup(r, AXES[b])) for r in rows}))
+    index = {(to_float(lookup(r, AXES[a])), to_float(lookup(r, AXES[b]))): r for r in rows}
+
+    def grid(column, optional=True):
+        """A (len(ys), len(xs)) array of the column, NaN where absent."""
+        out = np.full((len(ys), len(xs)), np.nan)
+        if not bins.has(column, optional=optional):
+            return out
+        for j, y in enumerate(ys):
+            for i, x in enumerate(xs):
+                r = index.get((x, y))
+                if r is not None:
+                    out[j, i] = to_float(lookup(r, column))
+        return out
+
+    return a, b, xs, ys, grid, cut_text, layer
+
+
+# The field maps: temperature (fields.png) and, beside a low-Mach twin, number density
+# (density.png); bins.csv columns <prefix>_particle and <prefix>_<twin>.
+FIELD_MAPS = {
+    "temperature": {"prefix": "T", "symbol": "T", "unit": "T0", "cmap": "plasma",
+                    "particle": "particle (DPDE), T_kinetic", "twin": ", T",
+                    "file": "fields.png"},
+    "density": {"prefix": "density", "symbol": "n", "unit": "rc^-d", "cmap": "viridis",
+                "particle": "particle (DPDE), n", "twin": ", n(P, T)", "file": "density.png"},
+}
+
+
+def figure_fields(out_dir, bins, geometry, twins, metrics, field="temperature"):
+    import numpy as np
+    import matplotlib.pyplot as plt
+    from matplotlib.patches import Rectangle
+
+    spec = FIELD_MAPS[field]
+    prefix, symbol = spec["prefix"], spec["symbol"]
+    a, b, xs, ys, grid, cut_text, layer = bin_plane(bins, geometry)
+    cut = geometry.plane()[2]
+    ex, ey = edges(xs), edges(ys)
+    va, vb = f"v{AXES[a]}", f"v{AXES[b]}"
+    # Every twin has a temperature column; only a low-Mach twin has a density one.
+    sources = [("particle", spec["particle"])] + \
+        [(t, TWIN_LABEL[t] + spec["twin"]) for t in twins
+         if bins.has(f"{prefix}_{t}", optional=field == "density")]
+    maps = {name: grid(f"{prefix}_{name}", optional=False) for name, _ in sources}
+    # The difference map against the calibrated twin when there is one, else the nominal.
+    reference = next((t for t in ("calibrated", "nominal") if t in maps), None)
+    t_low = min(np.nanmin(m) for m in maps.values())
+    t_high = max(np.nanmax(m) for m in maps.values())
+    interior = grid("interior", optional=False)
+    # One arrow scale for every map: the largest bin speed spans ~0.9 of a bin.
+    speeds = [np.hypot(grid(f"{va}_{n}"), grid(f"{vb}_{n}")) for n, _ in sources]
+    v_max = max((np.nanmax(s) for s in speeds if np.isfinite(s).any()), default=math.nan)
+    spacing = min(ex[1] - ex[0], ey[1] - ey[0])
+    arrow_scale = v_max / (0.9 * spacing) if finite(v_max) and v_max > 0 else None
+
+    panels = len(sources) + (1 if reference else 0)
+    columns = 2 if panels == 4 else panels
+    rows = math.ceil(panels / columns)
+    aspect = (ey[-1] - ey[0]) / (ex[-1] - ex[0])
+    fig, axes = plt.subplots(rows, columns, figsize=(4.8 * columns, rows * (3.5 * aspect + 0.8)),
+                             squeeze=False, layout="constrained")
+    # Room for the inset colour bars' labels, which the layout engine does not see.
+    fig.get_layout_engine().set(wspace=0.18, hspace=0.06)
+    axes = axes.ravel()
+
+    def decorate(ax):
+        ax.set_aspect("equal")
+        ax.set_xlim(ex[0], ex[-1])
+        ax.set_ylim(ey[0], ey[-1])
+        ax.set_xlabel(f"{AXES[a]} [rc]")
+        ax.set_ylabel(f"{AXES[b]} [rc]")
+        # The wall layer left out of the distances: hatched.
+        for j in range(len(ys)):
+            for i in range(len(xs)):
+                if interior[j, i] == 0:
+                    ax.add_patch(Rectangle((ex[i], ey[j]), ex[i + 1] - ex[i], ey[j + 1] - ey[j],
+                                           fill=False, hatch="///", edgecolor=(0.6, 0.6, 0.6, 0.8),
+                                           linewidth=0))
+
+    for ax, (name, title) in zip(axes, sources):
+        image = ax.pcolormesh(ex, ey, maps[name], cmap=spec["cmap"], vmin=t_low, vmax=t_high)
+        colour_bar(fig, ax, image, f"{symbol} [{spec['unit']}]")
+        u, v = grid(f"{va}_{name}"), grid(f"{vb}_{name}")
+        if arrow_scale and np.isfinite(u).any():
+            X, Y = np.meshgrid(xs, ys)
+            arrows = ax.quiver(X, Y, u, v, color="white", scale=arrow_scale, scale_units="xy",
+                               angles="xy", width=0.006, headwidth=4)
+            if name == "particle":
+                key = nice_arrow(0.5 * v_max)
+                ax.quiverkey(arrows, 0.78, 1.035, key, f"{fmt(key, 2)} rc/tau", labelpos="E",
+                             coordinates="axes", color="black", fontproperties={"size": 8})
+        decorate(ax)
+        ax.set_title(title, loc="left", fontsize=10)
+
+    for ax in axes[panels:]:
+        ax.set_visible(False)
+    if reference is None:
+        save_figure(fig, out_dir, spec["file"])
+        return None, cut_text
+    ax = axes[len(sources)]
+    difference = maps["particle"] - maps[reference]
+    limit = np.nanmax(np.abs(difference))
+    limit = limit if finite(limit) and limit > 0 else 1.0
+    image = ax.pcolormesh(ex, ey, difference, cmap="RdBu_r", vmin=-limit, vmax=limit)
+    colour_bar(fig, ax, image, f"{symbol}_particle − {symbol}_{reference} [{spec['unit']}]")
+    decorate(ax)
+    # Where the compare stage found the largest interior difference.
+    at = lookup(metrics, "twins", reference, field, "max_at") or []
+    if len(at) >= geometry.dim and (cut is None or at[cut] == layer):
+        ax.plot([at[a]], [at[b]], "x", color="black", ms=10, mew=2)
+    ax.set_title(f"particle − {TWIN_LABEL[reference]}", loc="left", fontsize=10)
+    save_figure(fig, out_dir, spec["file"])
+    return reference, cut_text
+
+
+def figure_profiles(out_dir, profiles, geometry, metrics, twins, excluded):
+    import matplotlib.pyplot as plt
+
+    h, g = geometry.heated, geometry.vertical
+    H, G = AXES[h], AXES[g]
+    along = {d: [r for r in profiles.rows if lookup(r, "direction") == AXES[d]]
+             for d in range(geometry.dim)}
+    panels = [(h, "T", "T", f"T along {H} at mid-{G}", "T [T0]")]
+    if profiles.has(f"v{G}_particle"):
+        panels.append((h, f"v{G}", f"v{G}", f"vertical velocity v{G} along {H} at mid-{G}",
+                       f"v{G} [rc/tau]"))
+    if profiles.has(f"v{H}_particle"):
+        panels.append((g, f"v{H}", f"v{H}", f"horizontal velocity v{H} along {G} at mid-{H}",
+                       f"v{H} [rc/tau]"))
+    fig, axes = plt.subplots(1, len(panels), figsize=(5.2 * len(panels), 4.3), squeeze=False,
+                             layout="constrained")
+    for ax, (direction, quantity, _, title, ylabel) in zip(axes[0], panels):
+        rows = along[direction]
+        coordinate = profiles.numbers("coordinate", rows)
+        ax.errorbar(coordinate, profiles.numbers(f"{quantity}_particle", rows),
+                    yerr=profiles.numbers(f"{quantity}_particle_se", rows), fmt="o", ms=4,
+                    capsize=2.5, color=COLOUR["particle"], label="particle ± stderr", zorder=3)
+        for twin in twins:
+            if profiles.has(f"{quantity}_{twin}", optional=quantity != "T"):
+                ax.plot(coordinate, profiles.numbers(f"{quantity}_{twin}", rows),
+                        LINESTYLE[twin], marker=".", color=COLOUR[twin], label=TWIN_LABEL[twin])
+        length = geometry.box[direction]
+        if geometry.walled[direction] and finite(excluded) and finite(length):
+            ax.axvspan(0, excluded, color="0.88", zorder=0, label="wall layer (excluded)")
+            ax.axvspan(length - excluded, length, color="0.88", zorder=0)
+        if quantity == "T":
+            wall_points(ax, metrics, direction, length)
+        if quantity != "T":
+            ax.axhline(0, color="0.6", lw=0.7, zorder=1)
+        if finite(length):
+            ax.set_xlim(0, length)
+        ax.set_xlabel(f"{AXES[direction]} [rc]")
+        ax.set_ylabel(ylabel)
+        ax.set_title(title, fontsize=10)
+        ax.grid(alpha=0.3)
+    # One legend: the same entries hold for every panel.
+    axes[0][0].legend(fontsize=8, loc="best")
+    save_figure(fig, out_dir, "profiles.png")
+    return [p[3] for p in panels]
+
+
+def wall_layer_table(doc, particle_summary, calibrated_summary):
+    """Each wall's measured layer and the conditions the calibrated twin took from it."""
+    # A scene without walls has none; a wall has a layer when the particle stage measured one
+    # (effective_position); friction only a no-slip wall; a twin's wall a slip length or a
+    # Kapitza conductance only when the calibration gave it one.
+    walls = lookup(lookup(particle_summary, "results"), "walls", optional=True) or {}
+    if not any(present(w, "effective_position") for w in walls.values()):
+        return
+    twin_walls = {}  # "x_lower" -> the calibrated twin's boundary entry
+    for entry in lookup(calibrated_summary, "continuum_parameters", "boundaries") or []:
+        for side in ("lower", "upper"):  # a periodic direction has neither
+            if isinstance(lookup(entry, side, optional=True), dict):
+                twin_walls[f"{lookup(entry, 'direction')}_{side}"] = lookup(entry, side)
+    rows = []
+    for name, w in walls.items():
+        if not present(w, "effective_position"):
+            continue
+        twin = twin_walls.get(name, {})
+        rows.append([name, fmt_pm(lookup(w, "effective_position"),
+                                  lookup(w, "effective_position_stderr")),
+                     fmt_pm(lookup(w, "friction_per_area"), lookup(w, "friction_per_area_stderr"))
+                     if present(w, "friction_per_area") else "(free slip)",
+                     fmt(lookup(twin, "slip_length")) if present(twin, "slip_length") else "none",
+                     fmt(lookup(twin, "kapitza_conductance"))
+                     if present(twin, "kapitza_conductance") else "none"])
+    doc.heading("The walls' layers and what the calibrated twin takes from them", 3)
+    doc.table(["wall", "effective position (Gibbs depth, rc)", "friction per area zeta",
+               "calibrated twin: Navier slip b (rc)", "calibrated twin: Kapitza h_K"], rows)
+    doc.paragraph("From particle/wall_layers.csv (report/wall_layers.png): the Gibbs depth is "
+                  "where a step profile with the layer's particle count would start; zeta the "
+                  "no-slip wall's tangential friction per area and slip velocity, so b = eta / "
+                  "zeta less the depth at which it acts (Compare/Wall slip). Compare/Effective "
+                  "walls moves the twin's walls to the Gibbs depths.")
+
+
+def figure_wall_layers(out_dir, layers, particle_summary):
+    """Density, temperature and tangential velocity against the distance from each wall."""
+    import matplotlib.pyplot as plt
+
+    walls = list(dict.fromkeys(lookup(r, "wall") for r in layers.rows))
+    fig, axes = plt.subplots(1, 3, figsize=(15, 4.2), layout="constrained")
+    for k, wall in enumerate(walls):
+        rows = [r for r in layers.rows if lookup(r, "wall") == wall]
+        h = layers.numbers("h", rows)
+        colour = f"C{k}"
+        # The velocity along the wall: the first axis other than the wall's own.
+        along = next((a for a in "xyz" if a != wall[0] and layers.has(f"v{a}")), None)
+        for ax, column in zip(axes, ["density", "T_kinetic", f"v{along}" if along else None]):
+            if column is None or not layers.has(column, optional=column == f"v{along}"):
+                continue
+            ax.errorbar(h, layers.numbers(column, rows), yerr=layers.numbers(column + "_se", rows),
+                        fmt=".-", ms=3, lw=0.8, capsize=1.5, color=colour,
+                        label=f"{wall} ({column})" if ax is axes[2] else wall)
+        depth = number(particle_summary, "results", "walls", wall, "effective_position")
+        if finite(depth):
+            for ax in axes:
+                ax.axvline(depth, color=colour, ls="--", lw=0.8)
+    for ax, label in zip(axes, ["number density [rc^-d]", "T_kinetic [T0]",
+                                "velocity along the wall [rc/tau]"]):
+        ax.set_xlabel("distance from the wall plane h [rc]")
+        ax.set_ylabel(label)
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=8)
+    axes[2].axhline(0, color="0.6", lw=0.7)
+    save_figure(fig, out_dir, "wall_layers.png")
+
+
+def wall_points(ax, metrics, direction, length):
+    """The walls' own temperatures and the particle fluid's extrapolated temperature there."""
+    jumps = lookup(metrics, "particle", "wall_temperature_jumps") or {}
+    first = True
+    for side, position in (("lower", 0.0), ("upper", length)):
+        jump = lookup(jumps, f"{AXES[direction]}_{side}", optional=True)  # thermal walls only
+        if not jump or not finite(position):
+            continue
+        ax.plot([position], [number(jump, "wall_temperature")], "s", ms=7, mfc="none",
+                mec="black", mew=1.5, clip_on=False, zorder=4,
+                label="wall temperature" if first else None)
+        ax.errorbar([position], [number(jump, "fluid_temperature_at_wall")],
+                    yerr=[number(jump, "fluid_temperature_at_wall_stderr")], fmt="D", ms=5,
+                    color=COLOUR["particle"], mfc="white", clip_on=False, zorder=4,
+                    label="particle fluid at the wall (extrapolated)" if first else None)
+        first = False
+
+
+def figure_error_vs_time(out_dir, series, metrics, twins):
+    import matplotlib.pyplot as plt
+
+    fields = [("temperature", "temperature_noise", "temperature L2 / dT")]
+    if any(series.has(f"velocity_l2_{t}") for t in twins):
+        fields.append(("velocity", "velocity_noise", "velocity L2 / U"))
+    seconds = series.numbers("wall_seconds")
+    fig, axes = plt.subplots(1, len(fields), figsize=(5.6 * len(fields), 4.4), squeeze=False,
+                             layout="constrained")
+    for ax, (field, noise_column, ylabel) in zip(axes[0], fields):
+        for twin in twins:
+            column = f"{field}_l2_{twin}"
+            if not series.has(column, optional=field != "temperature"):
+                continue
+            ax.errorbar(seconds, series.numbers(column), yerr=series.numbers(column + "_stderr"),
+                        fmt="o" + LINESTYLE[twin], ms=4, capsize=2.5, color=COLOUR[twin],
+                        label=f"L2, {TWIN_LABEL[twin]}")
+            floor = number(metrics, "twins", twin, field, "excess_over_noise")
+            if finite(floor) and floor > 0:
+                ax.axhline(floor, color=COLOUR[twin], ls=":", lw=1.3,
+                           label=f"floor (final excess over noise), {twin}: {fmt(floor, 3)}")
+        if series.has(noise_column, optional=False):
+            noise = series.numbers(noise_column)
+            ax.plot(seconds, noise, "-", color=COLOUR["noise"], lw=1.6,
+                    label="noise (identical twins would show this)")
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_xlabel("particle run wall-clock time [s]")
+        ax.set_ylabel(ylabel)
+        ax.set_title(f"{field}: distance of the cumulative particle average to the twins",
+                     fontsize=10)
+        ax.grid(alpha=0.3, which="both")
+        plain_log_ticks(ax)
+        ax.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.16), ncol=2)
+    save_figure(fig, out_dir, "error_vs_time.png")
+    return [f[0] for f in fields]
+
+
+def within_noise_sentence(name, distance):
+    l2, se, noise = (number(distance, k) for k in ("l2", "l2_stderr", "noise"))
+    if not (finite(l2) and finite(noise)):
+        return f"{name}: no L2 in metrics.json."
+    head = f"{name}: L2 = {fmt_pm(l2, se)} against a noise of {fmt(noise, 3)}"
+    if finite(se) and se > 0:
+        over = (l2 - noise) / se
+        verdict = ("within noise" if over <= WITHIN_NOISE_STDERRS else
+                   "not within noise: a difference between the twins")
+        side = "above" if over >= 0 else "below"
+        return f"{head}, {fmt(abs(over), 3)} standard errors {side} it — {verdict}."
+    return head + (" — within noise." if l2 <= noise else
+                   " — above the noise (no standard error).")
+
+
+def nusselt_sentence(twin, twin_metrics, particle, optional=False):
+    """optional: the scene may have no heated direction (then no Nusselt keys)."""
+    difference = number(twin_metrics, "nusselt_particle_minus_twin", optional=optional)
+    se = number(particle, "nusselt_stderr", optional=optional)
+    twin_se = number(twin_metrics, "nusselt_stderr_from_coefficients", optional=optional)
+    if not finite(difference):
+        return None
+    text = (f"Nusselt number, {TWIN_LABEL[twin]}: particle − twin = {fmt(difference)}"
+            f" ({fmt_percent(number(twin_metrics, 'nusselt_relative_difference'))} of the twin's)")
+    if finite(twin_se) and finite(se):
+        # The twin's error: its heat flux's response to the measured coefficients' errors (and
+        # the Kapitza twin's to its conductances').
+        both = math.hypot(se, twin_se)
+        over = abs(difference) / both
+        verdict = "within the errors" if over <= WITHIN_NOISE_STDERRS else "not within the errors"
+        return text + (f", {fmt(over, 3)} combined standard errors (particle {fmt(se, 2)}, twin "
+                       f"{fmt(twin_se, 2)} from its measured inputs) — {verdict}.")
+    if finite(se) and se > 0:
+        over = abs(difference) / se
+        verdict = "within noise" if over <= WITHIN_NOISE_STDERRS else "not within noise"
+        return text + f", {fmt(over, 3)} particle standard errors — {verdict}."
+    return text + "."
+
+
+def steady_verdict(imbalance_over_stderr):
+    # In a steady state the two walls carry the same heat flow.
+    if not finite(imbalance_over_stderr):
+        return "no error estimate."
+    if abs(imbalance_over_stderr) <= WITHIN_NOISE_STDERRS:
+        return "the same flow within errors, as in a steady state."
+    return (f"more than {fmt(WITHIN_NOISE_STDERRS, 2)} standard errors apart, so not a steady "
+            "state within errors (the fluid still heating or cooling).")
+
+
+def report_run(run_dir, out_dir):
+    compare_dir = os.path.join(run_dir, "compare")
+    metrics = read_json(os.path.join(compare_dir, "metrics.json"))
+    bins = read_table(os.path.join(compare_dir, "bins.csv"))
+    profiles = read_table(os.path.join(compare_dir, "profiles.csv"))
+    series = read_table(os.path.join(compare_dir, "error_vs_time.csv"))
+    particle_summary = read_json(os.path.join(run_dir, "particle", "summary.json"))
+    # Every run has a nominal twin; a calibrated one only where the scene has thermal walls.
+    twins = [t for t in TWINS
+             if isinstance(lookup(metrics, "twins", t, optional=t == "calibrated"), dict)]
+    summaries = {"nominal": read_json(os.path.join(run_dir, "continuum", "summary.json")),
+                 "calibrated": read_json(os.path.join(run_dir, "continuum_calibrated",
+                                                      "summary.json"),
+                                         optional="calibrated" not in twins)}
+    particle = lookup(metrics, "particle") or {}
+    # What the compare stage writes for some scenes only: velocity distances with a positive
+    # velocity scale (a flow to compare), density distances beside a low-Mach twin, Nusselt
+    # numbers with a heated direction.
+    optional_field = {"temperature": False, "velocity": not number(metrics, "velocity_scale") > 0,
+                      "density": True}
+    nu_optional = heat_flow_optional(particle)
+
+    def twin_number(t, key):
+        """A Nusselt number of metrics.json's twin t."""
+        return number(metrics, "twins", t, key, optional=nu_optional)
+
+    geometry = RunGeometry(metrics, particle_summary, summaries["nominal"], bins)
+    case = lookup(metrics, "case") or lookup(particle_summary, "case") or os.path.basename(
+        os.path.abspath(run_dir))
+    excluded = number(metrics, "wall_layer_excluded")
+    doc = Document(f"Twin comparison: {case}")
+    doc.paragraph(f"Run directory: {os.path.abspath(run_dir)}. Twins compared: "
+                  + (", ".join(TWIN_LABEL[t] for t in twins) or "none") + ". " + UNITS_NOTE + ".")
+
+    # Dimensionless numbers, each from the stage that states it.
+    # The particle stage's estimates need gravity and a heated direction; the measured Mach
+    # number a flow.
+    convection = lookup(lookup(particle_summary, "results"), "convection", optional=True)
+    rows = []
+    if convection:
+        rows.append(["particle (estimate, particle/summary.json)",
+                     fmt(number(convection, "rayleigh")), fmt(number(convection, "prandtl")),
+                     fmt(number(convection, "mach_measured", optional=True), 3),
+                     fmt(number(convection, "delta_T_over_T"), 3), "–"])
+    for twin in TWINS:
+        d = lookup(summaries[twin], "dimensionless")
+        if d:
+            stage = "continuum_calibrated" if twin == "calibrated" else "continuum"
+            rows.append([f"{TWIN_LABEL[twin]} ({stage}/summary.json)",
+                         fmt(number(d, "rayleigh")), fmt(number(d, "prandtl")),
+                         "–", "–", fmt(number(d, "epsilon"), 3)])
+    if rows:
+        doc.heading("Dimensionless numbers")
+        doc.table(["source", "Ra", "Pr", "Mach (measured)", "dT/T", "epsilon"], rows)
+        note = lookup(convection, "note")
+        if note:
+            doc.paragraph(f"The particle stage's numbers: {note}.")
+
+    doc.heading("What was compared")
+    counts = lookup(metrics, "bins") or []
+    doc.bullets([
+        f"Bins: {' × '.join(str(int(c)) for c in counts)}; interior bins (counted in the "
+        f"distances): {fmt(number(metrics, 'interior_bins'))}.",
+        f"Wall layer: requested {fmt(number(metrics, 'wall_layer'))} rc; excluded thickness "
+        f"{fmt(excluded)} rc (whole bins) at every wall.",
+        f"Temperature scale dT = {fmt(number(metrics, 'temperature_scale'))} T0; velocity scale "
+        f"U = {fmt(number(metrics, 'velocity_scale'))} rc/tau (the nominal twin's largest speed). "
+        "L2 and max distances below are in these units.",
+        f"Fields: {lookup(metrics, 'temperature_field') or 'temperature'}.",
+    ] + ([f"Density scale n0 = {fmt(number(metrics, 'density_scale'))} rc^-d (the mean number "
+          "density), for the low-Mach twin's n(P, T) against the particles' bin density."]
+         if any(lookup(metrics, "twins", t, "density", optional=True) for t in twins) else []))
+
+    # The metrics, one column per twin.
+    table_rows = []
+    if twins:
+        doc.heading("Distances between the twins")
+
+        def row(label, values):
+            table_rows.append([label] + values)
+
+        for field, scale in (("temperature", "dT"), ("velocity", "U"), ("density", "n0")):
+            d = {t: lookup(metrics, "twins", t, field, optional=optional_field[field])
+                 for t in twins}
+            if not any(d.values()):
+                continue
+            row(f"{field} L2 / {scale}",
+                [fmt_pm(number(d[t], "l2"), number(d[t], "l2_stderr")) for t in twins])
+            row(f"{field} noise / {scale}", [fmt(number(d[t], "noise")) for t in twins])
+            row(f"{field} excess over noise / {scale}",
+                [fmt(number(d[t], "excess_over_noise")) for t in twins])
+            row(f"{field} max / {scale} (at the bin centre [rc])",
+                [f"{fmt_pm(number(d[t], 'max'), number(d[t], 'max_stderr'))} at "
+                 f"({', '.join(fmt(v, 3) for v in (lookup(d[t], 'max_at') or [])[:geometry.dim])})"
+                 for t in twins])
+        row("Nu particle ± stderr",
+            [fmt_pm(number(particle, "nusselt", optional=nu_optional),
+                    number(particle, "nusselt_stderr", optional=nu_optional))] * len(twins))
+        row("Nu twin ± stderr from its measured coefficients and Kapitza conductances (heat "
+            "flux / the nominal conduction flux, as the particle's)",
+            [fmt_pm(twin_number(t, "nusselt"), twin_number(t, "nusselt_stderr_from_coefficients"))
+             for t in twins])
+        row("Nu twin (its own dT)", [fmt(twin_number(t, "nusselt_own")) for t in twins])
+        row("Nu particle − twin",
+            [fmt(twin_number(t, "nusselt_particle_minus_twin")) for t in twins])
+        row("Nu relative difference",
+            [fmt_percent(twin_number(t, "nusselt_relative_difference")) for t in twins])
+        row("Ra of the twin", [fmt(number(metrics, "twins", t, "rayleigh")) for t in twins])
+        doc.table(["quantity"] + [TWIN_LABEL[t] for t in twins], table_rows)
+        sentences = []
+        for t in twins:
+            for field in ("temperature", "velocity", "density"):
+                distance = lookup(metrics, "twins", t, field, optional=optional_field[field])
+                if distance:
+                    sentences.append(within_noise_sentence(f"{field}, {TWIN_LABEL[t]}", distance))
+            s = nusselt_sentence(t, lookup(metrics, "twins", t), particle, optional=nu_optional)
+            if s:
+                sentences.append(s)
+        stratification = number(convection, "stratification_g_H_over_c2")
+        if any(lookup(metrics, "twins", t, "density", optional=True) for t in twins) and \
+                finite(stratification):
+            # n ~ exp(-m g z / kT): across the height a linear profile of relative slope
+            # g H / c^2, whose rms over the box is that / sqrt(12). The low-Mach twin's
+            # thermodynamic pressure is uniform: it has no hydrostatic stratification.
+            sentences.append(
+                f"density: the particle fluid is stratified by gravity (g H / c^2 = "
+                f"{fmt(stratification, 3)}: n ~ exp(−m g z / kT)), which the low-Mach twin "
+                "leaves out (its thermodynamic pressure is uniform); that alone makes an rms "
+                f"density difference of ~{fmt(stratification / math.sqrt(12), 2)} n0.")
+        bound = fmt(WITHIN_NOISE_STDERRS, 2)
+        doc.paragraph(f"Within noise? A difference counts as within noise when the L2 exceeds the "
+                      f"noise by at most {bound} of its standard errors (for Nu: when "
+                      f"|Nu particle − Nu twin| is at most {bound} "
+                      "standard errors: the particle's, combined with the twin's where its "
+                      "coefficients were measured).")
+        doc.bullets(sentences)
+
+    if finite(number(particle, "nusselt", optional=True)):
+        doc.heading("Particle heat flow")
+        doc.bullets([
+            f"Nu = {fmt_pm(number(particle, 'nusselt'), number(particle, 'nusselt_stderr'))} "
+            "(mean of the two walls; heat flux "
+            f"{fmt_pm(number(particle, 'heat_flux'), number(particle, 'heat_flux_stderr'))} "
+            "k T0 / (rc^(d-1) tau)).",
+            f"hot wall Nu = {fmt(number(particle, 'nusselt_hot_wall'))}, cold wall Nu = "
+            f"{fmt(number(particle, 'nusselt_cold_wall'))}: they differ by "
+            f"{fmt(number(particle, 'wall_imbalance_over_stderr'), 3)} standard errors: "
+            + steady_verdict(number(particle, "wall_imbalance_over_stderr")),
+        ])
+
+    jumps = lookup(particle, "wall_temperature_jumps") or {}
+    if jumps:
+        doc.heading("Wall temperature jumps (particle)")
+        calibrated_parameters = lookup(summaries["calibrated"], "case_parameters")
+        rows = []
+        for wall, j in jumps.items():
+            axis, side = wall.split("_", 1) if "_" in wall else (wall, "")
+            calibrated_wall = lookup(
+                calibrated_parameters,
+                f"Scene/{axis} boundaries/{side.capitalize()} wall temperature")
+            rows.append([wall, fmt(number(j, "wall_temperature")),
+                         fmt_pm(number(j, "fluid_temperature_at_wall"),
+                                number(j, "fluid_temperature_at_wall_stderr")),
+                         fmt(number(j, "jump")), fmt(number(j, "extrapolated_from_distance")),
+                         fmt(to_float(calibrated_wall)) if calibrated_wall else "–"])
+        doc.table(["wall", "wall T [T0]", "fluid T at the wall [T0]", "jump = wall − fluid [T0]",
+                   "extrapolated from [rc]", "calibrated twin's wall T [T0]"], rows)
+        doc.paragraph("The fluid's temperature at a wall is extrapolated linearly from the first "
+                      "two bin layers beyond the wall layer (compare stage).")
+
+    if "nominal" in twins and "calibrated" in twins:
+        doc.heading("How much of the particle–continuum gap each correction explains")
+        gap_rows = []
+
+        def gap(label, nominal_value, calibrated_value):
+            if finite(nominal_value) and finite(calibrated_value):
+                explained = 1 - calibrated_value / nominal_value if nominal_value != 0 else math.nan
+                gap_rows.append([label, fmt(nominal_value), fmt(calibrated_value),
+                                 fmt_percent(explained)])
+
+        for field, scale in (("temperature", "dT"), ("velocity", "U"), ("density", "n0")):
+            distance = {t: lookup(metrics, "twins", t, field, optional=optional_field[field])
+                        for t in twins}
+            gap(f"{field} L2 / {scale}", number(distance["nominal"], "l2"),
+                number(distance["calibrated"], "l2"))
+            gap(f"{field} excess over noise / {scale}",
+                number(distance["nominal"], "excess_over_noise"),
+                number(distance["calibrated"], "excess_over_noise"))
+        gap("|Nu particle − Nu twin|", abs(twin_number("nominal", "nusselt_particle_minus_twin")),
+            abs(twin_number("calibrated", "nusselt_particle_minus_twin")))
+        doc.table(["gap", "nominal twin", f"calibrated twin ({calibration_text(metrics)})",
+                   "fraction explained = 1 − calibrated / nominal"], gap_rows)
+        differences = parameter_differences(summaries["nominal"], summaries["calibrated"])
+        if differences:
+            doc.paragraph("The calibrated twin's parameters that differ from the nominal twin's "
+                          "(continuum*/summary.json): " + "; ".join(
+                              f"{k}: {a} → {b}" for k, a, b in differences) +
+                          ". The fraction explained is the part of each gap that this change "
+                          "removes; a negative fraction means it made the gap larger.")
+    wall_layer_table(doc, particle_summary, summaries.get("calibrated"))
+
+    continuum_accuracy(doc, summaries, twins)
+
+    # Figures.
+    doc.heading("Figures")
+    if bins and bins.rows and bins.has("T_particle", optional=False):
+        reference, cut_text = figure_fields(out_dir, bins, geometry, twins, metrics)
+        where = f"; 3D: {cut_text}" if cut_text else ""
+        difference = (f", and particle − {TWIN_LABEL[reference]} on a diverging scale (×: the "
+                      "largest interior difference, metrics.json max_at)" if reference else "")
+        doc.figure("fields.png",
+                   "Bin-averaged temperature: particle (T_kinetic)"
+                   + "".join(", " + TWIN_LABEL[t] for t in twins) + " on one colour scale"
+                   + difference + ". Arrows: bin velocities (one scale for all maps, key on the "
+                   f"particle map). Hatched: the wall layer ({fmt(excluded)} rc) left out of the "
+                   f"distances{where}. {UNITS_NOTE}.")
+    if bins and bins.rows and any(bins.has(f"density_{t}") for t in twins):
+        reference, _ = figure_fields(out_dir, bins, geometry, twins, metrics, "density")
+        doc.figure("density.png",
+                   "Bin-averaged number density: particle and the low-Mach twin's n(P, T) "
+                   "(thermodynamic pressure P from the closed cavity's mass) on one colour scale"
+                   + (f", and particle − {TWIN_LABEL[reference]}" if reference else "")
+                   + f". Arrows and hatching as above. {UNITS_NOTE}.")
+    if profiles and profiles.rows:
+        titles = figure_profiles(out_dir, profiles, geometry, metrics, twins, excluded)
+        doc.figure("profiles.png",
+                   "Mid-line profiles (" + "; ".join(titles) + "), compare/profiles.csv ("
+                   + ("; ".join(profiles.comments) or "mid-line profiles") + "): particle "
+                   "bins with their block standard errors, the twins as lines; grey: the "
+                   "excluded wall layer; squares: the walls' temperatures; diamonds: the particle "
+                   f"fluid's temperature extrapolated to the wall. {UNITS_NOTE}.")
+    # Written by the particle stage for a scene with walls.
+    layers = read_table(os.path.join(run_dir, "particle", "wall_layers.csv"), optional=True)
+    if layers and layers.rows:
+        figure_wall_layers(out_dir, layers, particle_summary)
+        doc.figure("wall_layers.png",
+                   "The particle fluid in the layer at each wall (particle/wall_layers.csv, "
+                   "slices parallel to the wall, block standard errors): number density, kinetic "
+                   "temperature and the velocity along the wall against the distance h from the "
+                   "wall plane; dashed: each wall's effective position (the Gibbs depth of its "
+                   "density profile, where Compare/Effective walls puts the calibrated twin's "
+                   f"wall). {UNITS_NOTE}.")
+    if series and series.rows:
+        fields = figure_error_vs_time(out_dir, series, metrics, twins)
+        doc.figure("error_vs_time.png",
+                   "L2 distance of the cumulative particle average to each twin against the "
+                   "particle run's wall-clock time (log-log), with standard errors; solid grey: "
+                   "the noise (the L2 two identical twins would show through the particle's "
+                   "statistical error); dotted: the floor, the final excess over noise "
+                   "(metrics.json).")
+        floor_text(doc, series, metrics, twins, fields, particle, summaries)
+    write_documents(doc, out_dir)
+
+
+def continuum_accuracy(doc, summaries, twins):
+    """The twins' own errors beside the particle's: discretisation (Nu against mesh level; the
+    last change bounds the error of a converging sequence) and the measured coefficients'."""
+    rows = []
+    for twin in twins:
+        # A transient twin has no mesh study.
+        for level in lookup(lookup(summaries[twin], "results"), "mesh_study", optional=True) or []:
+            cells = "×".join(str(int(c)) for c in (lookup(level, "cells") or []))
+            change = number(level, "change_in_nusselt")
+            rows.append([TWIN_LABEL[twin], fmt(number(level, "level"), 2), cells,
+                         fmt(number(level, "nusselt"), 7),
+                         fmt(change, 2) if number(level, "level") > 0 else "–",
+                         fmt(number(level, "wall_time_s"), 3)])
+    if not rows:
+        return
+    doc.heading("The continuum twins' own errors")
+    doc.paragraph("Mesh study (continuum*/summary.json, results.mesh_study): each level halves the "
+                  "cells; the change in Nu from the level before bounds the discretisation error "
+                  "of the finest level when the changes fall geometrically.")
+    doc.table(["twin", "level", "cells", "Nu (own dT)", "change", "wall s"], rows)
+    sentences = []
+    for twin in twins:
+        # Only a steady twin with measured coefficients (or Kapitza errors) has one.
+        u = lookup(summaries[twin], "coefficient_uncertainty", optional=True)
+        if not u:
+            continue
+        names = ["conductivity", "viscosity"] + [f"kapitza_{a}_{s}" for a in "xyz"
+                                                 for s in ("lower", "upper")]
+        parts = [f"{name.replace('_', ' ')} "
+                 f"{fmt_pm(number(u, name, 'value'), number(u, name, 'stderr'))} moves the "
+                 f"heat flux by {fmt_percent(number(u, name, 'heat_flux_relative_change'))} per "
+                 "standard error" for name in names if lookup(u, name, optional=True)]
+        sentences.append(f"{TWIN_LABEL[twin]}: " + "; ".join(parts) + "; together ± "
+                         f"{fmt_percent(number(u, 'heat_flux_relative_stderr'))}.")
+    if sentences:
+        doc.paragraph("The measured coefficients' errors (transport stage, from the spread of "
+                      "repeated runs) and the Kapitza conductances' (from the particle walls' "
+                      "heat-flux and fluid-temperature errors), one more solve each:")
+        doc.bullets(sentences)
+
+
+def parameter_differences(nominal_summary, calibrated_summary):
+    """(key, nominal value, calibrated value) for every case parameter the twins differ in (keys
+    enumerated from the files, none named here: plain dict reads)."""
+    a = lookup(nominal_summary, "case_parameters") or {}
+    b = lookup(calibrated_summary, "case_parameters") or {}
+    return [(k, a.get(k, "–"), b.get(k, "–")) for k in sorted(set(a) | set(b))
+            if a.get(k) != b.get(k)]
+
+
+def floor_text(doc, series, metrics, twins, fields, particle, summaries):
+    import numpy as np
+    seconds = series.numbers("wall_seconds")
+    items = []
+    for field in fields:
+        noise = series.numbers(f"{field}_noise") if series.has(f"{field}_noise",
+                                                               optional=False) else None
+        if noise is not None and np.isfinite(noise).sum() >= 2:
+            items.append(f"{field} noise: {fmt(noise[0], 3)} at {fmt(seconds[0], 3)} s, "
+                         f"{fmt(noise[-1], 3)} at {fmt(seconds[-1], 3)} s.")
+        for twin in twins:
+            floor = number(metrics, "twins", twin, field, "excess_over_noise")
+            if finite(floor):
+                items.append(f"{field} floor, {TWIN_LABEL[twin]}: {fmt(floor, 3)} (final L2 "
+                             f"{fmt(number(metrics, 'twins', twin, field, 'l2'), 3)}).")
+    doc.paragraph("The floor. The noise falls as 1/√t with sampling time; what stays as it falls "
+                  "is the twins' physical difference, the excess over noise. Measured:")
+    doc.bullets(items)
+    # What sets the floor, in the numbers of this run.
+    causes = []
+    jumps = lookup(particle, "wall_temperature_jumps") or {}
+    scale = number(metrics, "temperature_scale")
+    nominal_range = (number(summaries["nominal"], "results", "temperature_min"),
+                     number(summaries["nominal"], "results", "temperature_max"))
+    if jumps:
+        causes.append("Wall temperature jumps of the particle fluid: " + "; ".join(
+            f"{wall}: {fmt(number(j, 'jump'), 3)} T0 "
+            f"({fmt_percent(number(j, 'jump') / scale)} of dT)"
+            for wall, j in jumps.items()) +
+            (f". The nominal twin's temperature spans {fmt(nominal_range[0], 3)} … "
+             f"{fmt(nominal_range[1], 3)} T0, the walls are at " +
+             ", ".join(fmt(number(j, "wall_temperature"), 3) for j in jumps.values()) +
+             " T0: the jumps are part of its floor." if all(finite(v) for v in nominal_range)
+             else "."))
+    if "nominal" in twins and "calibrated" in twins:
+        n_floor = number(metrics, "twins", "nominal", "temperature", "excess_over_noise")
+        c_floor = number(metrics, "twins", "calibrated", "temperature", "excess_over_noise")
+        if finite(n_floor) and finite(c_floor) and n_floor > 0:
+            causes.append(f"With {calibration_text(metrics)} (calibrated twin) the "
+                          f"temperature floor goes from {fmt(n_floor, 3)} to {fmt(c_floor, 3)} "
+                          f"({fmt_percent(c_floor / n_floor)} of the nominal twin's): the rest of "
+                          "the calibrated twin's floor is what that wall condition does not "
+                          "explain.")
+    for twin in twins:
+        rel = number(metrics, "twins", twin, "nusselt_relative_difference",
+                     optional=heat_flow_optional(particle))
+        if finite(rel):
+            causes.append(f"Heat flow: the particle's Nu differs from the {TWIN_LABEL[twin]}'s by "
+                          f"{fmt_percent(rel)} of the twin's.")
+    if causes:
+        doc.paragraph("What sets it, from this run's numbers:")
+        doc.bullets(causes)

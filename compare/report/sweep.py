@@ -1,0 +1,375 @@
+"""The report of a sweep directory (DIR/sweep.csv + DIR/sweep.json, written by `twinflow sweep`):
+the grid, Nusselt numbers, twin distances and cost against the varied key (or Ra), the Pareto
+front of error against cost, realisations over seeds, and the points not done."""
+
+import math
+import os
+
+from .data import (AXES, TWIN_LABEL, TWINS, UNITS_NOTE, Table, cell, finite, fmt, fmt_percent,
+                   fmt_pm, lookup, plain, read_json, slug, study_case_name, to_float, varied_keys,
+                   with_unit)
+from .document import Document, write_documents
+from .figures import COLOUR, Axis, plain_log_ticks, save_figure
+
+SWEEP_OWN_COLUMNS = ("target_rayleigh", "gravity", "wall_seconds")
+# de Vahl Davis (1983), Int. J. Numer. Meth. Fluids 3, 249: Boussinesq cavity, no-slip walls,
+# Pr = 0.71, mean Nusselt number.
+DE_VAHL_DAVIS_NUSSELT = ((1e3, 1.118), (1e4, 2.243), (1e5, 4.519), (1e6, 8.800))
+
+
+def metric(row, column):
+    """A cell of one of the points' metrics ("" when absent). sweep.csv always has its own
+    columns (point, status, reason, exit_code, the varied keys, target_rayleigh, gravity,
+    wall_seconds: read with cell()); the metrics (compare/metrics.json's table_row) only where
+    some point wrote them, none when every point failed: optional."""
+    return cell(row, column, optional=True)
+
+
+def walls_no_slip(grid):
+    """True / False from the base parameters' walled directions' Slip, None when not stated."""
+    parameters = lookup(grid, "base_parameters") or {}
+    answers = []
+    for axis in AXES:
+        if lookup(parameters, f"Scene/{axis} boundaries/Type") == "walls":
+            slip = lookup(parameters, f"Scene/{axis} boundaries/Slip")
+            if slip is not None:
+                answers.append(slip == "no-slip")
+    return all(answers) if answers else None
+
+
+def sweep_groups(rows, series_key, order):
+    """(label, rows) per value of the series key, in the grid's order (then first seen); one
+    group without a series key."""
+    if not series_key:
+        return [("", rows)]
+    labels = [v for v in order if any(cell(r, series_key) == v for r in rows)]
+    labels += [v for v in dict.fromkeys(cell(r, series_key) for r in rows) if v not in labels]
+    return [(f"{series_key} = {label}", [r for r in rows if cell(r, series_key) == label])
+            for label in labels]
+
+
+def source_style(index, label):
+    """Marker and line style of the index-th source; the noise is a plain dotted line."""
+    if label == "noise":
+        return "", ":"
+    markers = ["o", "s", "^", "v", "D", "P"]
+    styles = ["-", "--", "-.", (0, (5, 1)), (0, (3, 1, 1, 1)), (0, (1, 1))]
+    return markers[index % len(markers)], styles[index % len(styles)]
+
+
+def mark_not_done(ax, x_axis, x_column, rows):
+    """A red cross on the x axis at each point that did not finish (listed in the report)."""
+    from matplotlib.lines import Line2D
+    xs = [x_axis.position(cell(r, x_column)) for r in rows]
+    xs = [x for x in xs if finite(x) and (not x_axis.log or x > 0)]
+    if not xs:
+        return []
+    ax.plot(xs, [0.0] * len(xs), "x", color="#c0392b", ms=9, mew=2, clip_on=False, zorder=5,
+            transform=ax.get_xaxis_transform())
+    return [Line2D([], [], marker="x", ls="", color="#c0392b", ms=9, mew=2,
+                   label="point not done (see the report)")]
+
+
+def draw_sources(ax, table, groups, x_axis, x_column, sources):
+    """One line per (group, source): colour per source with one group, else per group (and a
+    line style / marker per source). Returns the legend handles."""
+    import numpy as np
+    from matplotlib.lines import Line2D
+    import matplotlib.pyplot as plt
+
+    cycle = plt.rcParams["axes.prop_cycle"].by_key()["color"]
+    handles = []
+    drawn = set()
+    for g, (group_label, rows) in enumerate(groups):
+        xs = np.array([x_axis.position(cell(r, x_column)) for r in rows], dtype=float)
+        order = np.argsort(xs, kind="stable")
+        for s, (label, column, error_column, colour) in enumerate(sources):
+            marker, style = source_style(s, label)
+            if not table.has(column):
+                continue
+            ys = table.numbers(column, rows)
+            errors = table.numbers(error_column, rows) if error_column and table.has(
+                error_column) else None
+            ok = np.isfinite(xs) & np.isfinite(ys)
+            if not ok[order].any():
+                continue
+            c = colour if len(groups) == 1 else cycle[g % len(cycle)]
+            idx = order[ok[order]]
+            ax.errorbar(xs[idx], ys[idx], yerr=None if errors is None else errors[idx],
+                        marker=marker, ls=style, color=c, ms=5, capsize=2.5,
+                        mfc="white" if s > 0 else c)
+            drawn.add(s)
+            if len(groups) == 1:
+                handles.append(Line2D([], [], color=c, marker=marker, ls=style, label=label,
+                                      mfc="white" if s > 0 else c))
+    if len(groups) > 1:
+        for s, (label, *_rest) in enumerate(sources):
+            if s in drawn:
+                marker, style = source_style(s, label)
+                handles.append(Line2D([], [], color="0.2", marker=marker, ls=style, label=label,
+                                      mfc="white" if s > 0 else "0.2"))
+        for g, (group_label, _) in enumerate(groups):
+            handles.append(Line2D([], [], color=cycle[g % len(cycle)], lw=4, label=group_label))
+    return handles
+
+
+def pareto_front(points):
+    """Indices of the points no other point beats in both cost and error (ties kept)."""
+    front = []
+    for i, (c, e) in enumerate(points):
+        if not any((c2 <= c and e2 <= e) and (c2 < c or e2 < e) for c2, e2 in points):
+            front.append(i)
+    return sorted(front, key=lambda i: points[i][0])
+
+
+def figure_pareto(out_dir, done, keys, doc):
+    """Error against cost over the sweep's points (integrator, dt, N, ...): which settings buy the
+    least error for their particle wall time. Error: temperature L2 to the calibrated twin (the
+    nominal twin's when there is none)."""
+    import matplotlib.pyplot as plt
+    twin = next((t for t in ("calibrated", "nominal") if any(
+        finite(to_float(metric(r, f"temperature_l2_{t}"))) for r in done)), None)
+    if twin is None:
+        return None
+    rows = [r for r in done if finite(to_float(metric(r, f"temperature_l2_{twin}")))
+            and finite(to_float(metric(r, "wall_seconds_particle")))]
+    if len(rows) < 2:
+        return None
+    points = [(to_float(metric(r, "wall_seconds_particle")),
+               to_float(metric(r, f"temperature_l2_{twin}"))) for r in rows]
+    front = pareto_front(points)
+    labels = [", ".join(f"{k.split('/')[-1]} {plain(cell(r, k))}" for k in keys) or plain(
+        cell(r, "point")) for r in rows]
+    fig, ax = plt.subplots(figsize=(7.6, 4.8), layout="constrained")
+    for i, ((c, e), r) in enumerate(zip(points, rows)):
+        se = to_float(metric(r, f"temperature_l2_{twin}_stderr"))
+        ax.errorbar([c], [e], yerr=[se] if finite(se) else None, fmt="o",
+                    color=COLOUR["calibrated" if i in front else "noise"], ms=6, capsize=2.5)
+        same = sum(1 for p in points[:i] if p == (c, e))  # stack the labels of equal points
+        ax.annotate(labels[i], (c, e), textcoords="offset points", xytext=(5, 4 - 9 * same),
+                    fontsize=7)
+    ax.step([points[i][0] for i in front], [points[i][1] for i in front], where="post",
+            color=COLOUR["calibrated"], lw=1.2, label="Pareto front")
+    noise = [to_float(metric(r, "temperature_l2_noise")) for r in rows]
+    ax.plot([p[0] for p in points], noise, "x", color=COLOUR["noise"], label="noise (each point)")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel("particle stage wall-clock time [s]")
+    ax.set_ylabel(f"temperature L2 / dT to the {TWIN_LABEL[twin]}")
+    ax.set_title("error against cost", fontsize=10)
+    ax.grid(alpha=0.3, which="both")
+    ax.legend(fontsize=8)
+    name = save_figure(fig, out_dir, "pareto.png")
+    doc.paragraph("Pareto front (no other point has both less particle wall time and a smaller "
+                  f"temperature L2 to the {TWIN_LABEL[twin]}): "
+                  + "; ".join(f"{labels[i]} ({fmt(points[i][0], 3)} s, L2 {fmt(points[i][1], 3)})"
+                              for i in front) + ".")
+    return (name, f"Temperature L2 to the {TWIN_LABEL[twin]} against the particle stage's wall "
+                  "time, one point per sweep point (labels: the varied keys); filled: on the "
+                  "Pareto front; crosses: each point's noise level, the floor no run length "
+                  "removes.")
+
+
+def realisations_section(doc, done):
+    """Points that differ only in the seed are realisations of one case: each point's Nu gap to
+    the calibrated twin against its allowance (both errors + 3%), and the mean gap with its
+    standard error from the spread between realisations."""
+    rows, relative = [], []
+    for r in done:
+        p = to_float(metric(r, "nusselt_particle"))
+        ps = to_float(metric(r, "nusselt_particle_stderr"))
+        c = to_float(metric(r, "nusselt_calibrated"))
+        cs = to_float(metric(r, "nusselt_calibrated_stderr"))
+        if not all(finite(v) for v in (p, ps, c)) or c == 0:
+            continue
+        cs = cs if finite(cs) else 0.0
+        allowance = ps + cs + 0.03 * abs(c)
+        relative.append(p / c - 1)
+        rows.append([plain(cell(r, "Particle/Seed")), fmt_pm(p, ps), fmt_pm(c, cs),
+                     fmt_percent(p / c - 1), fmt(allowance),
+                     "within" if abs(p - c) <= allowance else "out"])
+    if not rows:
+        return
+    doc.heading("Realisations: particle against the calibrated twin")
+    doc.table(["seed", "Nu particle", "Nu calibrated twin", "particle / twin - 1",
+               "allowance (errors + 3%)", "gap"], rows)
+    if len(relative) > 1:
+        mean = sum(relative) / len(relative)
+        se = math.sqrt(sum((x - mean) ** 2 for x in relative) / (len(relative) - 1) / len(relative))
+        doc.paragraph(f"Over {len(relative)} realisations: particle / twin - 1 = "
+                      f"{fmt_percent(mean)} ± {fmt_percent(se)} (standard error from the spread "
+                      "between the realisations, independent of the runs' own error bars).")
+
+
+def report_sweep(sweep_dir, out_dir):
+    import matplotlib.pyplot as plt
+
+    table = Table(os.path.join(sweep_dir, "sweep.csv"))
+    description = read_json(os.path.join(sweep_dir, "sweep.json")) or {}
+    grid = lookup(description, "grid") or {}
+    keys = varied_keys(table, SWEEP_OWN_COLUMNS) or list((lookup(grid, "vary") or {}).keys())
+    done = [r for r in table.rows if cell(r, "status") == "done"]
+    not_done = [r for r in table.rows if cell(r, "status") != "done"]
+    by_rayleigh = table.has("target_rayleigh", optional=False) and any(
+        finite(to_float(cell(r, "target_rayleigh"))) for r in table.rows)
+    if by_rayleigh:
+        # The continuum's Ra where it ran, else the target.
+        x_column = "rayleigh_axis"
+        for r in table.rows:
+            measured = to_float(metric(r, "rayleigh"))
+            r[x_column] = metric(r, "rayleigh") if finite(measured) else cell(r, "target_rayleigh")
+        x_label, x_name, series_key = "Rayleigh number Ra (nominal twin)", "rayleigh", (
+            keys[0] if keys else None)
+    elif keys:
+        x_column, x_label, x_name = keys[0], with_unit(keys[0]), slug(keys[0])
+        series_key = keys[1] if len(keys) > 1 else None
+    else:
+        x_column, x_label, x_name, series_key = "point", "point", "point", None
+    x_axis = Axis(x_column, [cell(r, x_column) for r in done] or [""])
+    if by_rayleigh:
+        x_axis.log = True
+    groups = sweep_groups(done, series_key,
+                          [str(v) for v in (lookup(grid, "vary", series_key) or [])]
+                          if series_key else [])
+
+    case_name = study_case_name(grid, sweep_dir)
+    doc = Document(f"Sweep: {case_name}")
+    doc.paragraph(f"Sweep directory: {os.path.abspath(sweep_dir)}. Case file: "
+                  f"{lookup(grid, 'case_file') or '–'}. {UNITS_NOTE}.")
+    grid_items = [f"{k}: {', '.join(map(str, v))}" for k, v in (lookup(grid, "vary") or {}).items()]
+    if not grid_items:  # sweep.json without the grid: the values in the table
+        grid_items = [f"{k}: " + ", ".join(dict.fromkeys(cell(r, k) for r in table.rows))
+                      for k in keys]
+    targets = lookup(grid, "rayleigh")
+    if targets:
+        grid_items.append("target Rayleigh numbers (gravity scaled): " +
+                          ", ".join(fmt(to_float(t)) for t in targets))
+    doc.heading("Grid")
+    doc.bullets(grid_items or ["(sweep.json states no grid)"])
+    doc.paragraph(f"{len(table.rows)} points: {len(done)} done, {len(not_done)} not done.")
+
+    figures = []
+
+    def finish(ax, handles, ylabel, title, legend=True):
+        handles = handles + mark_not_done(ax, x_axis, x_column, not_done)
+        x_axis.apply(ax, "x")
+        ax.set_xlabel(x_label)
+        ax.set_ylabel(ylabel)
+        ax.set_title(title, fontsize=10)
+        ax.grid(alpha=0.3, which="both")
+        plain_log_ticks(ax)
+        if handles and legend:
+            ax.legend(handles=handles, fontsize=8, loc="upper left", bbox_to_anchor=(1.02, 1))
+
+    nusselt_columns = ("nusselt_particle", "nusselt_nominal", "nusselt_calibrated")
+    if done and any(table.has(c) for c in nusselt_columns):
+        # Nusselt numbers.
+        fig, ax = plt.subplots(figsize=(8.4, 4.8), layout="constrained")
+        handles = draw_sources(ax, table, groups, x_axis, x_column, [
+            ("particle ± stderr", "nusselt_particle", "nusselt_particle_stderr",
+             COLOUR["particle"]),
+            ("nominal twin", "nusselt_nominal", None, COLOUR["nominal"]),
+            ("calibrated twin", "nusselt_calibrated", None, COLOUR["calibrated"])])
+        no_slip = walls_no_slip(grid)
+        benchmark_note = None
+        if by_rayleigh and no_slip is not False:
+            from matplotlib.lines import Line2D
+            ra, nu = zip(*DE_VAHL_DAVIS_NUSSELT)
+            label = "de Vahl Davis 1983, no-slip, Pr 0.71" + (
+                "" if no_slip else " (walls' slip not stated)")
+            ax.plot(ra, nu, "*", ms=10, color=COLOUR["benchmark"], zorder=4)
+            handles.append(Line2D([], [], marker="*", ls="", ms=10, color=COLOUR["benchmark"],
+                                  label=label))
+            benchmark_note = ("Stars: de Vahl Davis (1983), Int. J. Numer. Meth. Fluids 3, 249, "
+                              "Boussinesq cavity with no-slip walls at Pr = 0.71"
+                              + ("" if no_slip else "; the sweep does not state its walls' slip")
+                              + ".")
+        elif by_rayleigh:
+            benchmark_note = ("de Vahl Davis's no-slip benchmark is not drawn: this case's walls "
+                              "are not all no-slip.")
+        finish(ax, handles, "Nusselt number Nu", f"Nusselt number against {x_label}")
+        name = save_figure(fig, out_dir, f"nusselt_vs_{x_name}.png")
+        figures.append((name, f"Nusselt numbers: the particle fluid's (with standard errors) and "
+                              f"each continuum twin's, against {x_label}. "
+                        + (benchmark_note or "")))
+
+    if done:
+        # Distances between the twins.
+        fields = [f for f in ("temperature", "velocity") if any(
+            table.has(f"{f}_l2_{t}") for t in TWINS)]
+        if fields:
+            fig, axes = plt.subplots(1, len(fields), figsize=(5.4 * len(fields) + 2.4, 4.6),
+                                     squeeze=False, layout="constrained")
+            for n, (ax, field) in enumerate(zip(axes[0], fields)):
+                handles = draw_sources(ax, table, groups, x_axis, x_column, [
+                    ("nominal twin ± stderr", f"{field}_l2_nominal", f"{field}_l2_nominal_stderr",
+                     COLOUR["nominal"]),
+                    ("calibrated twin ± stderr", f"{field}_l2_calibrated",
+                     f"{field}_l2_calibrated_stderr", COLOUR["calibrated"]),
+                    ("noise", f"{field}_l2_noise", None, COLOUR["noise"])])
+                ax.set_yscale("log")
+                finish(ax, handles, f"{field} L2 / {'dT' if field == 'temperature' else 'U'}",
+                       f"{field}: L2 distance particle–twin and the noise",
+                       legend=n == len(fields) - 1)  # one legend serves both panels
+            name = save_figure(fig, out_dir, f"errors_vs_{x_name}.png")
+            figures.append((name, "L2 distance of the particle fields to each twin (interior bins, "
+                                  "in units of the point's temperature / velocity scale) with "
+                                  "standard errors, and the noise: the L2 two identical twins "
+                                  "would show through the particle's statistical error."))
+
+        # Cost.
+        stages = [("particle stage", "wall_seconds_particle", None, COLOUR["particle"]),
+                  ("nominal twin", "wall_seconds_continuum", None, COLOUR["nominal"]),
+                  ("calibrated twin", "wall_seconds_continuum_calibrated", None,
+                   COLOUR["calibrated"]),
+                  ("whole point", "wall_seconds", None, "black")]
+        fig, ax = plt.subplots(figsize=(8.4, 4.8), layout="constrained")
+        handles = draw_sources(ax, table, groups, x_axis, x_column, stages)
+        ax.set_yscale("log")
+        finish(ax, handles, "wall-clock time [s]", f"cost per stage against {x_label}")
+        figures.append((save_figure(fig, out_dir, "cost.png"),
+                        "Wall-clock seconds per stage and per point (the point's child process)."))
+        pareto = None if by_rayleigh else figure_pareto(out_dir, done, keys, doc)
+        if pareto:
+            figures.append(pareto)
+
+    doc.heading("Points")
+    columns = [("point", "point"), ("status", "status")] + [(k, k) for k in keys]
+    if by_rayleigh:
+        columns += [("target Ra", "target_rayleigh"), ("Ra", "rayleigh")]
+    rows = []
+    for r in table.rows:
+        # (rayleigh, the nominal twin's, is a metric; target_rayleigh the sweep's own)
+        cells = [plain(cell(r, c)) if c in ("point", "status") or c in keys else
+                 fmt(to_float(cell(r, c, optional=c == "rayleigh"))) for _, c in columns]
+        cells += [fmt_pm(to_float(metric(r, "nusselt_particle")),
+                         to_float(metric(r, "nusselt_particle_stderr"))),
+                  fmt(to_float(metric(r, "nusselt_nominal"))),
+                  fmt(to_float(metric(r, "nusselt_calibrated"))),
+                  fmt_pm(to_float(metric(r, "temperature_l2_nominal")),
+                         to_float(metric(r, "temperature_l2_nominal_stderr"))),
+                  fmt_pm(to_float(metric(r, "temperature_l2_calibrated")),
+                         to_float(metric(r, "temperature_l2_calibrated_stderr"))),
+                  fmt(to_float(metric(r, "temperature_l2_noise"))),
+                  fmt(to_float(cell(r, "wall_seconds")))]
+        rows.append(cells)
+    doc.table([c[0] for c in columns] + ["Nu particle", "Nu nominal", "Nu calibrated",
+                                          "T L2 nominal", "T L2 calibrated", "T noise",
+                                          "wall s"], rows)
+    if keys == ["Particle/Seed"]:
+        realisations_section(doc, done)
+    doc.heading("Points not done")
+    if not_done:
+        doc.table(["point", "status", "exit code", "reason"],
+                  [[plain(cell(r, "point")), plain(cell(r, "status")), plain(cell(r, "exit_code")),
+                    plain(cell(r, "reason"))] for r in not_done])
+    else:
+        doc.paragraph("None: every point finished.")
+    if figures:
+        doc.heading("Figures")
+        for name, caption in figures:
+            doc.figure(name, caption + f" {UNITS_NOTE}.")
+    write_documents(doc, out_dir)
+
+
+# ---------------------------------------------------------------------------------------------

@@ -1,90 +1,127 @@
 #pragma once
-// Boussinesq natural convection: Taylor-Hood Q2/Q1 velocity/pressure with Q2 temperature,
-// inertia included, Newton's method with the exact Jacobian, sparse direct solve (UMFPACK).
-// Steady (continuation in Ra when needed, nested iteration over the refinement levels) or in
-// time (BDF2, first step BDF1, one Newton solve per step on the finest mesh). Instantiated for
-// dim = 2 (boussinesq_2d.cpp) and 3 (boussinesq_3d.cpp; serial and direct, so only thin boxes
-// such as one periodic in z). Setting the environment variable TWINFLOW_NEWTON_DEBUG prints every
-// Newton iteration.
+// Boussinesq natural convection, a model of FlowProblem (flow_problem.hpp): its cell residual and
+// exact Jacobian. Oberbeck-Boussinesq equations in the particle units (step-31 for Stokes +
+// heat, with the inertial term of step-57), unknowns (u, p, T):
+//   n m (du/dt + (u . grad) u) - div(2 eta(T) eps(u)) + grad p = -n m alpha (T - T_ref) g
+//   div u = 0
+//   n c_p (dT/dt + u . grad T) - div(kappa(T) grad T) = Q
+// eps(u) the symmetric gradient; flux, Kapitza and Navier walls: WallTerms (flow_model.hpp).
+// Residual R and its exact Jacobian (Gateaux derivative) for Newton's method. Steady: no time
+// derivatives. In time, a multistep (BDF) derivative d/dt x ~ a0 x + h with the history
+// h = sum_k a_k x^{n+1-k} of the earlier steps (BDF2: a0 = 3/(2 dt), h = (-4 x^n + x^{n-1})/(2 dt);
+// Hairer, Norsett & Wanner I, sec. III.1).
+//
+// BoussinesqProblem<dim>: serial and direct (dim = 2: boussinesq_2d.cpp; 3: boussinesq_3d.cpp,
+// thin boxes such as one periodic in z); the distributed solver: boussinesq_distributed.hpp.
 
-#include <deal.II/base/function.h>
-#include <deal.II/dofs/dof_handler.h>
-#include <deal.II/fe/fe_system.h>
-#include <deal.II/grid/tria.h>
-#include <deal.II/lac/affine_constraints.h>
-#include <deal.II/lac/sparse_direct.h>
-#include <deal.II/lac/sparse_matrix.h>
-#include <deal.II/lac/sparsity_pattern.h>
-#include <deal.II/lac/vector.h>
-#include <deal.II/numerics/data_out.h>
-
-#include <filesystem>
-
-#include "continuum/parameters.hpp"
-#include "continuum/results.hpp"
+#include "continuum/backend_serial.hpp"
+#include "continuum/flow_model.hpp"
+#include "continuum/flow_problem.hpp"
 
 namespace twinflow::continuum {
 
-template <int dim> class BoussinesqProblem {
+template <int dim> class BoussinesqModel : public FlowModel<dim> {
 public:
-  explicit BoussinesqProblem(const ContinuumParameters& parameters);
+  static constexpr const char* name = "boussinesq";
+  static constexpr bool divergence_free = true;
 
-  // The algorithm: mesh; steady: per refinement level setup, Newton (with continuation in Ra
-  // on the first level); in time: march on the finest mesh; postprocess; fields into
-  // `output_dir` unless it is empty (in time: snapshots as a series).
-  ContinuumResult run(const std::filesystem::path& output_dir);
+  BoussinesqModel(const ContinuumParameters& prm, const DimensionlessNumbers& numbers,
+                  const dealii::FiniteElement<dim>& fe)
+      : FlowModel<dim>(prm, numbers), values_(fe, dealii::QGauss<dim>(3)), walls_(fe, prm),
+        history_u_(values_.n_q), history_T_(values_.n_q) {}
 
-  // Solution access for tests: components u_0..u_{dim-1}, p, T at a point; the whole vector.
-  dealii::Vector<double> value_at(const dealii::Point<dim>& point) const;
-  const dealii::Vector<double>& solution() const { return solution_; }
-  unsigned long n_dofs() const { return dof_handler_.n_dofs(); }
+  // No pressure-pressure or pressure-temperature blocks.
+  dealii::Table<2, dealii::DoFTools::Coupling> coupling() const {
+    const unsigned p = dim, t = dim + 1;
+    dealii::Table<2, dealii::DoFTools::Coupling> coupling(dim + 2, dim + 2);
+    for (unsigned c = 0; c < dim + 2; ++c)
+      for (unsigned d = 0; d < dim + 2; ++d)
+        coupling[c][d] = ((c == p && (d == p || d == t)) || (c == t && d == p))
+                             ? dealii::DoFTools::none
+                             : dealii::DoFTools::always;
+    return coupling;
+  }
+
+  // cell.rhs = -R (and cell.matrix = dR/dx if with_jacobian) at the state x, gravity scaled by
+  // the context's factor; with a history, the time derivatives a0 x + history are included.
+  template <class VectorType>
+  void assemble_cell(const CellIterator<dim>& cell, const VectorType& x,
+                     const AssemblyContext<VectorType>& context, CellSystem& out) {
+    auto& v = values_;
+    v.reinit(cell, x);
+    out.matrix = 0;
+    out.rhs = 0;
+    const bool with_jacobian = context.with_jacobian;
+    const double a0 = context.a0;
+    if (context.history) v.values_of(*context.history, history_u_, history_T_);
+    const auto& prm = this->prm_;
+    const double rho = prm.mass_density(), ncp = prm.heat_capacity_per_volume();
+    const double alpha = prm.thermal_expansion, T_ref = prm.reference_temperature;
+    dealii::Tensor<1, dim> g;
+    for (int d = 0; d < dim; ++d) g[d] = context.gravity_factor * prm.gravity[d];
+    const auto &u = v.u, &grad_T = v.grad_T;
+    const auto& grad_u = v.grad_u;
+    const auto &p = v.s, &T = v.T;
+    const auto &phi_u = v.phi_u, &grad_phi_T = v.grad_phi_T;
+    const auto& grad_phi_u = v.grad_phi_u;
+    const auto& eps_phi_u = v.eps_phi_u;
+    const auto &div_phi_u = v.div_phi_u, &phi_p = v.phi_s, &phi_T = v.phi_T;
+    for (unsigned q = 0; q < v.n_q; ++q) {
+      const double eta = prm.viscosity.at(T[q], T_ref);
+      const double deta = prm.viscosity.derivative(T[q], T_ref);
+      const double kappa = prm.conductivity.at(T[q], T_ref);
+      const double dkappa = prm.conductivity.derivative(T[q], T_ref);
+      const double source = heat_source_density(prm, v.point(q));
+      // Boussinesq buoyancy, rho(T) g with rho = n m (1 - alpha (T - T_ref)); constant part in p.
+      const dealii::Tensor<1, dim> buoyancy = -rho * alpha * (T[q] - T_ref) * g;
+      const dealii::SymmetricTensor<2, dim> eps_u = dealii::symmetrize(grad_u[q]);
+      const double div_u = dealii::trace(grad_u[q]);
+      const dealii::Tensor<1, dim> advection = grad_u[q] * u[q]; // (u . grad) u
+      // Time derivatives (zero when steady): du/dt ~ a0 u + h_u, dT/dt ~ a0 T + h_T.
+      dealii::Tensor<1, dim> du_dt;
+      double dT_dt = 0;
+      if (context.history) {
+        du_dt = a0 * u[q] + history_u_[q];
+        dT_dt = a0 * T[q] + history_T_[q];
+      }
+      const double JxW = v.fe_values.JxW(q);
+      v.shape_functions(q);
+      for (unsigned i = 0; i < v.n; ++i) {
+        // Weak residual of momentum, continuity, energy (equations at the top of this file).
+        const double residual = rho * (du_dt + advection) * phi_u[i] +
+                                2 * eta * (eps_u * eps_phi_u[i]) - p[q] * div_phi_u[i] -
+                                buoyancy * phi_u[i] - phi_p[i] * div_u +
+                                ncp * (dT_dt + u[q] * grad_T[q]) * phi_T[i] +
+                                kappa * (grad_T[q] * grad_phi_T[i]) - source * phi_T[i];
+        out.rhs(i) -= residual * JxW;
+        if (!with_jacobian) continue;
+        for (unsigned j = 0; j < v.n; ++j) {
+          // Exact derivative of the residual above in direction (phi_u_j, phi_p_j, phi_T_j).
+          const double jacobian =
+              rho * (a0 * phi_u[j] + grad_phi_u[j] * u[q] + grad_u[q] * phi_u[j]) * phi_u[i] +
+              2 * eta * (eps_phi_u[j] * eps_phi_u[i]) +
+              2 * deta * phi_T[j] * (eps_u * eps_phi_u[i]) - phi_p[j] * div_phi_u[i] +
+              rho * alpha * phi_T[j] * (g * phi_u[i]) - phi_p[i] * div_phi_u[j] +
+              ncp * (a0 * phi_T[j] + phi_u[j] * grad_T[q] + u[q] * grad_phi_T[j]) * phi_T[i] +
+              kappa * (grad_phi_T[j] * grad_phi_T[i]) +
+              dkappa * phi_T[j] * (grad_T[q] * grad_phi_T[i]);
+          out.matrix(i, j) += jacobian * JxW;
+        }
+      }
+    }
+    walls_.add(cell, x, with_jacobian, out);
+  }
 
 private:
-  void make_coarse_mesh();
-  void setup_dofs();
-  void make_constraints();
-  void initial_guess(); // at rest; T: the expression of the case or the conduction profile
-  // Steady: nested iteration, one MeshLevel per refinement level.
-  void solve_on_each_level(ContinuumResult& result);
-  // In time: BDF2 from the initial state to the end time; time series and field snapshots.
-  void march_in_time(const std::filesystem::path& dir, ContinuumResult& result);
-  // Residual (always) and Jacobian (if `with_jacobian`) at `evaluation_point_` for gravity
-  // scaled by `gravity_factor`, with the time derivatives of the current step when in time;
-  // returns the residual norm.
-  double assemble(bool with_jacobian, double gravity_factor);
-  void solve_linear_system();
-  // Newton iterations at one gravity factor; false if they did not converge.
-  bool newton(double gravity_factor, int& iterations);
-  // Reaches the full gravity in steps of the Rayleigh number (10x; halved on failure).
-  void solve_with_continuation();
-  void refine_mesh_and_transfer();
-  void normalize_pressure(); // zero mean, after the last solve
-  void postprocess(ContinuumResult& result) const;
-  TimeSample sample(int step, int newton_iterations) const;
-  void stream_function(ContinuumResult& result) const;
-  void output_fields(const std::filesystem::path& dir, ContinuumResult& result) const;
-  void attach_fields(dealii::DataOut<dim>& data_out) const;
-
-  ContinuumParameters prm_;
-  DimensionlessNumbers numbers_;
-  dealii::Triangulation<dim> triangulation_;
-  dealii::FESystem<dim> fe_;
-  dealii::DoFHandler<dim> dof_handler_;
-  dealii::AffineConstraints<double> nonzero_constraints_; // boundary values of the solution
-  dealii::AffineConstraints<double> zero_constraints_;    // the same, homogeneous: updates
-
-  dealii::SparsityPattern sparsity_pattern_;
-  dealii::SparseMatrix<double> jacobian_;
-  dealii::SparseDirectUMFPACK direct_solver_;
-  dealii::Vector<double> solution_, evaluation_point_, newton_update_, residual_;
-  // In time: d/dt x ~ time_a0_ x + history_ (boussinesq_kernel.hpp); time_a0_ = 0 when steady.
-  double time_a0_ = 0, dt_ = 0;
-  dealii::Vector<double> history_;
-
-  PhaseTimes times_;
-  int level_ = 0;
-  int newton_iterations_ = 0;
-  std::vector<double> continuation_rayleigh_;
+  CellValues<dim> values_;
+  WallTerms<dim> walls_;
+  std::vector<dealii::Tensor<1, dim>> history_u_;
+  std::vector<double> history_T_;
 };
+
+template <int dim>
+using BoussinesqProblem = FlowProblem<dim, BoussinesqModel<dim>, SerialBackend<dim>>;
+extern template class FlowProblem<2, BoussinesqModel<2>, SerialBackend<2>>;
+extern template class FlowProblem<3, BoussinesqModel<3>, SerialBackend<3>>;
 
 } // namespace twinflow::continuum

@@ -1,4 +1,7 @@
-#include "continuum/low_mach.templates.hpp"
+// dim = 2 instantiation (one translation unit per dimension: compile memory, build-notes).
+#include "continuum/backend_serial.templates.hpp"
+#include "continuum/flow_problem.templates.hpp"
+#include "continuum/low_mach.hpp"
 
-// One dimension per translation unit (compile memory, build-notes).
-template class twinflow::continuum::LowMachProblem<2>;
+template class twinflow::continuum::FlowProblem<2, twinflow::continuum::LowMachModel<2>,
+                                                twinflow::continuum::SerialBackend<2>>;

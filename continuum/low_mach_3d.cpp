@@ -1,4 +1,7 @@
-#include "continuum/low_mach.templates.hpp"
+// dim = 3 instantiation (one translation unit per dimension: compile memory, build-notes).
+#include "continuum/backend_serial.templates.hpp"
+#include "continuum/flow_problem.templates.hpp"
+#include "continuum/low_mach.hpp"
 
-// One dimension per translation unit (compile memory, build-notes).
-template class twinflow::continuum::LowMachProblem<3>;
+template class twinflow::continuum::FlowProblem<3, twinflow::continuum::LowMachModel<3>,
+                                                twinflow::continuum::SerialBackend<3>>;

@@ -88,7 +88,7 @@ io::Json to_json(const ContinuumParameters& p) {
     if (p.model == Model::HeatConduction)
       j["theta"] = p.theta;
     else
-      j["time_scheme"] = "BDF2 (first step BDF1)";
+      j["time_scheme"] = p.model == Model::LowMach ? "implicit Euler" : "BDF2 (first step BDF1)";
     j["initial_temperature"] = p.initial_temperature;
     j["snapshot_times"] = p.snapshot_times;
     j["snapshot_every"] = p.snapshot_every;

@@ -6,24 +6,10 @@
 #include <cstdio>
 
 #include "cavity.hpp"
-#include "continuum/boussinesq.hpp"
-#include "continuum/run.hpp"
+#include "solve_and_print.hpp"
 
 using namespace twinflow::continuum;
-
-namespace {
-
-void print_study(const char* what, const ContinuumResult& r) {
-  std::printf("%s: Nu = %.6f, u_max = %.4f at y = %.4f, v_max = %.4f at x = %.4f\n", what,
-              r.nusselt, r.u_max_vertical_midline.value, r.u_max_vertical_midline.position,
-              r.v_max_horizontal_midline.value, r.v_max_horizontal_midline.position);
-  for (const auto& m : r.mesh_study)
-    std::printf("  level %d: %ux%ux%u, %lu DoFs, Nu = %.6f, change %.2e, %d Newton, %.2f s\n",
-                m.level, m.cells[0], m.cells[1], m.cells[2], m.dofs, m.nusselt, m.change_in_nusselt,
-                m.newton_iterations, m.wall_time);
-}
-
-} // namespace
+using test_cases::solve_and_print;
 
 TEST(FreeSlipCavity, ConvergesUnderRefinement) {
   // Free slip on all four walls (no-normal-flux constraints, symmetric-gradient viscous term).
@@ -31,11 +17,10 @@ TEST(FreeSlipCavity, ConvergesUnderRefinement) {
   // (h^4-h^5), so the last change bounds the error; require < 1e-4 relative on the finest mesh
   // (32x32 at Ra = 1e3, 64x64 at Ra = 1e4).
   for (const double rayleigh : {1e3, 1e4}) {
-    const ContinuumResult r =
-        run(test_cases::cavity(2, rayleigh, 8, rayleigh < 5e3 ? 2 : 3, /*no_slip=*/false), "");
     char label[64];
     std::snprintf(label, sizeof label, "free slip Ra = %g", rayleigh);
-    print_study(label, r);
+    const ContinuumResult r = solve_and_print(
+        test_cases::cavity(2, rayleigh, 8, rayleigh < 5e3 ? 2 : 3, /*no_slip=*/false), label);
     const auto& last = r.mesh_study.back();
     EXPECT_LT(std::abs(last.change_in_nusselt), 1e-4 * last.nusselt);
     // Free slip offers less resistance than no slip: more heat transfer than de Vahl Davis.
@@ -58,12 +43,8 @@ TEST(Cavity3D, PeriodicInZReproduces2D) {
   ContinuumParameters p3 = test_cases::cavity(3, rayleigh, 8, 1);
   p3.cells = {{8, 8, 1}}; // z: one cell, kept through the refinement (a thin slice)
   p3.linear_solver = LinearSolver::Direct;
-  const ContinuumResult r3 = run(p3, "");
-  const ContinuumResult r2 = run(test_cases::cavity(2, rayleigh, 8, 1), "");
-  print_study("3D periodic z, direct", r3);
-  print_study("2D", r2);
-  std::printf("3D direct: %lu DoFs, %.1f s (solve %.1f s)\n", r3.dofs, r3.times.total(),
-              r3.times.solve);
+  const ContinuumResult r3 = solve_and_print(p3, "3D periodic z, direct");
+  const ContinuumResult r2 = solve_and_print(test_cases::cavity(2, rayleigh, 8, 1), "2D");
   EXPECT_NEAR(r3.nusselt, r2.nusselt, 1e-6 * r2.nusselt);
   EXPECT_NEAR(r3.nusselt, 2.2448, 1e-3 * 2.2448);
   EXPECT_NEAR(r3.u_max_vertical_midline.value, r2.u_max_vertical_midline.value, 1e-5 * 16);
@@ -78,11 +59,8 @@ TEST(Cavity3D, IterativeDistributedPathReproduces2D) {
   ContinuumParameters p3 = test_cases::cavity(3, rayleigh, 8, 1);
   p3.cells = {{8, 8, 1}};
   p3.linear_solver = LinearSolver::Iterative;
-  const ContinuumResult r3 = run(p3, "");
+  const ContinuumResult r3 = solve_and_print(p3, "3D periodic z, iterative");
   const ContinuumResult r2 = run(test_cases::cavity(2, rayleigh, 8, 1), "");
-  print_study("3D periodic z, iterative", r3);
-  std::printf("3D iterative: %lu DoFs, %.1f s (assembly %.1f s, solve %.1f s)\n", r3.dofs,
-              r3.times.total(), r3.times.assembly, r3.times.solve);
   EXPECT_NEAR(r3.nusselt, r2.nusselt, 1e-6 * r2.nusselt);
   ASSERT_EQ(r3.walls.size(), 2u);
   EXPECT_NEAR(r3.walls[0].average, r2.walls[0].average, 1e-6 * r2.nusselt);

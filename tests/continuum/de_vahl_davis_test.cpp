@@ -2,12 +2,11 @@
 // mid-line velocity maxima with their positions.
 #include <gtest/gtest.h>
 
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 
 #include "cavity.hpp"
-#include "continuum/run.hpp"
+#include "solve_and_print.hpp"
 
 using namespace twinflow::continuum;
 
@@ -23,24 +22,10 @@ const Reference kRa1e3{1e3, 1.1178, 3.649, 0.813, 3.697, 0.178};
 const Reference kRa1e4{1e4, 2.2448, 16.178, 0.823, 19.617, 0.119};
 
 void check_against(const Reference& ref, unsigned coarse, int refinements) {
-  const auto start = std::chrono::steady_clock::now();
-  const ContinuumResult r = run(test_cases::cavity(2, ref.rayleigh, coarse, refinements), "");
-  const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  std::printf("Ra = %g on %ux%u Q2: Nu = %.6f (ref %.4f, rel %.2e), u_max = %.4f at y = %.4f, "
-              "v_max = %.4f at x = %.4f, psi_max = %.4f at (%.4f, %.4f); %.1f s "
-              "(assembly %.1f, solve %.1f)\n",
-              ref.rayleigh, r.cells[0], r.cells[1], r.nusselt, ref.nusselt,
-              std::abs(r.nusselt / ref.nusselt - 1), r.u_max_vertical_midline.value,
-              r.u_max_vertical_midline.position, r.v_max_horizontal_midline.value,
-              r.v_max_horizontal_midline.position, r.stream_function_max, r.vortex_centre[0],
-              r.vortex_centre[1], seconds, r.times.assembly, r.times.solve);
-  for (const auto& m : r.mesh_study)
-    std::printf("  level %d: %ux%u, Nu = %.6f, change %.2e, %d Newton, %.2f s\n", m.level,
-                m.cells[0], m.cells[1], m.nusselt, m.change_in_nusselt, m.newton_iterations,
-                m.wall_time);
-  ::testing::Test::RecordProperty("nusselt", std::to_string(r.nusselt));
-  ::testing::Test::RecordProperty("wall_time_s", std::to_string(seconds));
+  char what[32];
+  std::snprintf(what, sizeof what, "Ra = %g", ref.rayleigh);
+  const ContinuumResult r =
+      test_cases::solve_and_print(test_cases::cavity(2, ref.rayleigh, coarse, refinements), what);
   // Nu: the Q2 volume-average Nu changes by < 1e-4 between the last two levels (printed mesh
   // study), so 0.1% measures the model, not the mesh.
   EXPECT_NEAR(r.nusselt, ref.nusselt, 1e-3 * ref.nusselt);

@@ -3,40 +3,15 @@
 // at low Ra.
 #include <gtest/gtest.h>
 
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <vector>
 
-#include "continuum/run.hpp"
 #include "low_mach_cavity.hpp"
+#include "solve_and_print.hpp"
 
 using namespace twinflow::continuum;
-
-namespace {
-
-ContinuumResult solve_and_print(const ContinuumParameters& p, const char* what) {
-  const auto start = std::chrono::steady_clock::now();
-  const ContinuumResult r = run(p, "");
-  const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  const bool lm = r.consistent_wall_nusselt.size() == 2;
-  std::printf("%s (Ra = %g, epsilon = %g) on %ux%u Q2: Nu = %.6f (wall gradient %.6f, %.6f; "
-              "consistent flux %.6f, %.6f), P/p0 = %.6f, mass error %.1e, %d Newton; %.1f s\n",
-              what, r.numbers.rayleigh, r.numbers.epsilon, r.cells[0], r.cells[1], r.nusselt,
-              r.walls[0].average, r.walls[1].average, lm ? r.consistent_wall_nusselt[0] : 0.0,
-              lm ? r.consistent_wall_nusselt[1] : 0.0, r.pressure_ratio, r.mass_error,
-              r.newton_iterations, seconds);
-  for (const auto& m : r.mesh_study)
-    std::printf("  level %d: %ux%u, Nu = %.6f, change %.2e, %d Newton, %.2f s\n", m.level,
-                m.cells[0], m.cells[1], m.nusselt, m.change_in_nusselt, m.newton_iterations,
-                m.wall_time);
-  ::testing::Test::RecordProperty("nusselt", std::to_string(r.nusselt));
-  ::testing::Test::RecordProperty("pressure_ratio", std::to_string(r.pressure_ratio));
-  return r;
-}
-
-} // namespace
+using test_cases::solve_and_print;
 
 TEST(LowMach, PureConductionPressureRatio) {
   // g = 0: u = 0, T linear, so P/p0 = 1 / (T0 <1/T>) = 2 epsilon / ln((1 + eps)/(1 - eps))

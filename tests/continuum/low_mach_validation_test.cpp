@@ -2,50 +2,15 @@
 // properties and Sutherland's law (label validation: minutes each).
 #include <gtest/gtest.h>
 
-#include <chrono>
 #include <cmath>
-#include <cstdio>
 
-#include "continuum/run.hpp"
 #include "low_mach_cavity.hpp"
+#include "solve_and_print.hpp"
 
 using namespace twinflow::continuum;
+using test_cases::solve_and_print;
 
 namespace {
-
-ContinuumResult solve_and_print(const ContinuumParameters& p, const char* what) {
-  const auto start = std::chrono::steady_clock::now();
-  const ContinuumResult r = run(p, "");
-  const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  std::printf("%s (Ra = %g, epsilon = %g) on %ux%u Q2: Nu = %.6f (wall gradient %.6f, %.6f; "
-              "consistent flux %.6f, %.6f), P/p0 = %.6f, %d Newton; %.1f s (assembly %.1f, "
-              "solve %.1f)\n",
-              what, r.numbers.rayleigh, r.numbers.epsilon, r.cells[0], r.cells[1], r.nusselt,
-              r.walls[0].average, r.walls[1].average, r.consistent_wall_nusselt[0],
-              r.consistent_wall_nusselt[1], r.pressure_ratio, r.newton_iterations, seconds,
-              r.times.assembly, r.times.solve);
-  std::printf("  continuation Ra:");
-  for (const double ra : r.continuation_rayleigh) std::printf(" %g", ra);
-  std::printf("\n");
-  for (const auto& m : r.mesh_study)
-    std::printf("  level %d: %ux%u, Nu = %.6f, change %.2e, P/p0 = %.6f, %d Newton, %.2f s\n",
-                m.level, m.cells[0], m.cells[1], m.nusselt, m.change_in_nusselt, m.pressure_ratio,
-                m.newton_iterations, m.wall_time);
-  const std::size_t L = r.mesh_study.size();
-  if (L >= 3) {
-    // Richardson: the observed ratio q of successive changes, Nu + change / (q - 1).
-    const double c1 = r.mesh_study[L - 2].change_in_nusselt,
-                 c2 = r.mesh_study[L - 1].change_in_nusselt;
-    const double q = c1 / c2;
-    std::printf("  Richardson: change ratio %.2f, Nu extrapolated %.6f\n", q,
-                r.nusselt + c2 / (q - 1));
-  }
-  ::testing::Test::RecordProperty("nusselt", std::to_string(r.nusselt));
-  ::testing::Test::RecordProperty("pressure_ratio", std::to_string(r.pressure_ratio));
-  ::testing::Test::RecordProperty("wall_time_s", std::to_string(seconds));
-  return r;
-}
 
 // Reference values. Le Quere et al. 2005 (Part 1, reference solutions) define two cases at
 // Ra = 1e6: T1 with constant properties and one with Sutherland's law. Their T1 values, Nu =

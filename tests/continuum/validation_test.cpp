@@ -2,41 +2,13 @@
 // on 64x64, and the free-slip Nu at Ra = 1e5.
 #include <gtest/gtest.h>
 
-#include <chrono>
 #include <cmath>
-#include <cstdio>
 
 #include "cavity.hpp"
-#include "continuum/run.hpp"
+#include "solve_and_print.hpp"
 
 using namespace twinflow::continuum;
-
-namespace {
-
-ContinuumResult solve_and_print(const ContinuumParameters& p, const char* what) {
-  const auto start = std::chrono::steady_clock::now();
-  const ContinuumResult r = run(p, "");
-  const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  std::printf("%s on %ux%u Q2: Nu = %.6f, u_max = %.4f at y = %.4f, v_max = %.4f at x = %.4f, "
-              "psi_max = %.4f at (%.4f, %.4f); %.1f s (assembly %.1f, solve %.1f)\n",
-              what, r.cells[0], r.cells[1], r.nusselt, r.u_max_vertical_midline.value,
-              r.u_max_vertical_midline.position, r.v_max_horizontal_midline.value,
-              r.v_max_horizontal_midline.position, r.stream_function_max, r.vortex_centre[0],
-              r.vortex_centre[1], seconds, r.times.assembly, r.times.solve);
-  std::printf("  continuation Ra:");
-  for (const double ra : r.continuation_rayleigh) std::printf(" %g", ra);
-  std::printf("\n");
-  for (const auto& m : r.mesh_study)
-    std::printf("  level %d: %ux%u, Nu = %.6f, change %.2e, %d Newton, %.2f s\n", m.level,
-                m.cells[0], m.cells[1], m.nusselt, m.change_in_nusselt, m.newton_iterations,
-                m.wall_time);
-  ::testing::Test::RecordProperty("nusselt", std::to_string(r.nusselt));
-  ::testing::Test::RecordProperty("wall_time_s", std::to_string(seconds));
-  return r;
-}
-
-} // namespace
+using test_cases::solve_and_print;
 
 // Reference Nu: the benchmark values (de Vahl Davis 1983 gives 4.519 and 8.800).
 TEST(DeVahlDavisValidation, Rayleigh1e5) {

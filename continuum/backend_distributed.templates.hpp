@@ -153,7 +153,8 @@ void DistributedBackend<dim>::setup_matrix(
 
 template <int dim>
 void DistributedBackend<dim>::assemble_pressure_mass(
-    const dealii::DoFHandler<dim>& dofs, const dealii::AffineConstraints<double>& zero_constraints) {
+    const dealii::DoFHandler<dim>& dofs,
+    const dealii::AffineConstraints<double>& zero_constraints) {
   // (1/eta_ref) M_p, the Schur-complement approximation (Elman, Silvester & Wathen 2014, ch. 9).
   preconditioner_matrix_ = 0;
   const dealii::QGauss<dim> quadrature(3);
@@ -180,8 +181,8 @@ void DistributedBackend<dim>::assemble_pressure_mass(
 }
 
 template <int dim>
-unsigned DistributedBackend<dim>::solve(const dealii::DoFHandler<dim>& dofs,
-                                        const Vector& residual, Vector& update,
+unsigned DistributedBackend<dim>::solve(const dealii::DoFHandler<dim>& dofs, const Vector& residual,
+                                        Vector& update,
                                         const dealii::AffineConstraints<double>& zero_constraints,
                                         const Vector* column, const Vector*) {
   if (column) throw std::logic_error("the distributed backend has no rank-one term");
@@ -214,9 +215,9 @@ unsigned DistributedBackend<dim>::solve(const dealii::DoFHandler<dim>& dofs,
 }
 
 template <int dim>
-std::pair<double, double>
-DistributedBackend<dim>::component_range(const dealii::DoFHandler<dim>&, unsigned component,
-                                         const Vector& v) const {
+std::pair<double, double> DistributedBackend<dim>::component_range(const dealii::DoFHandler<dim>&,
+                                                                   unsigned component,
+                                                                   const Vector& v) const {
   const auto& block = v.block(block_of(component));
   double lo = 1e300, hi = -1e300;
   for (const auto i : block.locally_owned_elements()) {

@@ -51,7 +51,8 @@ public:
                            const std::function<void()>& setup);
 
   void distribute_dofs(dealii::DoFHandler<dim>& dofs, const dealii::FiniteElement<dim>& fe);
-  void clear_constraints(const dealii::DoFHandler<dim>&, dealii::AffineConstraints<double>& c) const {
+  void clear_constraints(const dealii::DoFHandler<dim>&,
+                         dealii::AffineConstraints<double>& c) const {
     c.clear();
   }
   // The direct solver needs every null space pinned: free translations of the velocity and, if
@@ -77,8 +78,8 @@ public:
   std::array<double, 2> velocity_temperature_norms(const Vector& v) const;
   void subtract_from_component(const dealii::DoFHandler<dim>& dofs, unsigned component,
                                double value, Vector& v) const;
-  std::pair<double, double> component_range(const dealii::DoFHandler<dim>& dofs,
-                                            unsigned component, const Vector& v) const;
+  std::pair<double, double> component_range(const dealii::DoFHandler<dim>& dofs, unsigned component,
+                                            const Vector& v) const;
 
 private:
   const ContinuumParameters& prm_;

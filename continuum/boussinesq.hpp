@@ -42,30 +42,21 @@ public:
     return coupling;
   }
 
-  // cell.rhs = -R (and cell.matrix = dR/dx if with_jacobian) at the state x, gravity scaled by
-  // the context's factor; with a history, the time derivatives a0 x + history are included.
+  // cell.rhs = -R (and cell.matrix = dR/dx if with_jacobian) at the state x with the context's
+  // gravity; with a history, the time derivatives a0 x + history are included.
   template <class VectorType>
   void assemble_cell(const CellIterator<dim>& cell, const VectorType& x,
-                     const AssemblyContext<VectorType>& context, CellSystem& out) {
+                     const AssemblyContext<dim, VectorType>& context, CellSystem& out) {
     auto& v = values_;
     v.reinit(cell, x);
-    out.matrix = 0;
-    out.rhs = 0;
-    const bool with_jacobian = context.with_jacobian;
-    const double a0 = context.a0;
-    if (context.history) v.values_of(*context.history, history_u_, history_T_);
     const auto& prm = this->prm_;
     const double rho = prm.mass_density(), ncp = prm.heat_capacity_per_volume();
     const double alpha = prm.thermal_expansion, T_ref = prm.reference_temperature;
-    dealii::Tensor<1, dim> g;
-    for (int d = 0; d < dim; ++d) g[d] = context.gravity_factor * prm.gravity[d];
-    const auto &u = v.u, &grad_T = v.grad_T;
-    const auto& grad_u = v.grad_u;
-    const auto &p = v.s, &T = v.T;
-    const auto &phi_u = v.phi_u, &grad_phi_T = v.grad_phi_T;
-    const auto& grad_phi_u = v.grad_phi_u;
-    const auto& eps_phi_u = v.eps_phi_u;
-    const auto &div_phi_u = v.div_phi_u, &phi_p = v.phi_s, &phi_T = v.phi_T;
+    const auto& [u, grad_u, p, T, grad_T] = v.state;
+    const auto& [phi_u, grad_phi_u, eps_phi_u, div_phi_u, phi_p, phi_T, grad_phi_T] = v.shape;
+    if (context.history) v.values_of(*context.history, history_u_, history_T_);
+    const double a0 = context.a0;
+    const dealii::Tensor<1, dim>& g = context.gravity;
     for (unsigned q = 0; q < v.n_q; ++q) {
       const double eta = prm.viscosity.at(T[q], T_ref);
       const double deta = prm.viscosity.derivative(T[q], T_ref);
@@ -94,7 +85,7 @@ public:
                                 ncp * (dT_dt + u[q] * grad_T[q]) * phi_T[i] +
                                 kappa * (grad_T[q] * grad_phi_T[i]) - source * phi_T[i];
         out.rhs(i) -= residual * JxW;
-        if (!with_jacobian) continue;
+        if (!context.with_jacobian) continue;
         for (unsigned j = 0; j < v.n; ++j) {
           // Exact derivative of the residual above in direction (phi_u_j, phi_p_j, phi_T_j).
           const double jacobian =
@@ -109,7 +100,7 @@ public:
         }
       }
     }
-    walls_.add(cell, x, with_jacobian, out);
+    walls_.add(cell, x, context.with_jacobian, out);
   }
 
 private:

@@ -2,12 +2,14 @@
 // What a flow model gives FlowProblem (flow_problem.hpp), and the pieces models share.
 //
 // Unknowns (u_0..u_{dim-1}, s, T): velocity (Q2), one scalar s (Q1 by default: the pressure of
-// Boussinesq and low-Mach; a compressible model's number density), temperature (Q2). A model is a
-// class derived from FlowModel<dim> that defines
+// Boussinesq and low-Mach; a compressible model's number density, with gauge_pressure = false,
+// scalar_name "n" and density(s, T) = s), temperature (Q2). A model is a class derived from
+// FlowModel<dim> that defines
 //   static constexpr const char* name;          // "boussinesq", ContinuumResult::model
 //   std::unique_ptr<dealii::Function<dim>> initial_state() const;  (or keeps FlowModel's)
 //   template <class VectorType>
-//   void assemble_cell(cell, const VectorType& x, const AssemblyContext<VectorType>&, CellSystem&);
+//   void assemble_cell(cell, const VectorType& x, const AssemblyContext<dim, VectorType>&,
+//   CellSystem&);
 // the weak residual -R of the cell at the state x and, if asked, its Jacobian dR/dx. Everything
 // else has a default here that a model may hide with its own member of the same name (no virtual
 // calls: FlowProblem is a template over the model). Newton, continuation in Ra, the mesh levels,
@@ -22,6 +24,7 @@
 #include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/vector.h>
 
+#include <array>
 #include <functional>
 #include <memory>
 #include <string>
@@ -32,21 +35,26 @@
 
 namespace twinflow::continuum {
 
-// The time derivative of a step in time: d/dt x ~ a0 x + history (history = c1 x^n + c2 x^{n-1},
-// time_schedule.hpp); `previous` = x^n for a model whose time derivative is not linear in x
-// (low-Mach: dn/dt with n(P, T)). a0 = 0 and null pointers when steady.
-template <class VectorType> struct AssemblyContext {
+// What an assembly needs besides the state: whether to build the Jacobian, the gravity (scaled
+// in the continuation: the Ra of this solve over the target Ra) and, in time, the BDF step
+// (time_schedule.hpp): d/dt y ~ a0 y(x) + c[0] y(x^n) + c[1] y(x^{n-1}) for any function y of the
+// state, `history` = c[0] x^n + c[1] x^{n-1} for y = x, `previous` = x^n, `older` = x^{n-1}.
+// Steady: a0 = 0 and null pointers.
+template <int dim, class VectorType> struct AssemblyContext {
   bool with_jacobian = true;
-  double gravity_factor = 1.0; // continuation: the Ra of this solve over the target Ra
+  dealii::Tensor<1, dim> gravity;
   double a0 = 0.0;
+  std::array<double, 2> c{{0.0, 0.0}};
   const VectorType* history = nullptr;
   const VectorType* previous = nullptr;
+  const VectorType* older = nullptr;
 };
 
-// A cell's share of the Newton system: rhs = -R, matrix = dR/dx. A model with a global scalar g
-// (global_scalar = true; low-Mach: the thermodynamic pressure P(x)) adds the rank-one term
-// (dR/dg)(dg/dx)^T: `column` = dR/dg (condensed like the residual), `row` = its contribution to
-// dg/dx (added raw; the model scales the sum in end_assembly).
+// A cell's share of the Newton system, zeroed by FlowProblem; the model adds its integrals:
+// rhs = -R, matrix = dR/dx. A model with a global scalar g (global_scalar = true; low-Mach: the
+// thermodynamic pressure P(x)) adds the rank-one term (dR/dg)(dg/dx)^T: `column` = dR/dg
+// (condensed like the residual), `row` = its share of dg/dx (added raw; the model scales the sum
+// in end_assembly).
 struct CellSystem {
   explicit CellSystem(unsigned n) : matrix(n, n), rhs(n), column(n), row(n) {}
   dealii::FullMatrix<double> matrix;
@@ -74,16 +82,15 @@ namespace detail {
 // Wall Nu from the consistent (residual) flux, per wall of the heated direction; defined in
 // flow_postprocess.templates.hpp.
 template <int dim, class Model>
-std::vector<double> consistent_wall_nusselt(const dealii::DoFHandler<dim>& dofs,
-                                            const dealii::Vector<double>& x,
-                                            const ContinuumParameters& prm,
-                                            const DimensionlessNumbers& numbers,
-                                            const Model& model);
+std::vector<double>
+consistent_wall_nusselt(const dealii::DoFHandler<dim>& dofs, const dealii::Vector<double>& x,
+                        const ContinuumParameters& prm, const DimensionlessNumbers& numbers,
+                        const Model& model);
 } // namespace detail
 
 template <int dim> class FlowModel {
 public:
-  static constexpr int time_order = 2;          // BDF2 (first step BDF1); 1: implicit Euler
+  static constexpr int time_order = 2;           // BDF2 (first step BDF1); 1: implicit Euler
   static constexpr bool divergence_free = false; // div u = 0: a stream function exists
   static constexpr bool gauge_pressure = true;   // s is a pressure known up to a constant
   static constexpr bool global_scalar = false;   // a rank-one term in the Jacobian (CellSystem)
@@ -140,23 +147,47 @@ protected:
 };
 
 // Values at the quadrature points of a cell (u, grad u, s, T, grad T of a state) and, per point,
-// the shape functions of the Taylor-Hood element (the same for every model's kernel).
+// the shape functions of the Taylor-Hood element (the same for every model's kernel). A kernel
+// names them with structured bindings: const auto& [u, grad_u, p, T, grad_T] = values.state.
 template <int dim> struct CellValues {
+  struct State {
+    std::vector<dealii::Tensor<1, dim>> u;
+    std::vector<dealii::Tensor<2, dim>> grad_u;
+    std::vector<double> s, T;
+    std::vector<dealii::Tensor<1, dim>> grad_T;
+  };
+  struct Shapes {
+    std::vector<dealii::Tensor<1, dim>> phi_u;
+    std::vector<dealii::Tensor<2, dim>> grad_phi_u;
+    std::vector<dealii::SymmetricTensor<2, dim>> eps_phi_u;
+    std::vector<double> div_phi_u, phi_s, phi_T;
+    std::vector<dealii::Tensor<1, dim>> grad_phi_T;
+  };
+
   CellValues(const dealii::FiniteElement<dim>& fe, const dealii::Quadrature<dim>& quadrature)
       : fe_values(fe, quadrature,
                   dealii::update_values | dealii::update_gradients |
                       dealii::update_quadrature_points | dealii::update_JxW_values),
-        n(fe.n_dofs_per_cell()), n_q(quadrature.size()), u(n_q), grad_T(n_q), grad_u(n_q), s(n_q),
-        T(n_q), phi_u(n), grad_phi_T(n), grad_phi_u(n), eps_phi_u(n), div_phi_u(n), phi_s(n),
-        phi_T(n) {}
+        n(fe.n_dofs_per_cell()),
+        n_q(quadrature.size()), state{std::vector<dealii::Tensor<1, dim>>(n_q),
+                                      std::vector<dealii::Tensor<2, dim>>(n_q),
+                                      std::vector<double>(n_q), std::vector<double>(n_q),
+                                      std::vector<dealii::Tensor<1, dim>>(n_q)},
+        shape{std::vector<dealii::Tensor<1, dim>>(n),
+              std::vector<dealii::Tensor<2, dim>>(n),
+              std::vector<dealii::SymmetricTensor<2, dim>>(n),
+              std::vector<double>(n),
+              std::vector<double>(n),
+              std::vector<double>(n),
+              std::vector<dealii::Tensor<1, dim>>(n)} {}
 
   template <class VectorType> void reinit(const CellIterator<dim>& cell, const VectorType& x) {
     fe_values.reinit(cell);
-    fe_values[velocities].get_function_values(x, u);
-    fe_values[velocities].get_function_gradients(x, grad_u);
-    fe_values[scalar].get_function_values(x, s);
-    fe_values[temperature].get_function_values(x, T);
-    fe_values[temperature].get_function_gradients(x, grad_T);
+    fe_values[velocities].get_function_values(x, state.u);
+    fe_values[velocities].get_function_gradients(x, state.grad_u);
+    fe_values[scalar].get_function_values(x, state.s);
+    fe_values[temperature].get_function_values(x, state.T);
+    fe_values[temperature].get_function_gradients(x, state.grad_T);
   }
   // u and T of another vector on the same cell (time history).
   template <class VectorType>
@@ -167,13 +198,13 @@ template <int dim> struct CellValues {
   }
   void shape_functions(unsigned q) {
     for (unsigned k = 0; k < n; ++k) {
-      phi_u[k] = fe_values[velocities].value(k, q);
-      grad_phi_u[k] = fe_values[velocities].gradient(k, q);
-      eps_phi_u[k] = fe_values[velocities].symmetric_gradient(k, q);
-      div_phi_u[k] = fe_values[velocities].divergence(k, q);
-      phi_s[k] = fe_values[scalar].value(k, q);
-      phi_T[k] = fe_values[temperature].value(k, q);
-      grad_phi_T[k] = fe_values[temperature].gradient(k, q);
+      shape.phi_u[k] = fe_values[velocities].value(k, q);
+      shape.grad_phi_u[k] = fe_values[velocities].gradient(k, q);
+      shape.eps_phi_u[k] = fe_values[velocities].symmetric_gradient(k, q);
+      shape.div_phi_u[k] = fe_values[velocities].divergence(k, q);
+      shape.phi_s[k] = fe_values[scalar].value(k, q);
+      shape.phi_T[k] = fe_values[temperature].value(k, q);
+      shape.grad_phi_T[k] = fe_values[temperature].gradient(k, q);
     }
   }
   std::array<double, 3> point(unsigned q) const {
@@ -185,14 +216,9 @@ template <int dim> struct CellValues {
   const dealii::FEValuesExtractors::Vector velocities{0};
   const dealii::FEValuesExtractors::Scalar scalar{dim}, temperature{dim + 1};
   dealii::FEValues<dim> fe_values;
-  const unsigned n, n_q;
-  std::vector<dealii::Tensor<1, dim>> u, grad_T;
-  std::vector<dealii::Tensor<2, dim>> grad_u;
-  std::vector<double> s, T;
-  std::vector<dealii::Tensor<1, dim>> phi_u, grad_phi_T;
-  std::vector<dealii::Tensor<2, dim>> grad_phi_u;
-  std::vector<dealii::SymmetricTensor<2, dim>> eps_phi_u;
-  std::vector<double> div_phi_u, phi_s, phi_T;
+  const unsigned n, n_q; // shape functions, quadrature points
+  State state;           // at the quadrature points
+  Shapes shape;          // at the point of the last shape_functions(q)
 };
 
 // The wall integrals every model shares: heat flux walls, - int_Gamma q phi_T; Kapitza (Robin)

@@ -18,6 +18,7 @@
 #include <deal.II/lac/vector.h>
 #include <deal.II/numerics/data_out.h>
 
+#include <array>
 #include <chrono>
 #include <filesystem>
 #include <functional>
@@ -81,16 +82,18 @@ private:
   dealii::FESystem<dim> fe_;
   dealii::DoFHandler<dim> dof_handler_;
   Model model_;
-  dealii::ConditionalOStream pcout_; // the first process prints
+  dealii::ConditionalOStream pcout_;                      // the first process prints
   dealii::AffineConstraints<double> nonzero_constraints_; // boundary values of the solution
   dealii::AffineConstraints<double> zero_constraints_;    // the same, homogeneous: updates
 
   Vector solution_, newton_update_, residual_;
-  GhostedVector evaluation_point_;      // the state assembled and post-processed
+  GhostedVector evaluation_point_;        // the state assembled and post-processed
   Vector rank_one_column_, rank_one_row_; // models with a global scalar (CellSystem)
-  // In time: d/dt x ~ time_a0_ x + history_, previous_ = x^n; time_a0_ = 0 when steady.
-  double time_a0_ = 0, dt_ = 0;
-  GhostedVector history_, previous_;
+  // In time: the BDF coefficients of the step (time_schedule.hpp; all 0 when steady), the
+  // history c1 x^n + c2 x^{n-1}, x^n and x^{n-1} (AssemblyContext).
+  std::array<double, 3> bdf_{{0, 0, 0}};
+  double dt_ = 0;
+  GhostedVector history_, previous_, older_;
 
   PhaseTimes times_;
   int newton_iterations_ = 0;

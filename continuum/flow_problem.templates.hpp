@@ -49,8 +49,7 @@ FlowProblem<dim, Model, Backend>::FlowProblem(const ContinuumParameters& paramet
       fe_(dealii::FE_Q<dim>(2), dim, dealii::FE_Q<dim>(Model::scalar_degree), 1,
           dealii::FE_Q<dim>(2), 1),
       dof_handler_(backend_.triangulation()), model_(prm_, numbers_, fe_),
-      pcout_(std::cout,
-             dealii::Utilities::MPI::this_mpi_process(backend_.communicator()) == 0) {
+      pcout_(std::cout, dealii::Utilities::MPI::this_mpi_process(backend_.communicator()) == 0) {
   static_assert(!(Model::global_scalar && Backend::distributed),
                 "a rank-one term needs the serial backend (Sherman-Morrison)");
   check(prm_);
@@ -109,9 +108,10 @@ void FlowProblem<dim, Model, Backend>::solve_on_each_level(ContinuumResult& resu
 }
 
 template <int dim, class Model, class Backend>
-MeshLevel FlowProblem<dim, Model, Backend>::finish_level(
-    int level, std::chrono::steady_clock::time_point start, int iterations_before,
-    double previous_nusselt) {
+MeshLevel
+FlowProblem<dim, Model, Backend>::finish_level(int level,
+                                               std::chrono::steady_clock::time_point start,
+                                               int iterations_before, double previous_nusselt) {
   evaluation_point_ = solution_;
   model_.update_derived_state(dof_handler_, evaluation_point_);
   MeshLevel m;
@@ -161,25 +161,25 @@ void FlowProblem<dim, Model, Backend>::march_in_time(const std::filesystem::path
   record(0, 0);
 
   Vector previous = solution_, history = solution_; // x^{n-1}; the history of a step
-  backend_.reinit_ghosted(history_);
-  backend_.reinit_ghosted(previous_);
+  for (auto* v : {&history_, &previous_, &older_}) backend_.reinit_ghosted(*v);
   const auto start = std::chrono::steady_clock::now();
   for (int step = 1; step <= schedule.steps(); ++step) {
     // d/dt x ~ a0 x + history, history from x^n and x^{n-1} (time_schedule.hpp).
-    const auto c = schedule.coefficients(step);
-    time_a0_ = c[0];
+    bdf_ = schedule.coefficients(step);
     history = solution_;
-    history *= c[1];
-    history.add(c[2], previous);
+    history *= bdf_[1];
+    history.add(bdf_[2], previous);
     history_ = history;
+    older_ = previous;
     previous_ = solution_;
     previous = solution_;
     model_.begin_time_step();
     int iterations = 0;
     if (!newton(1.0, iterations))
-      throw std::runtime_error(std::string(Model::name) + ": Newton did not converge in time step " +
-                               std::to_string(step) + " (t = " +
-                               std::to_string(schedule.time(step)) + "); try a smaller time step");
+      throw std::runtime_error(std::string(Model::name) +
+                               ": Newton did not converge in time step " + std::to_string(step) +
+                               " (t = " + std::to_string(schedule.time(step)) +
+                               "); try a smaller time step");
     evaluation_point_ = solution_;
     model_.update_derived_state(dof_handler_, evaluation_point_);
     record(step, iterations);
@@ -188,18 +188,17 @@ void FlowProblem<dim, Model, Backend>::march_in_time(const std::filesystem::path
       pcout_ << "continuum: step " << step << "/" << schedule.steps() << ", t = " << s.time
              << ", Nu = " << s.nusselt << model_.state_note()
              << ", kinetic energy = " << s.kinetic_energy << ", max speed = " << s.max_speed
-             << " chi/H, " << iterations << " Newton iterations, "
-             << detail::seconds_since(start) << " s" << std::endl;
+             << " chi/H, " << iterations << " Newton iterations, " << detail::seconds_since(start)
+             << " s" << std::endl;
     }
   }
-  time_a0_ = 0;
+  bdf_ = {{0, 0, 0}};
   result.time = schedule.time(schedule.steps());
   result.time_steps = schedule.steps();
   result.time_step = schedule.dt();
 }
 
-template <int dim, class Model, class Backend>
-void FlowProblem<dim, Model, Backend>::setup_dofs() {
+template <int dim, class Model, class Backend> void FlowProblem<dim, Model, Backend>::setup_dofs() {
   detail::ScopedTimer timer(times_.setup);
   backend_.distribute_dofs(dof_handler_, fe_);
   make_constraints();
@@ -271,18 +270,26 @@ double FlowProblem<dim, Model, Backend>::assemble(bool with_jacobian, double gra
     }
   }
   residual_ = 0;
-  AssemblyContext<GhostedVector> context;
+  AssemblyContext<dim, GhostedVector> context;
   context.with_jacobian = with_jacobian;
-  context.gravity_factor = gravity_factor;
-  if (time_a0_ > 0) {
-    context.a0 = time_a0_;
+  for (int d = 0; d < dim; ++d) context.gravity[d] = gravity_factor * prm_.gravity[d];
+  if (bdf_[0] > 0) {
+    context.a0 = bdf_[0];
+    context.c = {{bdf_[1], bdf_[2]}};
     context.history = &history_;
     context.previous = &previous_;
+    context.older = &older_;
   }
   CellSystem cell(fe_.n_dofs_per_cell());
   std::vector<dealii::types::global_dof_index> dofs(fe_.n_dofs_per_cell());
   for (const auto& c : dof_handler_.active_cell_iterators()) {
     if (!c->is_locally_owned()) continue;
+    cell.matrix = 0;
+    cell.rhs = 0;
+    if constexpr (Model::global_scalar) {
+      cell.column = 0;
+      cell.row = 0;
+    }
     model_.assemble_cell(c, evaluation_point_, context, cell);
     c->get_dof_indices(dofs);
     if (!with_jacobian) {
@@ -320,8 +327,8 @@ bool FlowProblem<dim, Model, Backend>::newton(double gravity_factor, int& iterat
     unsigned linear = 0;
     {
       detail::ScopedTimer timer(times_.solve);
-      linear = backend_.solve(dof_handler_, residual_, newton_update_, zero_constraints_, column,
-                              row);
+      linear =
+          backend_.solve(dof_handler_, residual_, newton_update_, zero_constraints_, column, row);
     }
     // Backtracking line search on the residual norm (step-57); a state the model rejects (an
     // exception from its assembly: low-Mach T <= 0) counts as a larger residual.
@@ -350,8 +357,8 @@ bool FlowProblem<dim, Model, Backend>::newton(double gravity_factor, int& iterat
                                    step * dx[1] / (x[1] + 1e-3 * temperature_floor));
     if (std::getenv("TWINFLOW_NEWTON_DEBUG"))
       pcout_ << "  newton " << it << ": residual " << residual_norm << " -> " << new_norm
-             << ", step " << step << ", change " << change << model_.state_note() << ", "
-             << linear << " linear iterations" << std::endl;
+             << ", step " << step << ", change " << change << model_.state_note() << ", " << linear
+             << " linear iterations" << std::endl;
     if (change < prm_.newton_tolerance) return true;
     residual_norm = assemble(true, gravity_factor);
   }
@@ -380,9 +387,9 @@ void FlowProblem<dim, Model, Backend>::solve_with_continuation() {
       ++k;
     } else {
       if (++failures > 10)
-        throw std::runtime_error(std::string(Model::name) +
-                                 ": Newton did not converge on the way to Ra = " +
-                                 std::to_string(factors[k] * target));
+        throw std::runtime_error(
+            std::string(Model::name) +
+            ": Newton did not converge on the way to Ra = " + std::to_string(factors[k] * target));
       solution_ = last_converged;
       const double from = reached > 0 ? reached : factors[k] / 10;
       factors.insert(factors.begin() + k, std::sqrt(from * factors[k])); // geometric mid-step
@@ -434,8 +441,7 @@ void FlowProblem<dim, Model, Backend>::postprocess(ContinuumResult& result) {
   result.kinetic_energy = flow.kinetic_energy;
   result.max_speed = flow.max_speed;
   result.temperature_mean = flow.temperature_mean;
-  result.walls =
-      detail::wall_nusselt(dof_handler_, x, prm_, numbers_, model_.nusselt_flux_scale());
+  result.walls = detail::wall_nusselt(dof_handler_, x, prm_, numbers_, model_.nusselt_flux_scale());
   detail::midline_maxima(dof_handler_, x, prm_, numbers_, result);
   std::vector<std::string> names;
   for (int d = 0; d < dim; ++d) names.push_back(std::string("u_") + "xyz"[d]);

@@ -97,7 +97,7 @@ public:
   // int dn/dT phi_T_j (for dP/dx = -int dn/dT phi_T / int dn/dP).
   template <class VectorType>
   void assemble_cell(const CellIterator<dim>& cell, const VectorType& x,
-                     const AssemblyContext<VectorType>& context, CellSystem& out);
+                     const AssemblyContext<dim, VectorType>& context, CellSystem& out);
 
   template <class VectorType>
   void finish_result(const dealii::DoFHandler<dim>& dofs, const VectorType& x,
@@ -172,28 +172,19 @@ void LowMachModel<dim>::update_derived_state(const dealii::DoFHandler<dim>& dofs
 template <int dim>
 template <class VectorType>
 void LowMachModel<dim>::assemble_cell(const CellIterator<dim>& cell, const VectorType& x,
-                                      const AssemblyContext<VectorType>& context, CellSystem& out) {
+                                      const AssemblyContext<dim, VectorType>& context,
+                                      CellSystem& out) {
   auto& v = values_;
   v.reinit(cell, x);
-  out.matrix = 0;
-  out.rhs = 0;
-  out.column = 0;
-  out.row = 0;
-  const bool with_jacobian = context.with_jacobian;
   const double inv_dt = context.a0; // implicit Euler: 1/dt
   if (inv_dt > 0) v.values_of(*context.previous, u_old_, T_old_);
   const auto& prm = this->prm_;
   const double m = prm.particle_mass, cp = prm.heat_capacity, P = P_;
   const double n_mean = prm.number_density, T_ref = prm.reference_temperature;
-  dealii::Tensor<1, dim> g;
-  for (int d = 0; d < dim; ++d) g[d] = context.gravity_factor * prm.gravity[d];
-  const auto &u = v.u, &grad_T = v.grad_T;
-  const auto& grad_u = v.grad_u;
-  const auto &p = v.s, &T = v.T;
-  const auto &phi_u = v.phi_u, &grad_phi_T = v.grad_phi_T;
-  const auto& grad_phi_u = v.grad_phi_u;
-  const auto& eps_phi_u = v.eps_phi_u;
-  const auto &div_phi_u = v.div_phi_u, &phi_p = v.phi_s, &phi_T = v.phi_T;
+  const bool with_jacobian = context.with_jacobian;
+  const dealii::Tensor<1, dim>& g = context.gravity;
+  const auto& [u, grad_u, p, T, grad_T] = v.state;
+  const auto& [phi_u, grad_phi_u, eps_phi_u, div_phi_u, phi_p, phi_T, grad_phi_T] = v.shape;
   for (unsigned q = 0; q < v.n_q; ++q) {
     const DensityState s = number_density(prm.equation_of_state, P, T[q]);
     const double eta = prm.viscosity.at(T[q], T_ref);

@@ -21,19 +21,8 @@ io::Json power_law(const PowerLaw& law) {
   if (law.sutherland_temperature > 0) j["sutherland_temperature"] = law.sutherland_temperature;
   return j;
 }
-} // namespace
-
-io::Json to_json(const ContinuumParameters& p) {
-  io::Json j = io::Json::object();
-  j["model"] = p.model == Model::Boussinesq ? "boussinesq"
-               : p.model == Model::LowMach  ? "low-mach"
-                                            : "heat-conduction";
-  j["dim"] = p.dim;
-  j["box"] = triple(p.box, p.dim);
-  if (p.bin_box[0] > 0) { // the scene's box in this twin's coordinates (walls moved in)
-    j["scene_lower"] = triple(p.bin_lower, p.dim);
-    j["scene_box"] = triple(p.bin_box, p.dim);
-  }
+// Per direction: periodic, or the two walls (temperature or flux, Kapitza, slip).
+io::Json boundaries_json(const ContinuumParameters& p) {
   io::Json walls = io::Json::array();
   for (int d = 0; d < p.dim; ++d) {
     const auto& b = p.boundary[d];
@@ -57,7 +46,34 @@ io::Json to_json(const ContinuumParameters& p) {
     }
     walls.push_back(w);
   }
-  j["boundaries"] = walls;
+  return walls;
+}
+io::Json heat_slabs_json(const std::vector<HeatSlab>& heat_slabs) {
+  io::Json slabs = io::Json::array();
+  for (const auto& s : heat_slabs) {
+    io::Json o = io::Json::object();
+    o["direction"] = s.direction;
+    o["lower"] = s.lower;
+    o["upper"] = s.upper;
+    o["power"] = s.power;
+    slabs.push_back(o);
+  }
+  return slabs;
+}
+} // namespace
+
+io::Json to_json(const ContinuumParameters& p) {
+  io::Json j = io::Json::object();
+  j["model"] = p.model == Model::Boussinesq ? "boussinesq"
+               : p.model == Model::LowMach  ? "low-mach"
+                                            : "heat-conduction";
+  j["dim"] = p.dim;
+  j["box"] = triple(p.box, p.dim);
+  if (p.bin_box[0] > 0) { // the scene's box in this twin's coordinates (walls moved in)
+    j["scene_lower"] = triple(p.bin_lower, p.dim);
+    j["scene_box"] = triple(p.bin_box, p.dim);
+  }
+  j["boundaries"] = boundaries_json(p);
   j["gravity"] = triple(p.gravity, p.dim);
   j["number_density"] = p.number_density;
   j["particle_mass"] = p.particle_mass;
@@ -67,16 +83,7 @@ io::Json to_json(const ContinuumParameters& p) {
   j["viscosity"] = power_law(p.viscosity);
   if (p.model == Model::LowMach) j["equation_of_state"] = "ideal-gas";
   j["conductivity"] = power_law(p.conductivity);
-  io::Json slabs = io::Json::array();
-  for (const auto& s : p.heat_slabs) {
-    io::Json o = io::Json::object();
-    o["direction"] = s.direction;
-    o["lower"] = s.lower;
-    o["upper"] = s.upper;
-    o["power"] = s.power;
-    slabs.push_back(o);
-  }
-  j["heat_slabs"] = slabs;
+  j["heat_slabs"] = heat_slabs_json(p.heat_slabs);
   j["coarse_cells"] = cells_json(p.cells, p.dim);
   j["refinements"] = p.refinements;
   j["newton_tolerance"] = p.newton_tolerance;

@@ -22,7 +22,8 @@ inline void print_result(const char* what, const ContinuumResult& r, double seco
   const bool low_mach = r.model == "low-mach";
   std::printf("%s (%s, Ra = %g, epsilon = %g) on %s Q2: Nu = %.6f", what, r.model.c_str(),
               r.numbers.rayleigh, r.numbers.epsilon, mesh_text(r.cells, r.dim).c_str(), r.nusselt);
-  if (r.walls.size() == 2) std::printf(" (walls %.6f, %.6f", r.walls[0].average, r.walls[1].average);
+  if (r.walls.size() == 2)
+    std::printf(" (walls %.6f, %.6f", r.walls[0].average, r.walls[1].average);
   if (r.consistent_wall_nusselt.size() == 2)
     std::printf("; consistent flux %.6f, %.6f", r.consistent_wall_nusselt[0],
                 r.consistent_wall_nusselt[1]);

@@ -1,7 +1,0 @@
-// dim = 2 instantiation (one translation unit per dimension: ~1.5 GB to compile, build-notes).
-#include "continuum/backend_serial.templates.hpp"
-#include "continuum/boussinesq.hpp"
-#include "continuum/flow_problem.templates.hpp"
-
-template class twinflow::continuum::FlowProblem<2, twinflow::continuum::BoussinesqModel<2>,
-                                                twinflow::continuum::SerialBackend<2>>;

@@ -67,7 +67,9 @@ int transport(const CommandLine& cl) {
 int continuum(const CommandLine& cl) {
   return study::continuum_stage(load_case(cl), cl.run);
 }
-int run(const CommandLine& cl) { return study::run_all(load_case(cl), cl.run); }
+int run(const CommandLine& cl) {
+  return study::run_all(load_case(cl), cl.run);
+}
 
 // The case as the particle run recorded it, with this command's later sections over it.
 int compare(const CommandLine& cl) {
@@ -75,10 +77,10 @@ int compare(const CommandLine& cl) {
   if (!fs::is_directory(run_dir))
     throw io::InputError(run_dir.string() + ": not a run directory (twinflow compare RUNDIR, "
                                             "where RUNDIR is the --out of twinflow run)");
-  const io::Json summary = io::read_json(
-      run_dir / "particle" / "summary.json",
-      "the particle stage has not finished in " + run_dir.string() + " (twinflow run CASE --out " +
-          run_dir.string() + ")");
+  const io::Json summary =
+      io::read_json(run_dir / "particle" / "summary.json",
+                    "the particle stage has not finished in " + run_dir.string() +
+                        " (twinflow run CASE --out " + run_dir.string() + ")");
   CaseFile file;
   const study::Case c =
       file.load_recorded(summary.at("parameters"), io::text(summary, {"case"}), cl.settings);
@@ -91,7 +93,9 @@ int sweep(const CommandLine& cl) {
 int stability(const CommandLine& cl) {
   return study::stability(grid_options(cl), case_reader(cl.target));
 }
-int bench(const CommandLine& cl) { return study::bench(cl.run, cl.settings); }
+int bench(const CommandLine& cl) {
+  return study::bench(cl.run, cl.settings);
+}
 
 } // namespace
 

@@ -25,17 +25,17 @@ struct CalibratedWall {
 
 struct CalibratedWalls {
   std::array<std::array<CalibratedWall, 2>, 3> wall; // [direction][side]
-  bool kapitza = false;             // conductances set (Boussinesq twins only)
-  bool slip = false;                // slip lengths set at every no-slip wall
-  bool effective_positions = false; // walls moved to their effective positions
-  std::vector<std::string> notes;   // what could not be calibrated, and why
+  bool kapitza = false;                              // conductances set (Boussinesq twins only)
+  bool slip = false;                                 // slip lengths set at every no-slip wall
+  bool effective_positions = false;                  // walls moved to their effective positions
+  std::vector<std::string> notes;                    // what could not be calibrated, and why
 };
 
 // What the calibration needs of the twin it calibrates.
 struct TwinFacts {
-  bool boussinesq = true;      // Kapitza walls and Navier slip exist in the Boussinesq twin only
+  bool boussinesq = true;       // Kapitza walls and Navier slip exist in the Boussinesq twin only
   bool kapitza_inverse = false; // the twin's Kapitza law: h_K T_w^2 (1/T_f - 1/T_w)
-  double viscosity = 0;        // the nominal twin's eta at its reference temperature (slip)
+  double viscosity = 0;         // the nominal twin's eta at its reference temperature (slip)
 };
 
 // How the calibrated twin's walls are made, in words (metrics.json, the report).

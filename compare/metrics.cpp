@@ -20,9 +20,9 @@ BinnedState ParticleRecord::final_state() const {
 ParticleRecord read_particle_record(const fs::path& run_dir, const scene::SceneParameters& scene) {
   ParticleRecord r;
   const fs::path dir = run_dir / "particle";
-  r.summary = io::read_json(dir / "summary.json", "the particle stage has not finished in " +
-                                                      run_dir.string() + " (twinflow run CASE --out " +
-                                                      run_dir.string() + ")");
+  r.summary = io::read_json(dir / "summary.json",
+                            "the particle stage has not finished in " + run_dir.string() +
+                                " (twinflow run CASE --out " + run_dir.string() + ")");
   if (!fs::exists(dir / "fields.h5"))
     throw io::InputError((dir / "fields.h5").string() +
                          ": missing; the particle scene has no field bins to compare");
@@ -129,8 +129,9 @@ Comparison compare_twins(const ParticleRecord& run, const std::vector<TwinRecord
         std::hypot(flux(hot, "heat_flux_in_stderr"), flux(1 - hot, "heat_flux_in_stderr"));
     // The stated error: each wall's largest over its blockings (1, 2, 4 blocks merged), as for
     // the wall temperatures (a roll slower than a block makes the 20-block error too small).
-    const double se_stated = std::hypot(particle::wall_heat_flux_stderr(presults, scene::wall_name(heated, hot)),
-                                        particle::wall_heat_flux_stderr(presults, scene::wall_name(heated, 1 - hot)));
+    const double se_stated =
+        std::hypot(particle::wall_heat_flux_stderr(presults, scene::wall_name(heated, hot)),
+                   particle::wall_heat_flux_stderr(presults, scene::wall_name(heated, 1 - hot)));
     q_particle = 0.5 * (q_in + q_out);
     particle["heat_flux_hot_wall"] = q_in;
     particle["heat_flux_cold_wall"] = q_out;
@@ -186,15 +187,15 @@ Comparison compare_twins(const ParticleRecord& run, const std::vector<TwinRecord
   io::Json twins_json = io::Json::object();
   log << std::setprecision(4);
   log << "compare: " << n_interior << " interior bins (wall layer " << wall_layer
-            << "), temperature scale " << dT;
+      << "), temperature scale " << dT;
   if (compare_velocity) log << ", velocity scale " << speed_scale;
   log << "\n";
   if (heated >= 0)
     log << "compare: particle Nu = " << io::number(particle, {"nusselt"}) << " +- "
-              << io::number(particle, {"nusselt_stderr"}) << " (hot wall "
-              << io::number(particle, {"nusselt_hot_wall"}) << ", cold wall "
-              << io::number(particle, {"nusselt_cold_wall"}) << "; with 20 blocks: +- "
-              << io::number(particle, {"nusselt_stderr_20_blocks"}) << ")\n";
+        << io::number(particle, {"nusselt_stderr"}) << " (hot wall "
+        << io::number(particle, {"nusselt_hot_wall"}) << ", cold wall "
+        << io::number(particle, {"nusselt_cold_wall"}) << "; with 20 blocks: +- "
+        << io::number(particle, {"nusselt_stderr_20_blocks"}) << ")\n";
   for (const TwinRecord& t : twins) {
     io::Json j = io::Json::object();
     j["stage"] = t.stage;
@@ -206,15 +207,14 @@ Comparison compare_twins(const ParticleRecord& run, const std::vector<TwinRecord
     table["temperature_l2_noise"] = T.noise;
     table["temperature_max_" + t.name] = T.max;
     log << "compare: " << t.name << " twin: temperature L2 " << T.l2 << " +- " << T.l2_stderr
-              << " (noise " << T.noise << "), max " << T.max << " +- " << T.max_stderr;
+        << " (noise " << T.noise << "), max " << T.max << " +- " << T.max_stderr;
     if (compare_velocity) {
       const auto v = velocity_distance(final_state, t.state, interior, speed_scale);
       j["velocity"] = v.to_json();
       table["velocity_l2_" + t.name] = v.l2;
       table["velocity_l2_" + t.name + "_stderr"] = v.l2_stderr;
       table["velocity_l2_noise"] = v.noise;
-      log << "; velocity L2 " << v.l2 << " +- " << v.l2_stderr << " (noise " << v.noise
-                << ")";
+      log << "; velocity L2 " << v.l2 << " +- " << v.l2_stderr << " (noise " << v.noise << ")";
     }
     if (!t.state.density.empty()) { // the low-Mach twin's n(P, T) against the particles'
       const auto n = density_distance(final_state, t.state, interior, scene.density);
@@ -253,11 +253,11 @@ Comparison compare_twins(const ParticleRecord& run, const std::vector<TwinRecord
       log << "compare: " << t.name << " twin: Nu = " << q / q0;
       if (std::isfinite(rel))
         log << " +- " << rel * q / q0
-                  << (t.name == "calibrated" && compare.calibration == "kapitza"
-                          ? " (coefficients' and h_K's errors)"
-                          : " (coefficients' errors)");
-      log << " (own dT: " << nu_own
-                << "); particle / twin heat flux - 1 = " << q_particle / q - 1 << "\n";
+            << (t.name == "calibrated" && compare.calibration == "kapitza"
+                    ? " (coefficients' and h_K's errors)"
+                    : " (coefficients' errors)");
+      log << " (own dT: " << nu_own << "); particle / twin heat flux - 1 = " << q_particle / q - 1
+          << "\n";
     }
     j["rayleigh"] = io::number(t.summary, {"dimensionless", "rayleigh"});
     table["rayleigh_" + t.name] = io::number(t.summary, {"dimensionless", "rayleigh"});

@@ -23,9 +23,9 @@
 #include <iostream>
 #include <sstream>
 
-#include "study/bench.hpp"
 #include "io/files.hpp"
 #include "particle/run.hpp"
+#include "study/bench.hpp"
 
 namespace twinflow::study {
 
@@ -182,9 +182,8 @@ Options parse(const RunOptions& cl, const std::vector<std::string>& settings) {
 } // namespace
 
 int bench(const RunOptions& cl, const std::vector<std::string>& settings) {
-  const io::StageDirectory stage(cl.out.empty() ? std::filesystem::path("twinflow-runs/bench")
-                                                : cl.out,
-                                 "bench", cl.force);
+  const io::StageDirectory stage(
+      cl.out.empty() ? std::filesystem::path("twinflow-runs/bench") : cl.out, "bench", cl.force);
   const Options o = parse(cl, settings);
   std::ostringstream table;
   if (o.thermo > 0)

@@ -53,9 +53,9 @@ struct Case {
 
 // How a command runs (the command line's options, nothing of the case).
 struct RunOptions {
-  std::filesystem::path out; // run directory; empty: twinflow-runs/<case name>
-  bool force = false;        // overwrite an earlier run's results
-  bool restart = false;      // continue an interrupted particle run from its checkpoint
+  std::filesystem::path out;  // run directory; empty: twinflow-runs/<case name>
+  bool force = false;         // overwrite an earlier run's results
+  bool restart = false;       // continue an interrupted particle run from its checkpoint
   double wall_time_limit = 0; // seconds; 0: none. Past it a particle run checkpoints and stops
   int threads = 0;            // OpenMP threads; 0: the runtime's default
 };

@@ -95,8 +95,7 @@ io::Json coefficient_uncertainty(const continuum::ContinuumParameters& p,
   vary("viscosity", errors.viscosity, law(&continuum::ContinuumParameters::viscosity));
   for (int d = 0; d < p.dim; ++d)
     for (int side = 0; side < 2; ++side)
-      vary("kapitza_" + scene::wall_name(d, side),
-           p.boundary[d].kapitza_conductance_stderr[side],
+      vary("kapitza_" + scene::wall_name(d, side), p.boundary[d].kapitza_conductance_stderr[side],
            [d, side](continuum::ContinuumParameters& q, double by) {
              q.boundary[d].kapitza_conductance[side] += by;
              return q.boundary[d].kapitza_conductance[side] - by;
@@ -138,7 +137,8 @@ int continuum_stage(const Case& c, const RunOptions& options, const std::string&
                          "(Continuum/Solver/Linear solver = iterative); run it on one process");
   const auto numbers = continuum::dimensionless_numbers(p);
   if (root && parameters.twin.model_chosen_automatically && parameters.scene.has_walls())
-    std::cout << "continuum: Model = auto: " << (p.model == continuum::Model::LowMach ? "low-Mach" : "Boussinesq")
+    std::cout << "continuum: Model = auto: "
+              << (p.model == continuum::Model::LowMach ? "low-Mach" : "Boussinesq")
               << " (the thermal walls' epsilon " << parameters.scene.thermal_wall_epsilon()
               << (p.model == continuum::Model::LowMach ? " > " : " <= ")
               << parameters.twin.low_mach_threshold << ")\n";

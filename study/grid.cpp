@@ -77,7 +77,8 @@ std::string read_error(const GridOptions& o, const CaseReader& reader,
 } // namespace
 
 std::vector<Axis> parse_axes(const GridOptions& o, const CaseReader& reader) {
-  reader.check(o.settings); // the case file and the user's --set first: their errors name themselves
+  reader.check(
+      o.settings); // the case file and the user's --set first: their errors name themselves
   std::vector<Axis> axes;
   for (const auto& text : o.vary) {
     const std::string where = "--vary '" + text + "'";
@@ -374,8 +375,9 @@ bool has_stage_folder(const fs::path& point_dir) {
 
 int run_study(const GridOptions& o, Study& s, std::vector<Point>& points) {
   const fs::path dir =
-      o.run.out.empty() ? fs::path("twinflow-runs") / (fs::path(o.case_file).stem().string() + "-" + s.name)
-                    : o.run.out;
+      o.run.out.empty()
+          ? fs::path("twinflow-runs") / (fs::path(o.case_file).stem().string() + "-" + s.name)
+          : o.run.out;
   const fs::path json_path = dir / (s.name + ".json");
   std::vector<std::string> varied;
   for (const auto& [key, values] : s.grid.at("vary").items()) varied.push_back(key);
@@ -463,7 +465,9 @@ int run_study(const GridOptions& o, Study& s, std::vector<Point>& points) {
   const int cores = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
   int jobs = o.jobs > 0 ? o.jobs : std::max(1, cores / std::max(1, o.run.threads));
   jobs = std::max(1, std::min<int>(jobs, static_cast<int>(tasks.size())));
-  const int threads = o.run.threads > 0 ? o.run.threads : jobs > 1 ? 1 : 0; // 0: the child's default
+  const int threads = o.run.threads > 0 ? o.run.threads
+                      : jobs > 1        ? 1
+                                        : 0; // 0: the child's default
   for (auto& t : tasks) {
     if (threads > 0) t.arguments.insert(t.arguments.end(), {"--threads", std::to_string(threads)});
     fs::create_directories(t.log.parent_path());

@@ -25,9 +25,9 @@ int run_all(Case c, const RunOptions& options) {
   if (!reuse_particle) io::StageDirectory(run_dir, "particle", options.force || options.restart);
   std::cout << "run: '" << p.name << "': particle, transport, continuum"
             << (walls ? " (nominal and calibrated)" : "") << ", compare\n";
-  if (const int rc = run_or_reuse(run_dir / "particle", particle_inputs,
-                                  options.force || options.restart,
-                                  [&] { return particle_stage(c, options); }))
+  if (const int rc =
+          run_or_reuse(run_dir / "particle", particle_inputs, options.force || options.restart,
+                       [&] { return particle_stage(c, options); }))
     return rc;
   RunOptions later = options;
   later.restart = false;
@@ -69,9 +69,10 @@ int run_all(Case c, const RunOptions& options) {
     const StageInputs calibrated_inputs =
         stage_inputs(calibrated, {"Scene/", "Transport/", "Continuum/"},
                      {transport_inputs.hash, particle_inputs.hash});
-    if (const int rc = run_or_reuse(run_dir / "continuum_calibrated", calibrated_inputs, false, [&] {
-          return continuum_stage(calibrated, later, "continuum_calibrated");
-        }))
+    if (const int rc =
+            run_or_reuse(run_dir / "continuum_calibrated", calibrated_inputs, false, [&] {
+              return continuum_stage(calibrated, later, "continuum_calibrated");
+            }))
       return rc;
   }
   if (!fs::exists(run_dir / "particle" / "fields.h5")) return 0; // nothing binned to compare

@@ -10,9 +10,9 @@
 #include <sstream>
 
 #include "io/files.hpp"
+#include "particle/theory.hpp"
 #include "study/grid.hpp"
 #include "study/sweeps.hpp"
-#include "particle/theory.hpp"
 
 namespace twinflow::study {
 
@@ -38,7 +38,7 @@ double run_target_temperature(const scene::SceneParameters& scene, const io::Jso
   const double energy_equation_of_state =
       io::number(summary, {"results", "T_energy_equation_of_state"});
   return !thermal_walls && std::isfinite(energy_equation_of_state) ? energy_equation_of_state
-                                                                       : before_run;
+                                                                   : before_run;
 }
 
 struct Prediction {
@@ -181,8 +181,7 @@ int stability(const GridOptions& cl, const CaseReader& reader) {
     classify_summary(p.resolved, point_dir, row);
     return true;
   };
-  s.describe = [&](const Point& p, const fs::path& point_dir, const ChildResult& r,
-                   io::Json& row) {
+  s.describe = [&](const Point& p, const fs::path& point_dir, const ChildResult& r, io::Json& row) {
     if (r.exit_code == 0)
       classify_summary(p.resolved, point_dir, row);
     else if (r.exit_code == 4) // particle::InstabilityError

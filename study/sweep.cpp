@@ -226,8 +226,7 @@ int sweep(const GridOptions& cl, const CaseReader& reader) {
     add_metrics(point_dir, reserved, row);
     return true;
   };
-  s.describe = [&](const Point&, const fs::path& point_dir, const ChildResult& r,
-                   io::Json& row) {
+  s.describe = [&](const Point&, const fs::path& point_dir, const ChildResult& r, io::Json& row) {
     row["status"] = status_of(r.exit_code);
     if (r.exit_code == 0) add_metrics(point_dir, reserved, row);
   };

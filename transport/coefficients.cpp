@@ -15,8 +15,8 @@ Coefficients read_coefficients(const io::Json& summary, const std::string& sourc
     return io::number(summary, {"results", "measured", key});
   };
   const auto pick = [&](const char* estimate_key, const char* measured_key) {
-    Coefficient c{io::number(summary, {"results", "estimated_measured_g", estimate_key}), nan,
-                  nan, false};
+    Coefficient c{io::number(summary, {"results", "estimated_measured_g", estimate_key}), nan, nan,
+                  false};
     const double m = measured_key ? measured(measured_key) : nan;
     if (source == "measured" && std::isfinite(m)) c.value = m, c.measured = true;
     return c;

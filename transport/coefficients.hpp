@@ -11,9 +11,9 @@
 namespace twinflow::transport {
 
 struct Coefficient {
-  double value = 0;   // at the requested temperature
-  double stderr_;     // NaN for an estimate
-  double exponent;    // of a measured power law value (T / T_ref)^n; NaN: none
+  double value = 0; // at the requested temperature
+  double stderr_;   // NaN for an estimate
+  double exponent;  // of a measured power law value (T / T_ref)^n; NaN: none
   bool measured = false;
 };
 

@@ -40,8 +40,7 @@ TransportMeasurement measure_transport(const scene::SceneParameters& scene,
   TransportMeasurement out;
   io::Json& r = out.results;
   const double nan = std::nan("");
-  const Estimates ideal =
-      estimate(p, p.temperature, PairDistribution::ideal());
+  const Estimates ideal = estimate(p, p.temperature, PairDistribution::ideal());
   const long steps = 2000;
   const Measured m = measure(p, steps);
   const auto measured_g = PairDistribution::from_csv(m.rdf_csv);
@@ -55,8 +54,8 @@ TransportMeasurement measure_transport(const scene::SceneParameters& scene,
     temperatures = {p.temperature * (1 - spread), p.temperature, p.temperature * (1 + spread)};
   std::vector<RelaxationCoefficients> at_temperature;
   // The relaxation runs' own, smaller box: they last a few relaxation times of the box, ~ L^2.
-  const double flow_edge = std::max(3 * p.largest_cutoff(),
-                                    std::pow(t.flow_particles / p.density, 1.0 / p.dim));
+  const double flow_edge =
+      std::max(3 * p.largest_cutoff(), std::pow(t.flow_particles / p.density, 1.0 / p.dim));
   // The modes' wavelength is the doubled box edge; hydrodynamics needs it long against the
   // interaction range (k rc << 1), else the coefficients are those of a finite wavenumber.
   const double k_rc = 2 * M_PI / (2 * flow_edge) * p.largest_cutoff();
@@ -178,8 +177,7 @@ TransportMeasurement measure_transport(const scene::SceneParameters& scene,
   if (t.measure_flows) {
     if (t.kappa_from_walls) {
       r["measured"]["conductivity_relaxation"] = flow.conductivity.value.mean;
-      r["measured"]["conductivity_relaxation_stderr"] =
-          flow.conductivity.value.stderr_;
+      r["measured"]["conductivity_relaxation_stderr"] = flow.conductivity.value.stderr_;
     }
     r["measured"]["viscosity"] = eta.mean;
     r["measured"]["viscosity_stderr"] = eta.stderr_;

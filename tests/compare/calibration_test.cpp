@@ -90,8 +90,8 @@ TEST(Calibration, AJumpAgainstTheHeatFlowKeepsTheFluidsWallTemperature) {
   compare::CompareParameters c;
   c.wall_layer = 0;
   // heat flowing out of the hot wall's fluid into the wall: no conductance can describe it
-  const auto walls = compare::calibrate_walls(wall_results(-0.1, -0.1), linear_fluid(), cavity(),
-                                              c, {true, false, 1.0});
+  const auto walls = compare::calibrate_walls(wall_results(-0.1, -0.1), linear_fluid(), cavity(), c,
+                                              {true, false, 1.0});
   EXPECT_EQ(walls.wall[0][0].conductance, 0);
   EXPECT_NEAR(walls.wall[0][0].fluid_temperature, 1.3, 1e-12);
   EXPECT_GT(walls.wall[0][1].conductance, 0);

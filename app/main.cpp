@@ -20,37 +20,19 @@ using namespace twinflow;
 
 namespace {
 
-struct Command {
-  const char* help;
-  int (*run)(const app::CommandLine&);
-  bool needs_target;
-};
-
-const std::map<std::string, Command>& commands() {
-  static const std::map<std::string, Command> table = {
-      {"particle", {"CASE      run the DPDE particle scene", app::particle_command, true}},
-      {"transport",
-       {"CASE      estimate and measure kappa, eta, alpha, c_p", app::transport_stage, true}},
-      {"continuum", {"CASE      run the deal.II continuum twin", app::continuum_stage, true}},
-      {"compare", {"RUNDIR    compare the twins of a finished run", app::compare_stage, true}},
-      {"run",
-       {"CASE      all stages: particle, transport, continuum, compare", app::run_all, true}},
-      {"sweep", {"CASE      a grid of paired runs (--vary, --rayleigh)", app::sweep, true}},
-      {"stability",
-       {"CASE      classify particle runs over a parameter grid (--vary)", app::stability, true}},
-      {"bench", {"          particle-steps/s of the particle core", app::bench, false}},
-      {"check-case",
-       {"CASE      validate a case file and print its resolved parameters", app::check_case, true}},
-      {"print-parameters",
-       {"          every parameter with its default, range and documentation",
-        app::print_parameters, false}},
-  };
-  return table;
+const app::Command* find_command(const std::string& name) {
+  for (const auto& c : app::commands())
+    if (name == c.name) return &c;
+  return nullptr;
 }
 
 void usage(std::ostream& out, const po::options_description& opts) {
   out << "usage: twinflow COMMAND [CASE|RUNDIR] [options]\n\ncommands:\n";
-  for (const auto& [name, c] : commands()) out << "  " << name << " " << c.help << "\n";
+  for (const auto& c : app::commands()) {
+    const std::string head = std::string(c.name) + " " + c.arguments;
+    out << "  " << head << std::string(head.size() < 24 ? 24 - head.size() : 1, ' ') << c.help
+        << "\n";
+  }
   out << "\n" << opts;
 }
 
@@ -150,26 +132,26 @@ int main(int argc, char** argv) {
       return vm.count("help") ? 0 : 2;
     }
     cl.command = vm["command"].as<std::string>();
-    const auto it = commands().find(cl.command);
-    if (it == commands().end())
+    const app::Command* command = find_command(cl.command);
+    if (!command)
       throw io::InputError("unknown command '" + cl.command + "' (twinflow --help lists them)");
     if (vm.count("target")) cl.target = vm["target"].as<std::string>();
-    if (it->second.needs_target && cl.target.empty())
+    if (*command->arguments && cl.target.empty())
       throw io::InputError("'" + cl.command + "' needs a CASE file (or RUNDIR)");
-    if (vm.count("out")) cl.out = vm["out"].as<std::string>();
-    if (vm.count("set")) cl.overrides = vm["set"].as<std::vector<std::string>>();
+    if (vm.count("out")) cl.run.out = vm["out"].as<std::string>();
+    if (vm.count("set")) cl.settings = vm["set"].as<std::vector<std::string>>();
     if (vm.count("seed"))
-      cl.overrides.push_back("Particle/Seed=" + std::to_string(vm["seed"].as<long>()));
+      cl.settings.push_back("Particle/Seed=" + std::to_string(vm["seed"].as<long>()));
     if (vm.count("threads")) {
-      cl.threads = vm["threads"].as<int>();
-      if (cl.threads < 1)
-        throw io::InputError("--threads " + std::to_string(cl.threads) + ": allowed: >= 1");
-      omp_set_num_threads(cl.threads);
+      cl.run.threads = vm["threads"].as<int>();
+      if (cl.run.threads < 1)
+        throw io::InputError("--threads " + std::to_string(cl.run.threads) + ": allowed: >= 1");
+      omp_set_num_threads(cl.run.threads);
     }
-    cl.force = vm.count("force") > 0;
-    cl.restart = vm.count("restart") > 0;
+    cl.run.force = vm.count("force") > 0;
+    cl.run.restart = vm.count("restart") > 0;
     if (vm.count("wall-time"))
-      cl.wall_time_limit = parse_duration(vm["wall-time"].as<std::string>());
+      cl.run.wall_time_limit = parse_duration(vm["wall-time"].as<std::string>());
     const bool grid_command = cl.command == "sweep" || cl.command == "stability";
     for (const char* option : {"vary", "rayleigh", "jobs"})
       if (vm.count(option) && !grid_command)
@@ -187,16 +169,13 @@ int main(int argc, char** argv) {
       if (cl.jobs < 1)
         throw io::InputError("--jobs " + std::to_string(cl.jobs) + ": allowed: >= 1");
     }
-    return it->second.run(cl);
+    return command->run(cl);
   } catch (const po::error& e) {
     std::cerr << "twinflow: error: " << e.what() << " (twinflow --help)\n";
     return 2;
   } catch (const io::InputError& e) {
     std::cerr << "twinflow: error: " << e.what() << "\n";
     return 2;
-  } catch (const app::NotImplemented& e) {
-    std::cerr << "twinflow: " << e.what() << "\n";
-    return 3;
   } catch (const std::exception& e) {
     std::cerr << "twinflow: failed: " << e.what() << "\n";
     return 1;

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "io/files.hpp"
+#include "statistics/blocking.hpp"
 
 namespace twinflow::compare {
 
@@ -266,14 +267,7 @@ WallFluidTemperature wall_fluid_temperature(const BinnedState& p, const std::vec
   if (p.temperature_blocks.size() < 2) return w;
   std::vector<double> per_block; // the same extrapolation, block by block
   for (const auto& t : p.temperature_blocks) per_block.push_back(extrapolated(t));
-  for (std::size_t merge = 1; per_block.size() / merge >= 2 && merge <= 4; merge *= 2) {
-    std::vector<double> m(per_block.size() / merge, 0.0); // a partial last group is left out
-    for (std::size_t k = 0; k < m.size() * merge; ++k) m[k / merge] += per_block[k] / merge;
-    double mean = 0, ss = 0;
-    for (const double x : m) mean += x / m.size();
-    for (const double x : m) ss += (x - mean) * (x - mean);
-    w.blocking.push_back(std::sqrt(ss / (m.size() - 1) / m.size()));
-  }
+  w.blocking = statistics::merged_blocking_errors(per_block);
   // The estimate grows with the block length until blocks outlast the correlation time
   // (Flyvbjerg & Petersen 1989); with a few levels only, the largest is the honest figure.
   w.stderr_ = *std::max_element(w.blocking.begin(), w.blocking.end());

@@ -11,8 +11,8 @@
 // h = sum_k a_k x^{n+1-k} of the earlier steps (BDF2: a0 = 3/(2 dt), h = (-4 x^n + x^{n-1})/(2 dt);
 // Hairer, Norsett & Wanner I, sec. III.1).
 //
-// BoussinesqProblem<dim>: serial and direct (dim = 2: boussinesq_2d.cpp; 3: boussinesq_3d.cpp,
-// thin boxes such as one periodic in z); the distributed solver: boussinesq_distributed.hpp.
+// BoussinesqProblem<dim>: serial and direct (dim = 2: flow_2d.cpp; 3: flow_3d.cpp, thin boxes
+// such as one periodic in z); the distributed solver: boussinesq_distributed.hpp.
 
 #include "continuum/backend_serial.hpp"
 #include "continuum/flow_model.hpp"

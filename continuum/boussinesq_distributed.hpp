@@ -3,7 +3,7 @@
 // distributed backend (backend_distributed.hpp: p4est, Trilinos, FGMRES with a block-triangular
 // AMG preconditioner), for 3D boxes that a direct solver cannot factorise. Runs on one process
 // or under mpirun; steady or in time as the serial solver. Instantiated for dim = 3
-// (boussinesq_distributed_3d.cpp). Not computed on this path: stream function, probes, local
+// (flow_distributed_3d.cpp). Not computed on this path: stream function, probes, local
 // wall Nu under mpirun.
 
 #include "continuum/backend_distributed.hpp"

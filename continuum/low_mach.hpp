@@ -18,8 +18,8 @@
 // Newton's method: exact Jacobian at fixed P, plus the global coupling through P, a rank-one
 // term (dR/dP)(dP/dx)^T (CellSystem), which the serial backend handles by the Sherman-Morrison
 // formula with the same factorisation: the full Newton step, no fixed-point lag on P.
-// LowMachProblem<dim>: serial and direct, dim = 2 (low_mach_2d.cpp) and 3 (low_mach_3d.cpp, thin
-// boxes only).
+// LowMachProblem<dim>: serial and direct, dim = 2 (flow_2d.cpp) and 3 (flow_3d.cpp, thin boxes
+// only).
 
 #include <algorithm>
 #include <cmath>

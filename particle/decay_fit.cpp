@@ -4,7 +4,7 @@
 #include <cmath>
 #include <string>
 
-#include "particle/line_fit.hpp"
+#include "statistics/line_fit.hpp"
 
 namespace twinflow::particle {
 
@@ -23,7 +23,7 @@ io::Json decay_fit(double wave, const std::vector<double>& t, const std::vector<
     j["note"] = "too few samples between 80% and 30% of the initial amplitude: run longer";
     return j;
   }
-  LineFit first;
+  statistics::LineFit first;
   for (std::size_t k = start; k < end; ++k) first.add(t[k], std::log(a[k]));
   double slope = first.slope(), intercept = first.intercept();
   auto fitted = [&](std::size_t k) { return std::exp(intercept + slope * t[k]); };
@@ -34,10 +34,10 @@ io::Json decay_fit(double wave, const std::vector<double>& t, const std::vector<
   };
   // (a floor for noise-free data)
   double sigma = std::max(noise(n - end >= 5 ? end : start), 1e-12 * a0);
-  LineFit line;
+  statistics::LineFit line;
   std::vector<std::size_t> used;
   for (int pass = 0; pass < 3; ++pass) {
-    line = LineFit{};
+    line = statistics::LineFit{};
     used.clear();
     for (std::size_t k = start; k < n; ++k) {
       const double f = fitted(k);

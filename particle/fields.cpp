@@ -3,6 +3,8 @@
 #include <cstdio>
 #include <sstream>
 
+#include "statistics/blocking.hpp"
+
 namespace twinflow::particle {
 
 double BinnedFields::centre(int bin, int d) const {
@@ -288,10 +290,10 @@ WallLayerSampler<D>::result(const std::function<double(int, double, double)>& fr
       zeta_blocks.push_back(zeta), zeta_h_blocks.push_back(zeta > 0 ? zeta_h / zeta : 0.0);
     }
     auto mean_se = [&](auto value, double& mean, double& se) { // over the used blocks
-      mean = 0, se = 0;
-      for (int b = 0; b < used; ++b) mean += value(b) / used;
-      for (int b = 0; b < used; ++b) se += (value(b) - mean) * (value(b) - mean);
-      se = used > 1 ? std::sqrt(se / (used - 1) / used) : 0.0;
+      std::vector<double> per_block(used);
+      for (int b = 0; b < used; ++b) per_block[b] = value(b);
+      const statistics::Estimate e = statistics::block_estimate(per_block);
+      mean = e.mean, se = e.stderr_;
     };
     p.density.mean.resize(slices_), p.density.stderr_.resize(slices_);
     p.temperature.mean.resize(slices_), p.temperature.stderr_.resize(slices_);

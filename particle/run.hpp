@@ -10,17 +10,15 @@
 #include "io/field_file.hpp"
 #include "io/json.hpp"
 #include "particle/parameters.hpp"
+#include "statistics/blocking.hpp"
 
 namespace twinflow::particle {
 
-// Mean and block-averaged standard error of a time series (B equal blocks).
-struct Estimate {
-  double mean = 0, stderr_ = 0;
-};
-Estimate block_average(const std::vector<double>& series, int blocks);
-// The standard error with B blocks, then with 2 and 4 of them merged (Flyvbjerg & Petersen
-// 1989): equal errors say the blocks are longer than the series' memory; else the largest holds.
-std::vector<double> blocking_errors(const std::vector<double>& series, int blocks);
+// Mean and block standard error of a time series (statistics/blocking.hpp), as callers of the
+// particle run have always named them.
+using statistics::block_average;
+using statistics::blocking_errors;
+using statistics::Estimate;
 
 struct RunOutput {
   io::Json summary;             // the particle stage's results

@@ -4,7 +4,7 @@
 #include <sstream>
 #include <vector>
 
-#include "particle/line_fit.hpp"
+#include "statistics/line_fit.hpp"
 
 namespace twinflow::transport {
 
@@ -149,7 +149,7 @@ io::Json Repeated::json() const {
 PowerLawFit fit_power_law(const std::vector<double>& temperatures,
                           const std::vector<Estimate>& values, double reference) {
   // ln c = ln c_ref + n ln(T / T_ref), a straight line in logs weighted by (c / stderr)^2.
-  particle::LineFit line;
+  statistics::LineFit line;
   std::vector<std::size_t> used;
   for (std::size_t i = 0; i < values.size(); ++i) {
     if (!std::isfinite(values[i].mean) || !(values[i].stderr_ > 0)) continue;

@@ -6,13 +6,7 @@ namespace twinflow::app {
 
 using dealii::Patterns::Anything;
 
-bool SceneParameters::has_walls() const {
-  for (int d = 0; d < dim; ++d)
-    if (!boundary[d].periodic) return true;
-  return false;
-}
-
-Case::Case() {
+CaseFile::CaseFile() {
   registry_.declare("Case name", "", Anything(),
                     "Name of the case (used in reports); empty: the case file's name.");
   declare_scene(registry_);
@@ -21,18 +15,20 @@ Case::Case() {
   declare_continuum(registry_);
 }
 
-CaseParameters Case::load(const std::string& filename, const std::vector<std::string>& overrides) {
-  read(filename, overrides);
-  return resolve(filename);
+study::Case CaseFile::load(const std::string& filename, const std::vector<std::string>& settings) {
+  read(filename, settings);
+  study::Case c = resolve(filename);
+  c.settings = settings;
+  return c;
 }
 
-void Case::read(const std::string& filename, const std::vector<std::string>& overrides) {
+void CaseFile::read(const std::string& filename, const std::vector<std::string>& settings) {
   registry_.parse_file(filename);
-  for (const auto& o : overrides) registry_.set_override(o);
+  for (const auto& o : settings) registry_.set_override(o);
 }
 
-CaseParameters Case::load_resolved(const io::Json& resolved, const std::string& name,
-                                   const std::vector<std::string>& overrides) {
+study::Case CaseFile::load_recorded(const io::Json& resolved, const std::string& name,
+                                    const std::vector<std::string>& overrides) {
   if (!resolved.is_object()) throw io::InputError("recorded case parameters: not an object");
   for (const auto& [path, value] : resolved.items())
     registry_.set_override(path + "=" +
@@ -42,35 +38,48 @@ CaseParameters Case::load_resolved(const io::Json& resolved, const std::string& 
       if (o.rfind(later, 0) == 0) registry_.set_override(o);
   if (!name.empty() && io::text(resolved, {"Case name"}).empty())
     registry_.set_override("Case name=" + name);
-  return resolve("");
+  study::Case c = resolve("");
+  c.settings = overrides;
+  return c;
 }
 
-CaseParameters Case::resolve(const std::string& filename) const {
-  CaseParameters c;
+study::Case CaseFile::resolve(const std::string& filename) const {
+  study::Case out;
+  out.file = filename;
+  study::CaseParameters& c = out.parameters;
   c.name = registry_.get("Case name");
   if (c.name.empty()) c.name = std::filesystem::path(filename).stem().string();
   c.scene = resolve_scene(registry_);
   c.particle = resolve_particle(registry_, c.scene);
-  c.transport.source = registry_.get("Transport/Source");
-  c.transport.measure_flows = registry_.get_bool("Transport/Measure kappa and eta");
-  c.transport.temperature = registry_.get_double("Transport/Temperature");
-  c.transport.flow_particles = registry_.get_double("Transport/Flow particles");
-  c.transport.flow_repeats = static_cast<int>(registry_.get_integer("Transport/Flow repeats"));
-  c.transport.temperature_spread = registry_.get_double("Transport/Temperature spread");
-  c.transport.kappa_from_walls = registry_.get_bool("Transport/Kappa from walls");
-  c.transport.wall_steps = registry_.get_integer("Transport/Wall steps");
-  c.compare.wall_layer = registry_.get_double("Compare/Wall layer");
-  c.compare.calibration = registry_.get("Compare/Calibration");
-  c.compare.effective_walls = registry_.get_bool("Compare/Effective walls");
-  c.compare.wall_slip = registry_.get_bool("Compare/Wall slip");
-  c.compare.rayleigh_control = registry_.get("Compare/Rayleigh control");
-  c.compare.stability.energy_drift = registry_.get_double("Compare/Stability/Energy drift bound");
-  c.compare.stability.temperature_tolerance =
-      registry_.get_double("Compare/Stability/Temperature tolerance");
-  c.compare.stability.fluctuation_number =
-      registry_.get_double("Compare/Stability/Fluctuation bound");
+  resolve_transport_and_compare(registry_, c);
   c.continuum = resolve_continuum(registry_, c.scene);
-  return c;
+  c.twin.coefficients_from_transport =
+      registry_.get("Continuum/Coefficients/Source") == "transport";
+  c.twin.model_chosen_automatically = registry_.get("Continuum/Model") == "auto";
+  c.twin.low_mach_threshold = registry_.get_double("Continuum/Low-Mach threshold");
+  out.record = registry_.resolved_json();
+  for (const auto& [path, value] : out.record.items())
+    out.defaults[path] = registry_.default_value(path);
+  return out;
+}
+
+void resolve_transport_and_compare(const Registry& r, study::CaseParameters& c) {
+  c.transport.source = r.get("Transport/Source");
+  c.transport.measure_flows = r.get_bool("Transport/Measure kappa and eta");
+  c.transport.temperature = r.get_double("Transport/Temperature");
+  c.transport.flow_particles = r.get_double("Transport/Flow particles");
+  c.transport.flow_repeats = static_cast<int>(r.get_integer("Transport/Flow repeats"));
+  c.transport.temperature_spread = r.get_double("Transport/Temperature spread");
+  c.transport.kappa_from_walls = r.get_bool("Transport/Kappa from walls");
+  c.transport.wall_steps = r.get_integer("Transport/Wall steps");
+  c.compare.wall_layer = r.get_double("Compare/Wall layer");
+  c.compare.calibration = r.get("Compare/Calibration");
+  c.compare.effective_walls = r.get_bool("Compare/Effective walls");
+  c.compare.wall_slip = r.get_bool("Compare/Wall slip");
+  c.compare.rayleigh_control = r.get("Compare/Rayleigh control");
+  c.stability.energy_drift = r.get_double("Compare/Stability/Energy drift bound");
+  c.stability.temperature_tolerance = r.get_double("Compare/Stability/Temperature tolerance");
+  c.stability.fluctuation_number = r.get_double("Compare/Stability/Fluctuation bound");
 }
 
 void declare_transport_and_compare(Registry& r) {

@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "app/case/case.hpp"
+#include "continuum/twin_walls.hpp"
 
 namespace twinflow::app {
 
@@ -14,7 +15,7 @@ const std::string s = "Continuum/";
 
 // "8" -> 8 cells along the shortest box edge, the others in proportion; "16, 8" -> per direction.
 std::array<unsigned, 3> cells_per_direction(const Registry& r, const std::string& path,
-                                            const SceneParameters& scene) {
+                                            const scene::SceneParameters& scene) {
   const auto values = r.get_doubles(path);
   std::array<unsigned, 3> cells{{1, 1, 1}};
   if (values.size() == 1) {
@@ -56,17 +57,6 @@ std::vector<std::array<double, 3>> points(const Registry& r, const std::string& 
   return out;
 }
 } // namespace
-
-double thermal_wall_epsilon(const SceneParameters& scene) {
-  double lo = HUGE_VAL, hi = 0;
-  for (int d = 0; d < scene.dim; ++d)
-    for (int side = 0; side < 2; ++side)
-      if (!scene.boundary[d].periodic && scene.boundary[d].thermal[side]) {
-        lo = std::min(lo, scene.boundary[d].temperature[side]);
-        hi = std::max(hi, scene.boundary[d].temperature[side]);
-      }
-  return hi > 0 ? (hi - lo) / (hi + lo) : 0; // (T_h - T_c) / (T_h + T_c), Le Quere et al. 2005
-}
 
 void declare_continuum(Registry& r) {
   using namespace dealii::Patterns;
@@ -206,7 +196,8 @@ void declare_continuum(Registry& r) {
             "Samples per mid-line before the velocity maximum is refined (10x zooms).");
 }
 
-continuum::ContinuumParameters resolve_continuum(const Registry& r, const SceneParameters& scene) {
+continuum::ContinuumParameters resolve_continuum(const Registry& r,
+                                                 const scene::SceneParameters& scene) {
   continuum::ContinuumParameters c;
   c.dim = scene.dim;
   c.box = scene.box;
@@ -214,7 +205,7 @@ continuum::ContinuumParameters resolve_continuum(const Registry& r, const SceneP
   c.model = model == "heat-conduction" ? continuum::Model::HeatConduction
             : model == "low-mach"      ? continuum::Model::LowMach
                                        : continuum::Model::Boussinesq;
-  if (model == "auto" && thermal_wall_epsilon(scene) > r.get_double(s + "Low-Mach threshold"))
+  if (model == "auto" && scene.thermal_wall_epsilon() > r.get_double(s + "Low-Mach threshold"))
     c.model = continuum::Model::LowMach;
   c.gravity = scene.gravity;
   for (int d = 0; d < 3; ++d) {
@@ -265,18 +256,16 @@ continuum::ContinuumParameters resolve_continuum(const Registry& r, const SceneP
   r.require(navier == 0 || sticking == 0, s + "Slip lengths",
             "> 0 at all of the twin's no-slip walls or at none");
   const std::vector<double> positions = r.get_doubles(s + "Wall positions");
+  std::array<double, 6> distance{};
   for (std::size_t w = 0; w < positions.size(); ++w) {
-    const int d = static_cast<int>(w / 2), side = static_cast<int>(w % 2);
+    const int d = static_cast<int>(w / 2);
     r.require(d < scene.dim && (positions[w] == 0 || !c.boundary[d].periodic), s + "Wall positions",
               "at most 2 x dimension values, 0 in periodic directions");
-    if (positions[w] == 0) continue;
-    for (int e = 0; e < scene.dim; ++e) c.bin_box[e] = scene.box[e];
-    c.box[d] -= positions[w];
-    if (side == 0) c.bin_lower[d] = -positions[w];
+    distance[w] = positions[w];
   }
   for (int d = 0; d < scene.dim; ++d)
-    r.require(c.box[d] > 0.5 * scene.box[d], s + "Wall positions",
-              "two walls' distances together below half the box length");
+    r.require(scene.box[d] - distance[2 * d] - distance[2 * d + 1] > 0.5 * scene.box[d],
+              s + "Wall positions", "two walls' distances together below half the box length");
 
   // Same units as the particle twin: n from the scene, m from the particle section.
   c.number_density = scene.density;
@@ -330,12 +319,10 @@ continuum::ContinuumParameters resolve_continuum(const Registry& r, const SceneP
       "empty with Mode = steady and for low-Mach (which starts at the reference temperature)");
 
   for (const auto& slab : scene.heat_slabs)
-    c.heat_slabs.push_back({slab.direction, slab.lower + c.bin_lower[slab.direction],
-                            slab.upper + c.bin_lower[slab.direction], slab.power});
+    c.heat_slabs.push_back({slab.direction, slab.lower, slab.upper, slab.power});
   for (int d = 0; d < scene.dim; ++d) c.bins[d] = static_cast<unsigned>(scene.bins[d]);
   c.probe_points = points(r, s + "Output/Probe points", scene.dim, scene.box);
-  for (auto& point : c.probe_points) // scene coordinates to this twin's
-    for (int d = 0; d < scene.dim; ++d) point[d] += c.bin_lower[d];
+  continuum::move_walls_in(c, distance, scene.box); // slabs and points to this twin's frame
   c.write_fields = r.get_bool(s + "Output/Write fields");
   c.profile_samples = static_cast<int>(r.get_integer(s + "Output/Profile samples"));
 

@@ -114,7 +114,7 @@ WeightParameters weight(const Registry& r, const std::string& s) {
 }
 } // namespace
 
-ParticleParameters resolve_particle(const Registry& r, const SceneParameters& scene) {
+ParticleParameters resolve_particle(const Registry& r, const scene::SceneParameters& scene) {
   ParticleParameters p;
   p.dim = scene.dim;
   p.box = scene.box;

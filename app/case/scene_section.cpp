@@ -65,8 +65,8 @@ void declare_scene(Registry& r) {
   }
 }
 
-SceneParameters resolve_scene(const Registry& r) {
-  SceneParameters s;
+scene::SceneParameters resolve_scene(const Registry& r) {
+  scene::SceneParameters s;
   s.dim = static_cast<int>(r.get_integer("Scene/Dimension"));
   const auto box = r.get_doubles("Scene/Box size");
   r.require(static_cast<int>(box.size()) >= s.dim, "Scene/Box size",

@@ -8,13 +8,13 @@
 #include <iostream>
 #include <set>
 
-#include "app/case/case.hpp"
-#include "app/commands.hpp"
-#include "app/grid_runner.hpp"
 #include "continuum/parameters.hpp"
 #include "io/files.hpp"
+#include "study/grid.hpp"
+#include "study/sweeps.hpp"
+#include "transport/coefficients.hpp"
 
-namespace twinflow::app {
+namespace twinflow::study {
 
 namespace fs = std::filesystem;
 
@@ -49,7 +49,6 @@ void add_metrics(const fs::path& point_dir, const std::set<std::string>& reserve
         for (const auto& [key, value] : table_row->items()) put(key, value);
     return;
   }
-  using grid::number_or_null;
   const io::Json continuum = read_json_or_empty(point_dir / "continuum" / "summary.json");
   put("rayleigh", number_or_null(io::number(continuum, {"dimensionless", "rayleigh"})));
   put("prandtl", number_or_null(io::number(continuum, {"dimensionless", "prandtl"})));
@@ -70,23 +69,6 @@ std::string status_of(int exit_code) {
   return "failed";
 }
 
-// The transport stage's coefficients, as the continuum twin takes them (app/continuum_stage.cpp):
-// the measured ones where the case asks for them and they exist, else the estimate with the
-// measured g(r).
-struct Coefficients {
-  double viscosity, conductivity, heat_capacity_p, thermal_expansion;
-};
-Coefficients coefficients_from(const io::Json& summary, const std::string& source) {
-  const auto pick = [&](const char* estimate_key, const char* measured_key) {
-    const double measured = io::number(summary, {"results", "measured", measured_key});
-    if (source == "measured" && std::isfinite(measured)) return measured;
-    return io::number(summary, {"results", "estimated_measured_g", estimate_key});
-  };
-  return {pick("viscosity", "viscosity"), pick("conductivity", "conductivity"),
-          io::number(summary, {"results", "estimated_measured_g", "heat_capacity_p_per_particle"}),
-          pick("thermal_expansion", "thermal_expansion")};
-}
-
 double magnitude(const std::array<double, 3>& v, int dim) {
   double s = 0;
   for (int d = 0; d < dim; ++d) s += v[d] * v[d];
@@ -95,13 +77,14 @@ double magnitude(const std::array<double, 3>& v, int dim) {
 
 // The gravity that gives `point` the target Ra with the reference coefficients, along the case's
 // own gravity direction.
-std::array<double, 3> gravity_for_rayleigh(const CaseParameters& point, const Coefficients& k,
+std::array<double, 3> gravity_for_rayleigh(const CaseParameters& point,
+                                           const transport::Coefficients& k,
                                            double target_rayleigh) {
   continuum::ContinuumParameters c = point.continuum;
-  c.viscosity.value_at_reference = k.viscosity;
-  c.conductivity.value_at_reference = k.conductivity;
-  c.heat_capacity = k.heat_capacity_p;
-  c.thermal_expansion = k.thermal_expansion;
+  c.viscosity.value_at_reference = k.viscosity.value;
+  c.conductivity.value_at_reference = k.conductivity.value;
+  c.heat_capacity = k.heat_capacity_p.value;
+  c.thermal_expansion = k.thermal_expansion.value;
   const continuum::DimensionlessNumbers n = continuum::dimensionless_numbers(c);
   // the low-Mach ideal gas's alpha = 1/T_ref, as dimensionless_numbers takes it
   const double alpha =
@@ -135,8 +118,8 @@ std::string vector_text(const std::array<double, 3>& v, int dim) {
 
 } // namespace
 
-int sweep(const CommandLine& cl) {
-  const std::vector<grid::Axis> axes = grid::parse_axes(cl);
+int sweep(const GridOptions& cl, const CaseReader& reader) {
+  const std::vector<Axis> axes = parse_axes(cl, reader);
   if (axes.empty() && cl.rayleigh.empty())
     throw io::InputError("sweep needs at least one --vary 'Section/Key=V1,V2,...' or "
                          "--rayleigh R1,R2,...");
@@ -145,17 +128,15 @@ int sweep(const CommandLine& cl) {
       throw io::InputError("--vary 'Scene/Gravity=...' and --rayleigh both set the gravity; "
                            "give one of them");
   const std::size_t copies = std::max<std::size_t>(1, cl.rayleigh.size());
-  std::vector<grid::Point> points = grid::make_points(cl, axes, copies);
+  std::vector<Point> points = make_points(cl, reader, axes, copies);
 
-  Case base;
-  base.read(cl.target, cl.overrides);
-  grid::Study s;
+  Study s;
   s.name = "sweep";
   s.child_command = "run";
   s.columns_before_wall = {"target_rayleigh", "gravity"};
   s.grid = io::Json::object();
-  s.grid["case_file"] = fs::absolute(cl.target).lexically_normal().string();
-  s.grid["base_parameters"] = base.registry().resolved_json();
+  s.grid["case_file"] = fs::absolute(cl.case_file).lexically_normal().string();
+  s.grid["base_parameters"] = reader.record(cl.settings);
   s.grid["vary"] = io::Json::object();
   std::set<std::string> reserved = {"point",           "status",  "reason",      "exit_code",
                                     "target_rayleigh", "gravity", "wall_seconds"};
@@ -167,7 +148,7 @@ int sweep(const CommandLine& cl) {
   s.grid["rayleigh"] = io::Json(cl.rayleigh);
 
   for (std::size_t i = 0; i < points.size(); ++i) {
-    grid::Point& p = points[i];
+    Point& p = points[i];
     p.columns["target_rayleigh"] =
         cl.rayleigh.empty() ? io::Json() : io::Json(cl.rayleigh[i % copies]);
     p.columns["gravity"] = p.rejected.empty()
@@ -175,7 +156,7 @@ int sweep(const CommandLine& cl) {
                                : io::Json();
     if (cl.rayleigh.empty() || !p.rejected.empty()) continue;
     // What --rayleigh needs is checked before anything runs.
-    const std::string where = cl.target + " (point " + p.name + ")";
+    const std::string where = cl.case_file + " (point " + p.name + ")";
     if (p.resolved.compare.rayleigh_control != "gravity")
       throw io::InputError(where + ": 'Compare/Rayleigh control' = '" +
                            p.resolved.compare.rayleigh_control + "'; allowed: gravity");
@@ -205,17 +186,17 @@ int sweep(const CommandLine& cl) {
     const fs::path summary_file = reference / "transport" / "summary.json";
     if (!fs::exists(summary_file)) {
       fs::create_directories(reference);
-      grid::ChildTask t;
-      t.arguments = {"transport", cl.target, "--out", reference.string()};
-      for (const auto& o : cl.overrides) t.arguments.insert(t.arguments.end(), {"--set", o});
-      if (cl.threads > 0)
-        t.arguments.insert(t.arguments.end(), {"--threads", std::to_string(cl.threads)});
+      ChildTask t;
+      t.arguments = {"transport", cl.case_file, "--out", reference.string()};
+      for (const auto& o : cl.settings) t.arguments.insert(t.arguments.end(), {"--set", o});
+      if (cl.run.threads > 0)
+        t.arguments.insert(t.arguments.end(), {"--threads", std::to_string(cl.run.threads)});
       t.log = reference / "log.txt";
       std::cerr << "sweep: reference transport run for --rayleigh (log: " << t.log.string()
                 << ")\n";
-      grid::ChildResult result;
+      ChildResult result;
       const int signal =
-          grid::run_children({t}, 1, [&](std::size_t, const grid::ChildResult& r) { result = r; });
+          run_children({t}, 1, [&](std::size_t, const ChildResult& r) { result = r; });
       if (signal || result.exit_code == kExitInterrupted) {
         std::cerr << "sweep: interrupted in the reference run; run the same command again\n";
         return kExitInterrupted;
@@ -228,28 +209,28 @@ int sweep(const CommandLine& cl) {
     }
     const io::Json summary = io::read_json(summary_file);
     for (std::size_t i = 0; i < points.size(); ++i) {
-      grid::Point& p = points[i];
+      Point& p = points[i];
       if (!p.rejected.empty()) continue;
-      const Coefficients k = coefficients_from(summary, p.resolved.transport.source);
+      const transport::Coefficients k = transport::read_coefficients(
+          summary, p.resolved.transport.source, p.resolved.continuum.reference_temperature);
       const auto g = gravity_for_rayleigh(p.resolved, k, cl.rayleigh[i % copies]);
       p.assignments.push_back("Scene/Gravity=" + vector_text(g, p.resolved.scene.dim));
       p.columns["gravity"] = magnitude(g, p.resolved.scene.dim);
     }
     return 0;
   };
-  s.finished = [&](const grid::Point&, const fs::path& point_dir, const io::Json*, io::Json& row) {
+  s.finished = [&](const Point&, const fs::path& point_dir, const io::Json*, io::Json& row) {
     if (!run_finished(point_dir)) return false;
     row["status"] = "done";
     row["exit_code"] = 0;
     add_metrics(point_dir, reserved, row);
     return true;
   };
-  s.describe = [&](const grid::Point&, const fs::path& point_dir, const grid::ChildResult& r,
-                   io::Json& row) {
+  s.describe = [&](const Point&, const fs::path& point_dir, const ChildResult& r, io::Json& row) {
     row["status"] = status_of(r.exit_code);
     if (r.exit_code == 0) add_metrics(point_dir, reserved, row);
   };
-  return grid::run_study(cl, s, points);
+  return run_study(cl, s, points);
 }
 
-} // namespace twinflow::app
+} // namespace twinflow::study

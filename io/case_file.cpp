@@ -1,4 +1,4 @@
-#include "app/case/registry.hpp"
+#include "io/case_file.hpp"
 
 #include <deal.II/base/utilities.h>
 
@@ -7,7 +7,7 @@
 #include <fstream>
 #include <sstream>
 
-namespace twinflow::app {
+namespace twinflow::io {
 
 namespace {
 std::vector<std::string> split_path(const std::string& path) {
@@ -60,11 +60,11 @@ void Registry::set_value(const std::string& path, const std::string& value,
                          const std::string& where) {
   const auto it = entries_.find(path);
   if (it == entries_.end())
-    throw io::InputError(where + ": unknown parameter '" + path +
-                         "' (twinflow print-parameters lists them all)");
+    throw InputError(where + ": unknown parameter '" + path +
+                     "' (twinflow print-parameters lists them all)");
   if (!it->second.pattern->match(value))
-    throw io::InputError(where + ": '" + path + "' = '" + value +
-                         "' is not allowed; allowed: " + it->second.allowed);
+    throw InputError(where + ": '" + path + "' = '" + value +
+                     "' is not allowed; allowed: " + it->second.allowed);
   std::string key;
   enter(path, key).set(key, value);
   leave(path);
@@ -78,9 +78,9 @@ void Registry::parse_file(const std::string& filename) {
 
 void Registry::parse_stream(const std::string& filename, int depth,
                             std::vector<std::string>& sections) {
-  if (depth > 8) throw io::InputError(filename + ": include nested too deeply");
+  if (depth > 8) throw InputError(filename + ": include nested too deeply");
   std::ifstream in(filename);
-  if (!in) throw io::InputError(filename + ": cannot open case file for reading");
+  if (!in) throw InputError(filename + ": cannot open case file for reading");
   const std::size_t base_depth = sections.size();
   std::string line;
   int number = 0;
@@ -97,16 +97,15 @@ void Registry::parse_stream(const std::string& filename, int depth,
     if (word == "subsection") {
       sections.push_back(rest);
       if (!subsections_.count(join(sections, sections.size())))
-        throw io::InputError(where + ": unknown subsection '" + join(sections, sections.size()) +
-                             "'");
+        throw InputError(where + ": unknown subsection '" + join(sections, sections.size()) + "'");
     } else if (word == "end") {
       if (sections.size() <= base_depth)
-        throw io::InputError(where + ": 'end' without a matching 'subsection'");
+        throw InputError(where + ": 'end' without a matching 'subsection'");
       sections.pop_back();
     } else if (word == "set") {
       const auto eq = rest.find('=');
       if (eq == std::string::npos)
-        throw io::InputError(where + ": expected 'set KEY = VALUE', got '" + line + "'");
+        throw InputError(where + ": expected 'set KEY = VALUE', got '" + line + "'");
       const std::string key = dealii::Utilities::trim(rest.substr(0, eq));
       const std::string value = dealii::Utilities::trim(rest.substr(eq + 1));
       const std::string prefix = join(sections, sections.size());
@@ -117,17 +116,17 @@ void Registry::parse_stream(const std::string& filename, int depth,
       if (inc.is_relative()) inc = std::filesystem::path(filename).parent_path() / inc;
       parse_stream(inc.string(), depth + 1, sections);
     } else {
-      throw io::InputError(where + ": cannot read line '" + line +
-                           "' (expected subsection, end, set or include)");
+      throw InputError(where + ": cannot read line '" + line +
+                       "' (expected subsection, end, set or include)");
     }
   }
   if (sections.size() != base_depth)
-    throw io::InputError(filename + ": subsection '" + sections.back() + "' has no 'end'");
+    throw InputError(filename + ": subsection '" + sections.back() + "' has no 'end'");
 }
 
 void Registry::set_override(const std::string& assignment) {
   const auto eq = assignment.find('=');
-  if (eq == std::string::npos) throw io::InputError("--set " + assignment + ": expected KEY=VALUE");
+  if (eq == std::string::npos) throw InputError("--set " + assignment + ": expected KEY=VALUE");
   std::string path;
   for (const auto& p : split_path(assignment.substr(0, eq))) path += (path.empty() ? "" : "/") + p;
   set_value(path, dealii::Utilities::trim(assignment.substr(eq + 1)), "--set " + assignment);
@@ -157,8 +156,8 @@ std::vector<double> Registry::get_doubles(const std::string& path) const {
 void Registry::fail(const std::string& path, const std::string& allowed) const {
   const auto it = entries_.find(path);
   const std::string where = it == entries_.end() ? "case" : it->second.source;
-  throw io::InputError(where + ": '" + path + "' = '" + get(path) +
-                       "' is not allowed; allowed: " + allowed);
+  throw InputError(where + ": '" + path + "' = '" + get(path) +
+                   "' is not allowed; allowed: " + allowed);
 }
 
 // In .prm syntax, so the output is itself a valid case file.
@@ -208,10 +207,10 @@ const std::string& Registry::default_value(const std::string& path) const {
   return entries_.at(path).default_value;
 }
 
-io::Json Registry::resolved_json() const {
-  io::Json j = io::Json::object();
+Json Registry::resolved_json() const {
+  Json j = Json::object();
   for (const auto& path : order_) j[path] = get(path);
   return j;
 }
 
-} // namespace twinflow::app
+} // namespace twinflow::io

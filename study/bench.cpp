@@ -23,11 +23,11 @@
 #include <iostream>
 #include <sstream>
 
-#include "app/commands.hpp"
 #include "io/files.hpp"
 #include "particle/run.hpp"
+#include "study/bench.hpp"
 
-namespace twinflow::app {
+namespace twinflow::study {
 
 namespace {
 using namespace particle;
@@ -98,11 +98,11 @@ struct Options {
   long thermo = 0; // > 0: thermodynamics instead of timing
 };
 
-Options parse(const CommandLine& cl) {
+Options parse(const RunOptions& cl, const std::vector<std::string>& settings) {
   Options o;
   const int max_threads = cl.threads > 0 ? cl.threads : omp_get_num_procs();
   for (int t = 1; t <= std::min(2, max_threads); ++t) o.threads.push_back(t);
-  for (const auto& setting : cl.overrides) {
+  for (const auto& setting : settings) {
     const auto eq = setting.find('=');
     const std::string key = setting.substr(0, eq), value = setting.substr(eq + 1);
     const auto bad = [&](const std::string& allowed) {
@@ -181,11 +181,10 @@ Options parse(const CommandLine& cl) {
 }
 } // namespace
 
-int bench(const CommandLine& cl) {
-  const io::StageDirectory stage(cl.out.empty() ? std::filesystem::path("twinflow-runs/bench")
-                                                : std::filesystem::path(cl.out),
-                                 "bench", cl.force);
-  const Options o = parse(cl);
+int bench(const RunOptions& cl, const std::vector<std::string>& settings) {
+  const io::StageDirectory stage(
+      cl.out.empty() ? std::filesystem::path("twinflow-runs/bench") : cl.out, "bench", cl.force);
+  const Options o = parse(cl, settings);
   std::ostringstream table;
   if (o.thermo > 0)
     table << "| dim | N | scene | integrator | threads | skin | noise | steps | max dE/E0 | "
@@ -254,7 +253,7 @@ int bench(const CommandLine& cl) {
   io::Json summary = io::Json::object();
   summary["stage"] = "bench";
   summary["provenance"] = io::provenance();
-  // How idle threads waited: app/main.cpp's default or the user's choice.
+  // How idle threads waited: the front end's default (app/main.cpp) or the user's choice.
   io::Json wait = io::Json::object();
   for (const char* name : {"OMP_WAIT_POLICY", "GOMP_SPINCOUNT"})
     if (const char* value = std::getenv(name)) wait[name] = std::string(value);
@@ -266,4 +265,4 @@ int bench(const CommandLine& cl) {
   return 0;
 }
 
-} // namespace twinflow::app
+} // namespace twinflow::study

@@ -1,4 +1,4 @@
-#include "app/grid_runner.hpp"
+#include "study/grid.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -20,10 +20,11 @@
 #include <unistd.h>
 
 #include "io/files.hpp"
+#include "study/stages.hpp"
 
 extern char** environ;
 
-namespace twinflow::app::grid {
+namespace twinflow::study {
 
 namespace fs = std::filesystem;
 
@@ -60,13 +61,13 @@ std::string joined_components(const std::string& item) {
   return out;
 }
 
-// Loads the case with these overrides; returns the message of the first error ("" if none).
-std::string read_error(const CommandLine& cl, const std::vector<std::string>& extra) {
-  Case c;
-  std::vector<std::string> overrides = cl.overrides;
-  overrides.insert(overrides.end(), extra.begin(), extra.end());
+// Reads the case with these assignments; returns the message of the first error ("" if none).
+std::string read_error(const GridOptions& o, const CaseReader& reader,
+                       const std::vector<std::string>& extra) {
+  std::vector<std::string> settings = o.settings;
+  settings.insert(settings.end(), extra.begin(), extra.end());
   try {
-    c.read(cl.target, overrides);
+    reader.check(settings);
   } catch (const io::InputError& e) {
     return e.what();
   }
@@ -75,13 +76,11 @@ std::string read_error(const CommandLine& cl, const std::vector<std::string>& ex
 
 } // namespace
 
-std::vector<Axis> parse_axes(const CommandLine& cl) {
-  {
-    Case base; // the case file and the user's --set first: their errors name themselves
-    base.read(cl.target, cl.overrides);
-  }
+std::vector<Axis> parse_axes(const GridOptions& o, const CaseReader& reader) {
+  reader.check(
+      o.settings); // the case file and the user's --set first: their errors name themselves
   std::vector<Axis> axes;
-  for (const auto& text : cl.vary) {
+  for (const auto& text : o.vary) {
     const std::string where = "--vary '" + text + "'";
     const auto eq = text.find('=');
     if (eq == std::string::npos || trim(text.substr(0, eq)).empty())
@@ -97,9 +96,9 @@ std::vector<Axis> parse_axes(const CommandLine& cl) {
         throw io::InputError(where + ": an empty value; allowed: values separated by commas, " +
                              "vector components by spaces ('Scene/Gravity=0 -0.01,0 -0.02')");
       std::string value = item;
-      std::string error = read_error(cl, {axis.key + "=" + value});
+      std::string error = read_error(o, reader, {axis.key + "=" + value});
       if (!error.empty() && item.find_first_of(" \t") != std::string::npos &&
-          read_error(cl, {axis.key + "=" + joined_components(item)}).empty()) {
+          read_error(o, reader, {axis.key + "=" + joined_components(item)}).empty()) {
         value = joined_components(item); // a vector value: components were separated by spaces
         error.clear();
       }
@@ -117,8 +116,8 @@ std::vector<Axis> parse_axes(const CommandLine& cl) {
   return axes;
 }
 
-std::vector<Point> make_points(const CommandLine& cl, const std::vector<Axis>& axes,
-                               std::size_t copies) {
+std::vector<Point> make_points(const GridOptions& o, const CaseReader& reader,
+                               const std::vector<Axis>& axes, std::size_t copies) {
   std::size_t combinations = 1;
   for (const auto& a : axes) combinations *= a.values.size();
   const std::size_t total = combinations * copies;
@@ -135,12 +134,10 @@ std::vector<Point> make_points(const CommandLine& cl, const std::vector<Axis>& a
     }
     for (std::size_t a = 0; a < axes.size(); ++a)
       p.assignments.push_back(axes[a].key + "=" + axes[a].values[p.value_index[a]]);
-    Case c;
-    std::vector<std::string> overrides = cl.overrides;
-    overrides.insert(overrides.end(), p.assignments.begin(), p.assignments.end());
-    c.read(cl.target, overrides); // every value passed on its own (parse_axes)
-    try {
-      p.resolved = c.resolve(cl.target);
+    std::vector<std::string> settings = o.settings;
+    settings.insert(settings.end(), p.assignments.begin(), p.assignments.end());
+    try { // every value passed on its own (parse_axes): only their combination can fail
+      p.resolved = reader.load(settings).parameters;
     } catch (const io::InputError& e) {
       p.rejected = e.what();
       for (const auto& a : p.assignments) // name the --vary the value came from
@@ -376,10 +373,11 @@ bool has_stage_folder(const fs::path& point_dir) {
 
 } // namespace
 
-int run_study(const CommandLine& cl, Study& s, std::vector<Point>& points) {
-  const fs::path dir = cl.out.empty() ? fs::path("twinflow-runs") /
-                                            (fs::path(cl.target).stem().string() + "-" + s.name)
-                                      : fs::path(cl.out);
+int run_study(const GridOptions& o, Study& s, std::vector<Point>& points) {
+  const fs::path dir =
+      o.run.out.empty()
+          ? fs::path("twinflow-runs") / (fs::path(o.case_file).stem().string() + "-" + s.name)
+          : o.run.out;
   const fs::path json_path = dir / (s.name + ".json");
   std::vector<std::string> varied;
   for (const auto& [key, values] : s.grid.at("vary").items()) varied.push_back(key);
@@ -388,8 +386,8 @@ int run_study(const CommandLine& cl, Study& s, std::vector<Point>& points) {
   if (fs::exists(dir) && !fs::is_directory(dir))
     throw io::InputError(dir.string() + ": exists and is not a directory");
   std::map<std::string, io::Json> previous;
-  bool afresh = cl.force;
-  if (fs::exists(json_path) && !cl.force) {
+  bool afresh = o.run.force;
+  if (fs::exists(json_path) && !o.run.force) {
     io::Json old;
     try {
       old = io::read_json(json_path);
@@ -406,7 +404,7 @@ int run_study(const CommandLine& cl, Study& s, std::vector<Point>& points) {
       for (const auto& p : *old_points)
         if (const io::Json* row = io::find(p, {"row"}); row && io::find(*row, {"point"}))
           previous[io::text(*row, {"point"})] = *row;
-  } else if (fs::exists(dir) && !fs::is_empty(dir) && !cl.force) {
+  } else if (fs::exists(dir) && !fs::is_empty(dir) && !o.run.force) {
     throw io::InputError(dir.string() + ": exists and holds no " + s.name +
                          ".json; use --force to use it anyway or another --out");
   }
@@ -451,9 +449,9 @@ int run_study(const CommandLine& cl, Study& s, std::vector<Point>& points) {
       continue;
     }
     ChildTask t;
-    t.arguments = {s.child_command, cl.target, "--out", point_dir.string()};
-    for (const auto& o : cl.overrides) t.arguments.insert(t.arguments.end(), {"--set", o});
-    for (const auto& o : p.assignments) t.arguments.insert(t.arguments.end(), {"--set", o});
+    t.arguments = {s.child_command, o.case_file, "--out", point_dir.string()};
+    for (const auto& a : o.settings) t.arguments.insert(t.arguments.end(), {"--set", a});
+    for (const auto& a : p.assignments) t.arguments.insert(t.arguments.end(), {"--set", a});
     const bool restart = fs::exists(point_dir / "particle" / "checkpoint.twfc");
     if (restart)
       t.arguments.push_back("--restart"); // the particle stage continues from its checkpoint
@@ -465,9 +463,11 @@ int run_study(const CommandLine& cl, Study& s, std::vector<Point>& points) {
     restarted.push_back(restart);
   }
   const int cores = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
-  int jobs = cl.jobs > 0 ? cl.jobs : std::max(1, cores / std::max(1, cl.threads));
+  int jobs = o.jobs > 0 ? o.jobs : std::max(1, cores / std::max(1, o.run.threads));
   jobs = std::max(1, std::min<int>(jobs, static_cast<int>(tasks.size())));
-  const int threads = cl.threads > 0 ? cl.threads : jobs > 1 ? 1 : 0; // 0: the child's default
+  const int threads = o.run.threads > 0 ? o.run.threads
+                      : jobs > 1        ? 1
+                                        : 0; // 0: the child's default
   for (auto& t : tasks) {
     if (threads > 0) t.arguments.insert(t.arguments.end(), {"--threads", std::to_string(threads)});
     fs::create_directories(t.log.parent_path());
@@ -513,4 +513,4 @@ int run_study(const CommandLine& cl, Study& s, std::vector<Point>& points) {
   return 0;
 }
 
-} // namespace twinflow::app::grid
+} // namespace twinflow::study

@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-namespace twinflow::particle {
+namespace twinflow::statistics {
 
 struct LineFit {
   double sw = 0, sx = 0, sy = 0, sxx = 0, sxy = 0;
@@ -20,4 +20,4 @@ struct LineFit {
   double value_stderr(double x) const { return std::sqrt((sxx - 2 * x * sx + x * x * sw) / det()); }
 };
 
-} // namespace twinflow::particle
+} // namespace twinflow::statistics

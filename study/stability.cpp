@@ -9,13 +9,12 @@
 #include <set>
 #include <sstream>
 
-#include "app/case/case.hpp"
-#include "app/commands.hpp"
-#include "app/grid_runner.hpp"
 #include "io/files.hpp"
 #include "particle/theory.hpp"
+#include "study/grid.hpp"
+#include "study/sweeps.hpp"
 
-namespace twinflow::app {
+namespace twinflow::study {
 
 namespace fs = std::filesystem;
 
@@ -24,28 +23,22 @@ namespace {
 // The temperature a stable run should hold: the mean of the thermal walls' temperatures, or
 // the scene's temperature when no wall exchanges heat. (After a run, a closed ideal fluid's own
 // energy equation of state refines the latter: see run_target_temperature.)
-double target_temperature(const SceneParameters& scene, int* thermal_walls = nullptr) {
-  double sum = 0;
-  int walls = 0;
-  for (int d = 0; d < scene.dim; ++d)
-    if (!scene.boundary[d].periodic)
-      for (int side = 0; side < 2; ++side)
-        if (scene.boundary[d].thermal[side]) sum += scene.boundary[d].temperature[side], ++walls;
-  if (thermal_walls) *thermal_walls = walls;
-  return walls ? sum / walls : scene.temperature;
+double target_temperature(const scene::SceneParameters& scene) {
+  const double walls = scene.thermal_wall_mean();
+  return walls > 0 ? walls : scene.temperature;
 }
 
 // A closed ideal DPDE fluid started at T with Maxwell velocities holds more energy than its
 // equilibrium at T and settles at E / (N (d/2 + c_v + 1)) (docs/case-files.md, "A start-up
 // convention": 8% below T at c_v = 10); the particle summary states it, and it is the target.
-double run_target_temperature(const SceneParameters& scene, const io::Json& summary) {
-  int thermal_walls = 0;
-  const double before_run = target_temperature(scene, &thermal_walls);
+double run_target_temperature(const scene::SceneParameters& scene, const io::Json& summary) {
+  const bool thermal_walls = scene.thermal_wall_mean() > 0;
+  const double before_run = target_temperature(scene);
   // 000:(3.21) E/N = (d/2) k T + (c_v + k) T, evaluated by the particle run
   const double energy_equation_of_state =
       io::number(summary, {"results", "T_energy_equation_of_state"});
-  return thermal_walls == 0 && std::isfinite(energy_equation_of_state) ? energy_equation_of_state
-                                                                       : before_run;
+  return !thermal_walls && std::isfinite(energy_equation_of_state) ? energy_equation_of_state
+                                                                   : before_run;
 }
 
 struct Prediction {
@@ -67,7 +60,7 @@ Prediction predict(const CaseParameters& c) {
   // 000:(3.34); no internal energy (isothermal DPD): no such limit
   out.fluctuation_number = has_energy ? particle::fluctuation_stability_number(p) : std::nan("");
   out.stable = p.dt < out.dt_critical &&
-               (!has_energy || out.fluctuation_number < c.compare.stability.fluctuation_number);
+               (!has_energy || out.fluctuation_number < c.stability.fluctuation_number);
   return out;
 }
 
@@ -97,7 +90,6 @@ std::string classify_instability(const std::string& message) {
 
 // A finished particle run: non-finite results, energy drift, temperature off target, or stable.
 void classify_summary(const CaseParameters& c, const fs::path& point_dir, io::Json& row) {
-  using grid::number_or_null;
   io::Json summary = io::Json::object();
   try {
     summary = io::read_json(point_dir / "particle" / "summary.json");
@@ -118,7 +110,7 @@ void classify_summary(const CaseParameters& c, const fs::path& point_dir, io::Js
   row["T_internal"] = number_or_null(ti);
   row["T_target"] = number_or_null(target);
   row["temperature_relative_error"] = number_or_null(error);
-  const auto& bounds = c.compare.stability;
+  const auto& bounds = c.stability;
   // JSON has no NaN: a non-finite result is written as null, read back here as NaN
   if (!std::isfinite(tk) || (has_energy && (!std::isfinite(ti) || !std::isfinite(drift)))) {
     row["status"] = "non_finite";
@@ -143,15 +135,13 @@ const std::set<std::string> kInstabilities = {"non_finite", "negative_internal_e
 
 } // namespace
 
-int stability(const CommandLine& cl) {
-  const std::vector<grid::Axis> axes = grid::parse_axes(cl);
+int stability(const GridOptions& cl, const CaseReader& reader) {
+  const std::vector<Axis> axes = parse_axes(cl, reader);
   if (axes.empty())
     throw io::InputError("stability needs at least one --vary 'Section/Key=V1,V2,...'");
-  std::vector<grid::Point> points = grid::make_points(cl, axes);
+  std::vector<Point> points = make_points(cl, reader, axes);
 
-  Case base;
-  base.read(cl.target, cl.overrides);
-  grid::Study s;
+  Study s;
   s.name = "stability";
   s.child_command = "particle";
   s.columns_before_wall = {"dt",
@@ -164,8 +154,8 @@ int stability(const CommandLine& cl) {
                            "T_target",
                            "temperature_relative_error"};
   s.grid = io::Json::object();
-  s.grid["case_file"] = fs::absolute(cl.target).lexically_normal().string();
-  s.grid["base_parameters"] = base.registry().resolved_json();
+  s.grid["case_file"] = fs::absolute(cl.case_file).lexically_normal().string();
+  s.grid["base_parameters"] = reader.record(cl.settings);
   s.grid["vary"] = io::Json::object();
   for (const auto& a : axes) {
     s.grid["vary"][a.key] = io::Json::array();
@@ -175,12 +165,12 @@ int stability(const CommandLine& cl) {
     if (!p.rejected.empty()) continue;
     const Prediction prediction = predict(p.resolved);
     p.columns["dt"] = p.resolved.particle.dt;
-    p.columns["predicted_dt_critical"] = grid::number_or_null(prediction.dt_critical);
-    p.columns["fluctuation_number"] = grid::number_or_null(prediction.fluctuation_number);
+    p.columns["predicted_dt_critical"] = number_or_null(prediction.dt_critical);
+    p.columns["fluctuation_number"] = number_or_null(prediction.fluctuation_number);
     p.columns["predicted_stable"] = prediction.stable;
   }
 
-  s.finished = [&](const grid::Point& p, const fs::path& point_dir, const io::Json* previous,
+  s.finished = [&](const Point& p, const fs::path& point_dir, const io::Json* previous,
                    io::Json& row) {
     if (previous && kInstabilities.count(io::text(*previous, {"status"}))) {
       row = *previous; // a blow-up is a result: the same inputs blow up again
@@ -191,8 +181,7 @@ int stability(const CommandLine& cl) {
     classify_summary(p.resolved, point_dir, row);
     return true;
   };
-  s.describe = [&](const grid::Point& p, const fs::path& point_dir, const grid::ChildResult& r,
-                   io::Json& row) {
+  s.describe = [&](const Point& p, const fs::path& point_dir, const ChildResult& r, io::Json& row) {
     if (r.exit_code == 0)
       classify_summary(p.resolved, point_dir, row);
     else if (r.exit_code == 4) // particle::InstabilityError
@@ -203,7 +192,7 @@ int stability(const CommandLine& cl) {
     else
       row["status"] = "failed";
   };
-  return grid::run_study(cl, s, points);
+  return run_study(cl, s, points);
 }
 
-} // namespace twinflow::app
+} // namespace twinflow::study

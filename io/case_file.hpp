@@ -12,7 +12,7 @@
 
 #include "io/files.hpp"
 
-namespace twinflow::app {
+namespace twinflow::io {
 
 class Registry {
 public:
@@ -38,7 +38,7 @@ public:
 
   void print_documented(std::ostream& out) const;
   void print_resolved(std::ostream& out) const;
-  io::Json resolved_json() const; // every parameter's value, by path
+  Json resolved_json() const; // every parameter's value, by path
   const std::string& default_value(const std::string& path) const; // as declared
 
 private:
@@ -58,4 +58,4 @@ private:
   std::map<std::string, bool> subsections_;
 };
 
-} // namespace twinflow::app
+} // namespace twinflow::io

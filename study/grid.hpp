@@ -9,11 +9,31 @@
 #include <string>
 #include <vector>
 
-#include "app/case/case.hpp"
-#include "app/commands.hpp"
 #include "io/json.hpp"
+#include "study/case.hpp"
 
-namespace twinflow::app::grid {
+namespace twinflow::study {
+
+// What the grid is asked for (the command line of sweep and stability).
+struct GridOptions {
+  std::string case_file;
+  std::vector<std::string> settings; // the user's --set
+  std::vector<std::string> vary;     // "Section/Key=V1,V2,..." per option
+  std::vector<double> rayleigh;      // target Rayleigh numbers (sweep)
+  // out (empty: twinflow-runs/<case file stem>-<command>), force, and threads per point (0: 1
+  // when points run side by side, else the child's default)
+  RunOptions run;
+  int jobs = 0; // points run at once; 0: cores / threads per point
+};
+
+// The case file as the grid needs it (app/case/ provides it): `check` reads it with extra
+// assignments and throws io::InputError for an unknown key or a value outside its pattern;
+// `load` also resolves it (values that do not fit together throw io::InputError too).
+struct CaseReader {
+  std::function<void(const std::vector<std::string>& settings)> check;
+  std::function<Case(const std::vector<std::string>& settings)> load;
+  std::function<io::Json(const std::vector<std::string>& settings)> record; // read, not resolved
+};
 
 // One --vary option: a case key and the values it takes, in the order given.
 struct Axis {
@@ -24,7 +44,7 @@ struct Axis {
 
 // Parses every --vary text and checks each value against the case (with the user's --set):
 // an unknown key, a value outside its key's pattern or a key given twice throws io::InputError.
-std::vector<Axis> parse_axes(const CommandLine&);
+std::vector<Axis> parse_axes(const GridOptions&, const CaseReader&);
 
 struct Point {
   std::string name;                      // "007": its run directory DIR/points/007
@@ -36,10 +56,10 @@ struct Point {
 };
 
 // The Cartesian product of the axes (the first axis varies slowest), each point loaded through
-// app::Case with the user's --set and its own values. `copies` > 1 repeats every combination
+// the CaseReader with the user's --set and its own values. `copies` > 1 repeats every combination
 // (sweep --rayleigh: one copy per target). Points the case rejects as a whole (e.g. walls with
 // ec-verlet) are kept with their message; if every point is rejected, throws io::InputError.
-std::vector<Point> make_points(const CommandLine&, const std::vector<Axis>&,
+std::vector<Point> make_points(const GridOptions&, const CaseReader&, const std::vector<Axis>&,
                                std::size_t copies = 1);
 
 // How a child process ended.
@@ -84,9 +104,9 @@ struct Study {
 // The shared driver: refuses a different grid in DIR (exit 2) unless --force, runs the points
 // not finished yet (continuing interrupted particle runs with --restart), writes the table
 // after every point, prints a progress line per point. Exit code: 0, or 5 when interrupted.
-int run_study(const CommandLine&, Study&, std::vector<Point>& points);
+int run_study(const GridOptions&, Study&, std::vector<Point>& points);
 
 // Helpers for the commands' columns.
 io::Json number_or_null(double v);
 
-} // namespace twinflow::app::grid
+} // namespace twinflow::study

@@ -1,76 +1,62 @@
-// twinflow continuum CASE: the deal.II twin of a case, results in RUNDIR/continuum.
-
 #include <chrono>
 #include <cmath>
-#include <filesystem>
+#include <iomanip>
 #include <iostream>
+#include <sstream>
 
 #include <deal.II/base/mpi.h>
 
-#include "app/case/case.hpp"
-#include "app/commands.hpp"
+#include "compare/calibration.hpp"
+#include "compare/metrics.hpp"
 #include "continuum/run.hpp"
+#include "continuum/twin_walls.hpp"
 #include "io/files.hpp"
+#include "study/stages.hpp"
+#include "transport/coefficients.hpp"
 
-namespace twinflow::app {
+namespace twinflow::study {
+
+namespace fs = std::filesystem;
 
 namespace {
-// The transport stage's coefficients at the reference temperature feed the twin: measured ones
-// where asked for and present, else the estimate with the measured g(r).
 // The measured coefficients' standard errors (NaN for estimates): the twin's own uncertainty.
 struct CoefficientErrors {
   double conductivity = std::nan(""), viscosity = std::nan("");
 };
 
-CoefficientErrors coefficients_from_transport(const std::filesystem::path& run_dir,
-                                              const std::string& source,
+// The transport stage's coefficients at the twin's reference temperature (one reader:
+// transport/coefficients.hpp), with the errors of the measured ones.
+CoefficientErrors take_transport_coefficients(const fs::path& run_dir, const std::string& source,
                                               continuum::ContinuumParameters& p) {
-  const auto file = run_dir / "transport" / "summary.json";
-  const io::Json summary = io::read_json(file, "Continuum/Coefficients/Source = transport "
-                                               "needs `twinflow transport CASE --out " +
-                                                   run_dir.string() + "` first");
-  const io::Json& results = summary.at("results");
-  const io::Json& estimate = results.at("estimated_measured_g");
-  bool used_measured = false;
-  auto pick = [&](const char* estimate_key, const char* measured_key, const char* what) {
-    const double m = io::number(results, {"measured", measured_key});
-    const bool use = source == "measured" && std::isfinite(m);
-    const double v = use ? m : estimate.at(estimate_key).get<double>();
-    std::cout << "continuum: " << what << " = " << v << " (" << (use ? "measured" : "estimated")
-              << ", from " << file.string() << ")\n";
-    used_measured = use;
-    return v;
+  const fs::path file = run_dir / "transport" / "summary.json";
+  const io::Json summary =
+      io::read_json(file, "Continuum/Coefficients/Source = transport needs `twinflow transport "
+                          "CASE --out " +
+                              run_dir.string() + "` first");
+  const transport::Coefficients k =
+      transport::read_coefficients(summary, source, p.reference_temperature);
+  const auto say = [&](const char* what, const transport::Coefficient& c) {
+    std::cout << "continuum: " << what << " = " << c.value << " ("
+              << (c.measured ? "measured" : "estimated") << ", from " << file.string() << ")\n";
   };
-  const auto measured_number = [&](const std::string& key) {
-    return io::number(results, {"measured", key});
-  };
-  // Measured power laws c (T / T_m)^n: rescaled to the twin's reference temperature, the error
-  // with the exponent's (sigma^2 = s^2 [sigma_c^2 + c^2 ln^2(T_ref / T_m) sigma_n^2]).
-  const double t_measured = io::number(results, {"state_point", "measured_temperature"});
-  const auto take = [&](continuum::PowerLaw& law, double& error, const char* key,
+  const auto take = [&](continuum::PowerLaw& law, const transport::Coefficient& c,
                         const char* what) {
-    error = measured_number(std::string(key) + "_stderr");
-    const double n = measured_number(std::string(key) + "_exponent");
-    if (!std::isfinite(n) || !std::isfinite(t_measured)) return;
-    const double log_ratio = std::log(p.reference_temperature / t_measured);
-    const double scale = std::exp(n * log_ratio);
-    const double n_se = measured_number(std::string(key) + "_exponent_stderr");
-    error = scale * std::hypot(error, law.value_at_reference * log_ratio * n_se);
-    law.exponent = n;
-    law.value_at_reference *= scale;
+    law.value_at_reference = c.value;
+    say(what, c);
+    if (!std::isfinite(c.exponent)) return;
+    law.exponent = c.exponent;
     law.sutherland_temperature = 0; // the measured law replaces any Sutherland law of the case
     std::cout << "continuum: " << what << "(T) = " << law.value_at_reference << " (T / "
-              << p.reference_temperature << ")^" << n << " (measured at T = " << t_measured
-              << ")\n";
+              << p.reference_temperature << ")^" << c.exponent
+              << " (measured at T = " << k.measured_temperature << ")\n";
   };
-  CoefficientErrors errors;
-  p.viscosity.value_at_reference = pick("viscosity", "viscosity", "eta");
-  if (used_measured) take(p.viscosity, errors.viscosity, "viscosity", "eta");
-  p.conductivity.value_at_reference = pick("conductivity", "conductivity", "kappa");
-  if (used_measured) take(p.conductivity, errors.conductivity, "conductivity", "kappa");
-  p.heat_capacity = pick("heat_capacity_p_per_particle", "", "c_p");
-  p.thermal_expansion = pick("thermal_expansion", "thermal_expansion", "alpha");
-  return errors;
+  take(p.viscosity, k.viscosity, "eta");
+  take(p.conductivity, k.conductivity, "kappa");
+  p.heat_capacity = k.heat_capacity_p.value;
+  say("c_p", k.heat_capacity_p);
+  p.thermal_expansion = k.thermal_expansion.value;
+  say("alpha", k.thermal_expansion);
+  return {k.conductivity.stderr_, k.viscosity.stderr_};
 }
 
 // The twin's heat flux as its coefficients, and its Kapitza conductances, move by their standard
@@ -109,8 +95,7 @@ io::Json coefficient_uncertainty(const continuum::ContinuumParameters& p,
   vary("viscosity", errors.viscosity, law(&continuum::ContinuumParameters::viscosity));
   for (int d = 0; d < p.dim; ++d)
     for (int side = 0; side < 2; ++side)
-      vary(std::string("kapitza_") + "xyz"[d] + (side ? "_upper" : "_lower"),
-           p.boundary[d].kapitza_conductance_stderr[side],
+      vary("kapitza_" + scene::wall_name(d, side), p.boundary[d].kapitza_conductance_stderr[side],
            [d, side](continuum::ContinuumParameters& q, double by) {
              q.boundary[d].kapitza_conductance[side] += by;
              return q.boundary[d].kapitza_conductance[side] - by;
@@ -125,25 +110,23 @@ bool has_kapitza_errors(const continuum::ContinuumParameters& p) {
       if (e > 0) return true;
   return false;
 }
+
+const char* model_name(continuum::Model m) {
+  return m == continuum::Model::Boussinesq ? "Boussinesq"
+         : m == continuum::Model::LowMach  ? "low-Mach"
+                                           : "heat conduction";
+}
 } // namespace
 
-int continuum_stage(const CommandLine& cl) {
-  return continuum_twin(cl, "continuum");
-}
-
-int continuum_twin(const CommandLine& cl, const std::string& stage_name) {
+int continuum_stage(const Case& c, const RunOptions& options, const std::string& stage_name) {
   const auto start = std::chrono::steady_clock::now();
-  // Everything is validated (case file, run directory) before anything is written.
-  Case c;
-  const CaseParameters parameters = c.load(cl.target, cl.overrides);
-  const std::filesystem::path run_dir =
-      cl.out.empty() ? std::filesystem::path("twinflow-runs") / parameters.name
-                     : std::filesystem::path(cl.out);
-  const io::StageDirectory stage(run_dir, stage_name, cl.force);
+  const CaseParameters& parameters = c.parameters;
+  const fs::path run_dir = run_directory(options, parameters.name);
+  const io::StageDirectory stage(run_dir, stage_name, options.force);
   continuum::ContinuumParameters p = parameters.continuum;
   CoefficientErrors coefficient_errors;
-  if (c.registry().get("Continuum/Coefficients/Source") == "transport")
-    coefficient_errors = coefficients_from_transport(run_dir, parameters.transport.source, p);
+  if (parameters.twin.coefficients_from_transport)
+    coefficient_errors = take_transport_coefficients(run_dir, parameters.transport.source, p);
   // Under mpirun only the distributed (iterative) path shares the work; rank 0 writes the
   // summary and tables, the HDF5 fields are written collectively.
   const unsigned n_processes = dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD);
@@ -153,19 +136,15 @@ int continuum_twin(const CommandLine& cl, const std::string& stage_name) {
                          " MPI processes: only the iterative 3D Boussinesq path runs in parallel "
                          "(Continuum/Solver/Linear solver = iterative); run it on one process");
   const auto numbers = continuum::dimensionless_numbers(p);
-  if (root && c.registry().get("Continuum/Model") == "auto" && parameters.scene.has_walls())
+  if (root && parameters.twin.model_chosen_automatically && parameters.scene.has_walls())
     std::cout << "continuum: Model = auto: "
               << (p.model == continuum::Model::LowMach ? "low-Mach" : "Boussinesq")
-              << " (the thermal walls' epsilon " << thermal_wall_epsilon(parameters.scene)
+              << " (the thermal walls' epsilon " << parameters.scene.thermal_wall_epsilon()
               << (p.model == continuum::Model::LowMach ? " > " : " <= ")
-              << c.registry().get_double("Continuum/Low-Mach threshold") << ")\n";
+              << parameters.twin.low_mach_threshold << ")\n";
   if (root)
-    std::cout << "continuum: "
-              << (p.model == continuum::Model::Boussinesq ? "Boussinesq"
-                  : p.model == continuum::Model::LowMach  ? "low-Mach"
-                                                          : "heat conduction")
-              << (p.transient() ? " in time" : ", steady") << ", " << p.dim
-              << "D, Ra = " << numbers.rayleigh << ", Pr = " << numbers.prandtl
+    std::cout << "continuum: " << model_name(p.model) << (p.transient() ? " in time" : ", steady")
+              << ", " << p.dim << "D, Ra = " << numbers.rayleigh << ", Pr = " << numbers.prandtl
               << ", epsilon = " << numbers.epsilon << std::endl;
 
   if (root) stage.create();
@@ -188,11 +167,11 @@ int continuum_twin(const CommandLine& cl, const std::string& stage_name) {
   io::Json summary = io::Json::object();
   summary["stage"] = "continuum";
   summary["case"] = parameters.name;
-  summary["case_file"] = cl.target;
+  summary["case_file"] = c.file;
   summary["provenance"] = io::provenance();
-  summary["case_parameters"] = c.registry().resolved_json();
+  summary["case_parameters"] = c.record;
   summary["continuum_parameters"] = continuum::to_json(p);
-  io::Json measured = continuum::to_json(result);
+  const io::Json measured = continuum::to_json(result);
   for (const auto& [key, value] : measured.items()) summary[key] = value;
   const bool has_errors = std::isfinite(coefficient_errors.conductivity) ||
                           std::isfinite(coefficient_errors.viscosity) || has_kapitza_errors(p);
@@ -204,7 +183,7 @@ int continuum_twin(const CommandLine& cl, const std::string& stage_name) {
     summary["coefficient_uncertainty"] = coefficient_uncertainty(
         p, coefficient_errors, result.nusselt * result.numbers.conduction_flux);
     std::cout << "continuum: heat flux +- "
-              << 100 * summary["coefficient_uncertainty"]["heat_flux_relative_stderr"].get<double>()
+              << 100 * io::number(summary, {"coefficient_uncertainty", "heat_flux_relative_stderr"})
               << "% from the measured coefficients' errors"
               << (has_kapitza_errors(p) ? " and the Kapitza conductances'" : "") << "\n";
   }
@@ -230,4 +209,4 @@ int continuum_twin(const CommandLine& cl, const std::string& stage_name) {
   return 0;
 }
 
-} // namespace twinflow::app
+} // namespace twinflow::study

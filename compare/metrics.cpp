@@ -1,0 +1,316 @@
+#include "compare/metrics.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <iomanip>
+
+#include "io/files.hpp"
+#include "particle/wall_summary.hpp"
+
+namespace twinflow::compare {
+
+namespace fs = std::filesystem;
+
+BinnedState ParticleRecord::final_state() const {
+  BinnedState s = particle_state(fields.grid, fields.snapshots.back());
+  s.temperature_blocks = temperature_blocks;
+  return s;
+}
+
+ParticleRecord read_particle_record(const fs::path& run_dir, const scene::SceneParameters& scene) {
+  ParticleRecord r;
+  const fs::path dir = run_dir / "particle";
+  r.summary = io::read_json(dir / "summary.json",
+                            "the particle stage has not finished in " + run_dir.string() +
+                                " (twinflow run CASE --out " + run_dir.string() + ")");
+  if (!fs::exists(dir / "fields.h5"))
+    throw io::InputError((dir / "fields.h5").string() +
+                         ": missing; the particle scene has no field bins to compare");
+  r.fields = io::FieldFile::read(dir / "fields.h5");
+  if (r.fields.snapshots.empty())
+    throw io::InputError((dir / "fields.h5").string() + ": holds no snapshot");
+  if (fs::exists(dir / "blocks.csv"))
+    r.temperature_blocks = read_temperature_blocks(r.fields.grid, dir / "blocks.csv");
+  for (int d = 0; d < scene.dim; ++d) r.walled[d] = !scene.boundary[d].periodic;
+  return r;
+}
+
+std::vector<TwinRecord> read_twins(const fs::path& run_dir, const io::Grid& grid) {
+  std::vector<TwinRecord> twins;
+  for (const auto& [name, stage] : {std::pair<std::string, std::string>{"nominal", "continuum"},
+                                    {"calibrated", "continuum_calibrated"}}) {
+    const fs::path dir = run_dir / stage;
+    if (!fs::exists(dir / "summary.json")) continue;
+    TwinRecord t;
+    t.name = name;
+    t.stage = stage;
+    t.summary = io::read_json(dir / "summary.json");
+    t.state = continuum_state(grid, dir / "bins.csv");
+    twins.push_back(std::move(t));
+  }
+  if (twins.empty() || twins.front().name != "nominal")
+    throw io::InputError((run_dir / "continuum" / "summary.json").string() +
+                         ": missing; the continuum twin has not run (twinflow continuum CASE "
+                         "--out " +
+                         run_dir.string() + ")");
+  return twins;
+}
+
+Comparison compare_twins(const ParticleRecord& run, const std::vector<TwinRecord>& twins,
+                         const scene::SceneParameters& scene, const CompareParameters& compare,
+                         const TwinFacts& twin, const std::string& case_name) {
+  Comparison out;
+  std::ostringstream& log = out.log;
+  const io::Grid& grid = run.fields.grid;
+  const double wall_layer = compare.wall_layer;
+  const auto interior = interior_bins(grid, run.walled, wall_layer);
+  const TwinRecord& nominal = twins.front();
+  // Scales: the nominal wall temperature difference (else the continuum's temperature range)
+  // and the nominal continuum's largest speed.
+  const int heated = scene.heated_direction();
+  double dT = 0;
+  if (heated >= 0) {
+    dT = std::fabs(scene.boundary[heated].temperature[0] - scene.boundary[heated].temperature[1]);
+  } else {
+    double lo = INFINITY, hi = -INFINITY;
+    for (double T : nominal.state.temperature) lo = std::min(lo, T), hi = std::max(hi, T);
+    dT = hi - lo;
+  }
+  const double speed_scale =
+      io::number(nominal.summary, {"results", "max_speed_chi_over_H"}) *
+      io::number(nominal.summary, {"dimensionless", "velocity_scale_chi_over_H"});
+  const bool compare_velocity = std::isfinite(speed_scale) && speed_scale > 0;
+
+  io::Json& metrics = out.metrics;
+  metrics = io::Json::object();
+  metrics["stage"] = "compare";
+  metrics["case"] = case_name;
+  metrics["provenance"] = io::provenance();
+  metrics["wall_layer"] = wall_layer;
+  {
+    // The thickness actually left out: whole bins, so a layer rounds up to bin edges.
+    double excluded = 0;
+    for (int d = 0; d < grid.dim; ++d)
+      if (run.walled[d])
+        excluded =
+            std::max(excluded, std::ceil(wall_layer / grid.spacing[d] - 1e-9) * grid.spacing[d]);
+    metrics["wall_layer_excluded"] = excluded;
+  }
+  long n_interior = 0;
+  for (char c : interior) n_interior += c;
+  metrics["bins"] = io::Json::array();
+  for (int d = 0; d < grid.dim; ++d) metrics["bins"].push_back(double(grid.counts[d]));
+  metrics["interior_bins"] = double(n_interior);
+  metrics["temperature_scale"] = dT;
+  metrics["velocity_scale"] = compare_velocity ? speed_scale : std::nan("");
+  metrics["density_scale"] = scene.density; // the mean number density
+  metrics["temperature_field"] = "T_kinetic (particle) against T (continuum), / temperature_scale";
+
+  const io::Json& presults = run.summary.at("results");
+  io::Json table = io::Json::object();
+  table["wall_seconds_particle"] = io::number(presults, {"wall_seconds"});
+  table["particle_steps"] =
+      io::number(presults, {"N"}) *
+      (io::number(presults, {"steps"}) + io::number(presults, {"equilibration_steps"}));
+
+  // Particle heat flow through the heated direction's walls, as a Nusselt number against the
+  // nominal twin's conduction flux kappa dT / H (the same kappa for every twin).
+  io::Json particle = io::Json::object();
+  const double q0 = io::number(nominal.summary, {"dimensionless", "conduction_flux"});
+  double q_particle = std::nan("");
+  if (heated >= 0) {
+    const int hot =
+        scene.boundary[heated].temperature[0] > scene.boundary[heated].temperature[1] ? 0 : 1;
+    const auto flux = [&](int side, const char* key) {
+      return io::number(presults, {"walls", scene::wall_name(heated, side).c_str(), key});
+    };
+    const double q_in = flux(hot, "heat_flux_in"), q_out = -flux(1 - hot, "heat_flux_in");
+    const double se =
+        std::hypot(flux(hot, "heat_flux_in_stderr"), flux(1 - hot, "heat_flux_in_stderr"));
+    // The stated error: each wall's largest over its blockings (1, 2, 4 blocks merged), as for
+    // the wall temperatures (a roll slower than a block makes the 20-block error too small).
+    const double se_stated =
+        std::hypot(particle::wall_heat_flux_stderr(presults, scene::wall_name(heated, hot)),
+                   particle::wall_heat_flux_stderr(presults, scene::wall_name(heated, 1 - hot)));
+    q_particle = 0.5 * (q_in + q_out);
+    particle["heat_flux_hot_wall"] = q_in;
+    particle["heat_flux_cold_wall"] = q_out;
+    particle["heat_flux"] = q_particle;
+    particle["heat_flux_stderr"] = 0.5 * se_stated;
+    particle["nusselt"] = q_particle / q0;
+    particle["nusselt_stderr"] = 0.5 * se_stated / q0;
+    particle["nusselt_stderr_20_blocks"] = 0.5 * se / q0;
+    // In a steady state the two walls carry the same flow; their difference is the fluid
+    // still heating or cooling.
+    particle["nusselt_hot_wall"] = q_in / q0;
+    particle["nusselt_cold_wall"] = q_out / q0;
+    particle["wall_imbalance_over_stderr"] = (q_in - q_out) / se;
+    table["nusselt_particle"] = q_particle / q0;
+    table["nusselt_particle_stderr"] = 0.5 * se_stated / q0;
+  }
+  // The fluid's temperature at each thermal wall, and the jump from the wall's own.
+  const BinnedState final_state = run.final_state();
+  io::Json jumps = io::Json::object();
+  for (int d = 0; d < scene.dim; ++d) {
+    const auto& b = scene.boundary[d];
+    if (b.periodic) continue;
+    for (int side = 0; side < 2; ++side) {
+      if (!b.thermal[side]) continue;
+      const auto w = wall_fluid_temperature(final_state, interior, d, side);
+      io::Json j = io::Json::object();
+      j["wall_temperature"] = b.temperature[side];
+      j["fluid_temperature_at_wall"] = w.value;
+      j["fluid_temperature_at_wall_stderr"] = w.stderr_;
+      if (!w.blocking.empty()) { // the error with 1, 2, 4 adjacent blocks merged
+        j["fluid_temperature_at_wall_stderr_blocking"] = io::Json::array();
+        for (double e : w.blocking) j["fluid_temperature_at_wall_stderr_blocking"].push_back(e);
+      }
+      j["jump"] = b.temperature[side] - w.value;
+      j["extrapolated_from_distance"] = w.extrapolated_from;
+      const double plane =
+          io::number(presults, {"walls", scene::wall_name(d, side).c_str(), "effective_position"});
+      if (std::isfinite(plane)) { // the same at the wall's effective position
+        j["effective_position"] = plane;
+        j["effective_position_stderr"] = io::number(
+            presults, {"walls", scene::wall_name(d, side).c_str(), "effective_position_stderr"});
+        const auto at = wall_fluid_temperature(final_state, interior, d, side, plane);
+        j["fluid_temperature_at_effective_position"] = at.value;
+        j["jump_at_effective_position"] = b.temperature[side] - at.value;
+      }
+      jumps[scene::wall_name(d, side)] = j;
+    }
+  }
+  particle["wall_temperature_jumps"] = jumps;
+  particle["wall_seconds"] = io::number(presults, {"wall_seconds"});
+  metrics["particle"] = particle;
+
+  io::Json twins_json = io::Json::object();
+  log << std::setprecision(4);
+  log << "compare: " << n_interior << " interior bins (wall layer " << wall_layer
+      << "), temperature scale " << dT;
+  if (compare_velocity) log << ", velocity scale " << speed_scale;
+  log << "\n";
+  if (heated >= 0)
+    log << "compare: particle Nu = " << io::number(particle, {"nusselt"}) << " +- "
+        << io::number(particle, {"nusselt_stderr"}) << " (hot wall "
+        << io::number(particle, {"nusselt_hot_wall"}) << ", cold wall "
+        << io::number(particle, {"nusselt_cold_wall"}) << "; with 20 blocks: +- "
+        << io::number(particle, {"nusselt_stderr_20_blocks"}) << ")\n";
+  for (const TwinRecord& t : twins) {
+    io::Json j = io::Json::object();
+    j["stage"] = t.stage;
+    if (t.name == "calibrated") j["calibration"] = calibration_description(compare, twin);
+    const auto T = temperature_distance(final_state, t.state, interior, dT);
+    j["temperature"] = T.to_json();
+    table["temperature_l2_" + t.name] = T.l2;
+    table["temperature_l2_" + t.name + "_stderr"] = T.l2_stderr;
+    table["temperature_l2_noise"] = T.noise;
+    table["temperature_max_" + t.name] = T.max;
+    log << "compare: " << t.name << " twin: temperature L2 " << T.l2 << " +- " << T.l2_stderr
+        << " (noise " << T.noise << "), max " << T.max << " +- " << T.max_stderr;
+    if (compare_velocity) {
+      const auto v = velocity_distance(final_state, t.state, interior, speed_scale);
+      j["velocity"] = v.to_json();
+      table["velocity_l2_" + t.name] = v.l2;
+      table["velocity_l2_" + t.name + "_stderr"] = v.l2_stderr;
+      table["velocity_l2_noise"] = v.noise;
+      log << "; velocity L2 " << v.l2 << " +- " << v.l2_stderr << " (noise " << v.noise << ")";
+    }
+    if (!t.state.density.empty()) { // the low-Mach twin's n(P, T) against the particles'
+      const auto n = density_distance(final_state, t.state, interior, scene.density);
+      j["density"] = n.to_json();
+      table["density_l2_" + t.name] = n.l2;
+      table["density_l2_" + t.name + "_stderr"] = n.l2_stderr;
+      table["density_l2_noise"] = n.noise;
+      log << "; density L2 " << n.l2 << " +- " << n.l2_stderr << " (noise " << n.noise << ")";
+    }
+    log << "\n";
+    const double nu_own = io::number(t.summary, {"results", "nusselt_volume_average"});
+    const double q_own = io::number(t.summary, {"dimensionless", "conduction_flux"});
+    if (heated >= 0 && std::isfinite(nu_own)) {
+      // Its heat flow over the scene's wall area, as the particle's (a twin with its walls
+      // moved in has a smaller wall; flux per own area = Nu_own kappa dT / H_own).
+      double area_ratio = 1;
+      const io::Json* own_box = io::find(t.summary, {"continuum_parameters", "box"});
+      if (own_box && own_box->is_array() && own_box->size() == std::size_t(scene.dim))
+        for (int e = 0; e < scene.dim; ++e)
+          if (e != heated) area_ratio *= (*own_box)[e].get<double>() / scene.box[e];
+      if (io::find(t.summary, {"continuum_parameters", "scene_box"}))
+        j["wall_area_over_scene"] = area_ratio;
+      const double q = nu_own * q_own * area_ratio;
+      j["nusselt_own"] = nu_own; // against this twin's own wall temperature difference
+      j["heat_flux"] = q;
+      j["nusselt"] = q / q0; // against the nominal conduction flux, as the particle's
+      j["nusselt_particle_minus_twin"] = q_particle / q0 - q / q0;
+      j["nusselt_relative_difference"] = q_particle / q - 1;
+      table["nusselt_" + t.name] = q / q0;
+      // The twin's own error: its heat flux's response to the measured coefficients' errors
+      // (and, calibrated, to its Kapitza conductances').
+      const double rel =
+          io::number(t.summary, {"coefficient_uncertainty", "heat_flux_relative_stderr"});
+      j["nusselt_stderr_from_coefficients"] = rel * q / q0;
+      table["nusselt_" + t.name + "_stderr"] = rel * q / q0;
+      log << "compare: " << t.name << " twin: Nu = " << q / q0;
+      if (std::isfinite(rel))
+        log << " +- " << rel * q / q0
+            << (t.name == "calibrated" && compare.calibration == "kapitza"
+                    ? " (coefficients' and h_K's errors)"
+                    : " (coefficients' errors)");
+      log << " (own dT: " << nu_own << "); particle / twin heat flux - 1 = " << q_particle / q - 1
+          << "\n";
+    }
+    j["rayleigh"] = io::number(t.summary, {"dimensionless", "rayleigh"});
+    table["rayleigh_" + t.name] = io::number(t.summary, {"dimensionless", "rayleigh"});
+    table["wall_seconds_continuum" + std::string(t.name == "nominal" ? "" : "_" + t.name)] =
+        io::number(t.summary, {"stage_wall_time_s"});
+    twins_json[t.name] = j;
+  }
+  table["rayleigh"] = io::number(nominal.summary, {"dimensionless", "rayleigh"});
+  table["prandtl"] = io::number(nominal.summary, {"dimensionless", "prandtl"});
+  metrics["twins"] = twins_json;
+
+  // Error against run time: the same distances for each cumulative snapshot of the run.
+  std::ostringstream series;
+  series << std::setprecision(8);
+  series << "# distance of each cumulative particle snapshot to the twins (interior bins), "
+            "units of the temperature / velocity scale of metrics.json\n";
+  series << "snapshot,time,wall_seconds,particle_steps";
+  for (const auto& t : twins) {
+    series << ",temperature_l2_" << t.name << ",temperature_l2_" << t.name << "_stderr";
+    if (compare_velocity)
+      series << ",velocity_l2_" << t.name << ",velocity_l2_" << t.name << "_stderr";
+  }
+  series << ",temperature_noise" << (compare_velocity ? ",velocity_noise" : "") << "\n";
+  for (std::size_t s = 0; s < run.fields.snapshots.size(); ++s) {
+    const auto& snap = run.fields.snapshots[s];
+    const BinnedState p = particle_state(grid, snap);
+    series << s << "," << snap.time << "," << snap.wall_seconds << "," << snap.particle_steps;
+    double t_noise = 0, v_noise = 0;
+    for (const auto& t : twins) {
+      const auto T = temperature_distance(p, t.state, interior, dT);
+      series << "," << T.l2 << "," << T.l2_stderr;
+      t_noise = T.noise;
+      if (compare_velocity) {
+        const auto v = velocity_distance(p, t.state, interior, speed_scale);
+        series << "," << v.l2 << "," << v.l2_stderr;
+        v_noise = v.noise;
+      }
+    }
+    series << "," << t_noise;
+    if (compare_velocity) series << "," << v_noise;
+    series << "\n";
+  }
+
+  std::vector<std::pair<std::string, const BinnedState*>> continua;
+  for (const auto& t : twins) continua.emplace_back(t.name, &t.state);
+  metrics["table_row"] = table;
+  metrics["files"] = io::Json::array();
+  for (const char* f : {"bins.csv", "profiles.csv", "error_vs_time.csv"})
+    metrics["files"].push_back(f);
+  out.bins_csv = bins_csv(final_state, interior, continua);
+  out.profiles_csv = midline_profiles_csv(final_state, continua);
+  out.error_vs_time_csv = series.str();
+  return out;
+}
+
+} // namespace twinflow::compare

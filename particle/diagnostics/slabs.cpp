@@ -1,0 +1,127 @@
+#include "particle/diagnostics/slabs.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "statistics/line_fit.hpp"
+
+namespace twinflow::particle {
+
+namespace {
+
+std::array<int, 3> slab_bins(const ParticleParameters& p) { // 0.5 rc along the slab direction
+  std::array<int, 3> bins{{1, 1, 1}};
+  const int dir = p.heat_slabs[0].direction;
+  bins[dir] = std::max(4, static_cast<int>(std::lround(p.box[dir] / 0.5)));
+  return bins;
+}
+
+// Seed 002 section III.B: linear fits of T_internal(x) in the central 60% of both halves between
+// the slabs; kappa = J0 / |dT/dx| with J0 = power / (2 A).
+io::Json slab_fit(const ParticleParameters& p, const BinnedFields& f) {
+  const HeatSlab& hot = p.heat_slabs[0];
+  const HeatSlab& cold = p.heat_slabs[1];
+  const int dir = hot.direction;
+  const double length = p.box[dir];
+  double area = 1;
+  for (int d = 0; d < p.dim; ++d)
+    if (d != dir) area *= p.box[d];
+  const double j0 = std::fabs(hot.power) / (2 * area);
+  io::Json out = io::Json::object();
+  out["J0"] = j0;
+  double wsum = 0, ksum = 0;
+  const char* names[2] = {"hot_to_cold", "cold_to_hot"};
+  const double starts[2] = {hot.upper, cold.upper}, ends[2] = {cold.lower, hot.lower};
+  for (int half = 0; half < 2; ++half) {
+    double a = starts[half], b = ends[half];
+    if (b <= a) b += length; // the half wraps around the periodic box
+    const double lo = a + 0.2 * (b - a), hi = b - 0.2 * (b - a);
+    statistics::LineFit fit;
+    for (int bin = 0; bin < f.bin_count(); ++bin) {
+      double x = f.centre(bin, dir);
+      if (x < a) x += length;
+      if (x >= lo && x <= hi)
+        fit.add(x, f.temperature_internal.mean[bin], f.temperature_internal.stderr_[bin]);
+    }
+    const double slope = fit.slope(), intercept = fit.intercept(), slope_se = fit.slope_stderr();
+    const double kappa = j0 / std::fabs(slope), kappa_se = kappa * slope_se / std::fabs(slope);
+    io::Json h = io::Json::object();
+    h["fit_from"] = lo, h["fit_to"] = hi;
+    h["slope"] = slope, h["slope_stderr"] = slope_se, h["intercept"] = intercept;
+    h["kappa"] = kappa, h["kappa_stderr"] = kappa_se;
+    out[names[half]] = h;
+    wsum += 1 / (kappa_se * kappa_se), ksum += kappa / (kappa_se * kappa_se);
+  }
+  out["kappa"] = ksum / wsum;
+  out["kappa_stderr"] = 1 / std::sqrt(wsum);
+  return out;
+}
+
+// Energy-flux decomposition through the planes x = x_plane of a slab scene, from the binned
+// profile (the two bins beside the plane), normalised by J0 and signed so that positive means
+// from the hot slab towards the cold one (002 Figs. 5-6).
+io::Json flux_at_planes(const ParticleParameters& p, const BinnedFields& f, double j0) {
+  const int dir = p.heat_slabs[0].direction;
+  const HeatSlab& hot = p.heat_slabs[0];
+  const HeatSlab& cold = p.heat_slabs[1];
+  io::Json out = io::Json::array();
+  for (const double plane : {2.0, 8.0}) {
+    if (plane >= p.box[dir]) continue;
+    // Between the cold slab's upper edge and the hot slab's lower edge heat flows towards -dir.
+    const bool lower_half = plane > cold.upper && plane < hot.lower;
+    const double sign = lower_half ? -1.0 : 1.0;
+    const int n = f.bins[dir];
+    const double width = p.box[dir] / n;
+    const int right = std::min(n - 1, static_cast<int>(std::lround(plane / width)));
+    const int left = std::max(0, right - 1);
+    io::Json j = io::Json::object();
+    j["x"] = plane;
+    double total = 0, total_var = 0;
+    const std::pair<const char*, const FieldEstimate*> parts[4] = {
+        {"J_conductive", &f.flux_conductive},
+        {"J_internal", &f.flux_internal},
+        {"J_kinetic", &f.flux_kinetic},
+        {"J_potential", &f.flux_potential}};
+    for (const auto& [name, e] : parts) {
+      const std::size_t a = static_cast<std::size_t>(left) * f.dim + dir;
+      const std::size_t b = static_cast<std::size_t>(right) * f.dim + dir;
+      const double mean = sign * 0.5 * (e->mean[a] + e->mean[b]) / j0;
+      const double se = 0.5 * std::hypot(e->stderr_[a], e->stderr_[b]) / j0;
+      j[std::string(name) + "_over_J0"] = mean;
+      j[std::string(name) + "_over_J0_stderr"] = se;
+      total += mean, total_var += se * se;
+    }
+    j["sum_over_J0"] = total;
+    j["sum_over_J0_stderr"] = std::sqrt(total_var);
+    out.push_back(j);
+  }
+  return out;
+}
+
+} // namespace
+
+template <int D>
+SlabProfile<D>::SlabProfile(const ParticleParameters& p, const RunFacts&)
+    : sampler_(box3(p), slab_bins(p), p.blocks, sampled_count(p), p.mass, p.cv) {}
+
+template <int D> void SlabProfile<D>::sample(const Sample<D>& s) {
+  if (s.sampled) sampler_.sample(s.state, s.potential, s.conduction);
+}
+
+template <int D> void SlabProfile<D>::finish(RunOutput& out) {
+  result_ = sampler_.result();
+  out.slab_profile_csv = result_.csv();
+}
+
+template <int D> void SlabKappaFit<D>::finish(RunOutput& out) {
+  io::Json j = slab_fit(p_, profile_.result());
+  j["flux_decomposition"] = flux_at_planes(p_, profile_.result(), j["J0"].get<double>());
+  out.summary["heat_slabs"] = j;
+}
+
+template class SlabProfile<2>;
+template class SlabProfile<3>;
+template class SlabKappaFit<2>;
+template class SlabKappaFit<3>;
+
+} // namespace twinflow::particle

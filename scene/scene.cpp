@@ -1,0 +1,48 @@
+#include "scene/scene.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace twinflow::scene {
+
+bool SceneParameters::has_walls() const {
+  for (int d = 0; d < dim; ++d)
+    if (!boundary[d].periodic) return true;
+  return false;
+}
+
+int SceneParameters::heated_direction() const {
+  for (int d = 0; d < dim; ++d) {
+    const auto& b = boundary[d];
+    if (!b.periodic && b.thermal[0] && b.thermal[1] && b.temperature[0] != b.temperature[1])
+      return d;
+  }
+  return -1;
+}
+
+double SceneParameters::thermal_wall_epsilon() const {
+  double lo = HUGE_VAL, hi = 0;
+  for (int d = 0; d < dim; ++d)
+    for (int side = 0; side < 2; ++side)
+      if (!boundary[d].periodic && boundary[d].thermal[side]) {
+        lo = std::min(lo, boundary[d].temperature[side]);
+        hi = std::max(hi, boundary[d].temperature[side]);
+      }
+  return hi > 0 ? (hi - lo) / (hi + lo) : 0;
+}
+
+double SceneParameters::thermal_wall_mean() const {
+  double sum = 0;
+  int walls = 0;
+  for (int d = 0; d < dim; ++d)
+    if (!boundary[d].periodic)
+      for (int side = 0; side < 2; ++side)
+        if (boundary[d].thermal[side]) sum += boundary[d].temperature[side], ++walls;
+  return walls > 0 ? sum / walls : 0;
+}
+
+std::string wall_name(int direction, int side) {
+  return std::string(1, "xyz"[direction]) + (side ? "_upper" : "_lower");
+}
+
+} // namespace twinflow::scene

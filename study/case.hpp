@@ -1,0 +1,69 @@
+#pragma once
+// A paired case as the study runs it: every stage's parameters, resolved once from the case
+// file (app/case/), and the record of every key's value that stages write as provenance and
+// hash as their inputs.
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "compare/parameters.hpp"
+#include "continuum/parameters.hpp"
+#include "io/json.hpp"
+#include "particle/parameters.hpp"
+#include "scene/scene.hpp"
+#include "transport/parameters.hpp"
+
+namespace twinflow::study {
+
+// Bounds of the stability map (twinflow stability).
+struct StabilityBounds {
+  double energy_drift = 1e-3;          // largest acceptable max |dE/E|
+  double temperature_tolerance = 0.05; // |T / T_target - 1|
+  double fluctuation_number = 1.0;     // 000:(3.34)'s number must stay below this
+};
+
+// Which twin runs and where its coefficients come from.
+struct TwinChoice {
+  bool coefficients_from_transport = false; // RUNDIR/transport/summary.json, else the case's
+  bool model_chosen_automatically = false;  // Continuum/Model = auto
+  double low_mach_threshold = 0.2;          // its threshold on the walls' epsilon
+};
+
+struct CaseParameters {
+  std::string name;
+  scene::SceneParameters scene;
+  particle::ParticleParameters particle;
+  transport::TransportParameters transport;
+  continuum::ContinuumParameters continuum;
+  TwinChoice twin;
+  compare::CompareParameters compare;
+  StabilityBounds stability;
+};
+
+struct Case {
+  CaseParameters parameters;
+  io::Json record = io::Json::object();   // "Section/Key" -> the value's text, every key
+  io::Json defaults = io::Json::object(); // "Section/Key" -> its declared default text
+  std::string file;                       // the case file as given
+  std::vector<std::string> settings;      // the user's --set assignments, in order
+  // A value a stage hands a later one, recorded as the case file would hold it.
+  void record_value(const std::string& path, const std::string& text) { record[path] = text; }
+};
+
+// How a command runs (the command line's options, nothing of the case).
+struct RunOptions {
+  std::filesystem::path out;  // run directory; empty: twinflow-runs/<case name>
+  bool force = false;         // overwrite an earlier run's results
+  bool restart = false;       // continue an interrupted particle run from its checkpoint
+  double wall_time_limit = 0; // seconds; 0: none. Past it a particle run checkpoints and stops
+  int threads = 0;            // OpenMP threads; 0: the runtime's default
+};
+
+std::filesystem::path run_directory(const RunOptions& options, const std::string& case_name);
+
+// Exit codes shared by the commands.
+constexpr int kExitDone = 0, kExitFailed = 1, kExitBadInput = 2, kExitNotImplemented = 3,
+              kExitUnstable = 4, kExitInterrupted = 5;
+
+} // namespace twinflow::study

@@ -1,0 +1,158 @@
+#include <chrono>
+#include <cmath>
+#include <csignal>
+#include <cstdlib>
+#include <iostream>
+#include <optional>
+
+#include <unistd.h>
+
+#include "io/checkpoint.hpp"
+#include "io/field_file.hpp"
+#include "io/files.hpp"
+#include "particle/run.hpp"
+#include "particle/simulation.hpp"
+#include "study/inputs.hpp"
+#include "study/stages.hpp"
+#include "transport/estimates.hpp"
+
+namespace twinflow::study {
+
+namespace fs = std::filesystem;
+
+namespace {
+volatile std::sig_atomic_t stop_signal = 0;
+extern "C" void on_stop_signal(int sig) {
+  if (stop_signal) std::_Exit(128 + sig); // a second signal: stop now
+  stop_signal = sig;
+}
+
+// The largest bin-mean speed of the final averages.
+double largest_speed(const particle::RunOutput& out) {
+  double max_speed = 0;
+  if (!out.field_snapshots.empty())
+    if (const io::Field* v = out.field_snapshots.back().find("velocity"))
+      for (std::size_t b = 0; b + v->components <= v->values.size(); b += v->components) {
+        double s2 = 0;
+        for (int d = 0; d < v->components; ++d) s2 += v->values[b + d] * v->values[b + d];
+        max_speed = std::max(max_speed, std::sqrt(s2));
+      }
+  return max_speed;
+}
+
+void print_summary(const io::Json& r, const io::Json& convection, const fs::path& dir) {
+  std::cout << "particle: N = " << io::number(r, {"N"}) << ", "
+            << io::number(r, {"particle_steps_per_second"})
+            << " particle-steps/s, T_kinetic = " << io::number(r, {"T_kinetic"}) << " +- "
+            << io::number(r, {"T_kinetic_stderr"})
+            << ", T_internal = " << io::number(r, {"T_internal"}) << " +- "
+            << io::number(r, {"T_internal_stderr"})
+            << ", max |dE/E| = " << io::number(r, {"energy_relative_drift_max"}) << "\n"
+            << "outputs: " << fs::absolute(dir).string() << "\n";
+  if (convection.is_null()) return;
+  const auto get = [&](const char* key) { return io::number(convection, {key}); };
+  std::cout << "convection (estimates): Ra = " << get("rayleigh") << ", Pr = " << get("prandtl")
+            << ", dT/T = " << get("delta_T_over_T")
+            << ", g H/c^2 = " << get("stratification_g_H_over_c2")
+            << ", Mach (measured) = " << get("mach_measured") << "\n";
+}
+} // namespace
+
+int particle_stage(const Case& c, const RunOptions& options) {
+  const CaseParameters& p = c.parameters;
+  const fs::path run_dir = run_directory(options, p.name);
+  const io::StageDirectory stage(run_dir, "particle", options.force && !options.restart);
+  const fs::path checkpoint_path = stage.file("checkpoint.twfc");
+  // The checkpoint belongs to these exact parameters: a changed case cannot continue it.
+  const std::string parameters = c.record.dump();
+  std::optional<io::Checkpoint> resume;
+  if (options.restart) {
+    if (!fs::exists(checkpoint_path))
+      throw io::InputError(checkpoint_path.string() +
+                           ": no checkpoint to restart from (was the run interrupted?)");
+    resume = io::Checkpoint::read(checkpoint_path);
+    if (resume->get<std::string>("case_parameters") != parameters)
+      throw io::InputError(checkpoint_path.string() +
+                           ": was written for other case parameters; restart with the same case "
+                           "file and --set options (or start afresh with --force)");
+  }
+  stop_signal = 0; // from here on a signal stops the run cleanly, with a checkpoint
+  std::signal(SIGINT, on_stop_signal);
+  std::signal(SIGTERM, on_stop_signal);
+  stage.create();
+  if (!options.restart) fs::remove(checkpoint_path); // a fresh run leaves no old one behind
+  const auto started = std::chrono::steady_clock::now();
+  particle::RunControl control;
+  control.progress = isatty(STDERR_FILENO);
+  control.resume = resume ? &*resume : nullptr;
+  control.checkpoint_every_seconds = 1800; // a crash loses at most half an hour
+  control.stop_requested = [&] {
+    return stop_signal != 0 ||
+           (options.wall_time_limit > 0 &&
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count() >
+                options.wall_time_limit);
+  };
+  control.write_checkpoint = [&](const io::Checkpoint& state) {
+    io::Checkpoint file = state;
+    file.put("case_parameters", parameters);
+    file.write(checkpoint_path);
+  };
+  particle::RunOutput out;
+  try {
+    out = particle::run_particles(p.particle, control);
+  } catch (const particle::InstabilityError& e) {
+    std::cerr << "twinflow: particle run stopped: " << e.what() << "\n";
+    return kExitUnstable;
+  }
+  std::signal(SIGINT, SIG_DFL);
+  std::signal(SIGTERM, SIG_DFL);
+  if (out.interrupted) {
+    std::cerr << "twinflow: particle run "
+              << (stop_signal ? "interrupted by a signal" : "reached the wall-time limit")
+              << " at step " << out.steps_done << "; checkpoint written to "
+              << fs::absolute(checkpoint_path).string() << "\ncontinue with: twinflow particle "
+              << c.file << " --out " << run_dir.string() << " --restart\n";
+    return kExitInterrupted;
+  }
+  io::write_file_atomically(stage.file("thermo.csv"), out.thermo_csv);
+  io::write_file_atomically(stage.file("histograms.csv"), out.histograms_csv);
+  io::write_file_atomically(stage.file("rdf.csv"), out.rdf_csv);
+  io::write_file_atomically(stage.file("correlations.csv"), out.correlations_csv);
+  io::write_file_atomically(stage.file("fields.csv"), out.fields_csv);
+  io::write_file_atomically(stage.file("blocks.csv"), out.blocks_csv);
+  if (!out.wall_layers_csv.empty())
+    io::write_file_atomically(stage.file("wall_layers.csv"), out.wall_layers_csv);
+  const io::Json convection = transport::convection_numbers(p.particle, largest_speed(out));
+  if (!convection.is_null()) out.summary["convection"] = convection;
+  if (!out.field_snapshots.empty()) { // cumulative averages at a sequence of times (ParaView)
+    io::FieldFile fields(stage.file("fields"), out.field_grid);
+    for (auto& s : out.field_snapshots) fields.append(std::move(s));
+  }
+  if (!out.relaxation_csv.empty())
+    io::write_file_atomically(stage.file("relaxation.csv"), out.relaxation_csv);
+  if (!out.slab_profile_csv.empty())
+    io::write_file_atomically(stage.file("slab_profile.csv"), out.slab_profile_csv);
+  io::Json summary = io::Json::object();
+  summary["stage"] = "particle";
+  summary["case"] = p.name;
+  summary["case_file"] = fs::absolute(c.file).string();
+  summary["provenance"] = io::provenance();
+  summary["results"] = out.summary;
+  summary["parameters"] = c.record;
+  io::write_file_atomically(stage.file("summary.json"), io::dump(summary)); // last: complete
+  fs::remove(checkpoint_path); // finished: nothing to continue
+  print_summary(out.summary, convection, stage.path());
+  return 0;
+}
+
+int particle_command(const Case& c, const RunOptions& options) {
+  const StageInputs inputs = stage_inputs(c, {"Scene/", "Particle/"}, {});
+  const int rc = particle_stage(c, options);
+  if (rc == 0)
+    io::write_file_atomically(run_directory(options, c.parameters.name) / "particle" /
+                                  "inputs.json",
+                              io::dump(inputs.inputs));
+  return rc;
+}
+
+} // namespace twinflow::study

@@ -1,0 +1,82 @@
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+
+#include "io/files.hpp"
+#include "study/inputs.hpp"
+#include "study/stages.hpp"
+
+namespace twinflow::study {
+
+namespace fs = std::filesystem;
+
+// The particle scene, the fluid's coefficients, the continuum twins fed with them (nominal;
+// calibrated: the walls at the temperatures the particle fluid reaches there), the comparison.
+int run_all(Case c, const RunOptions& options) {
+  CaseParameters& p = c.parameters;
+  const fs::path run_dir = run_directory(options, p.name);
+  const bool walls = p.scene.has_walls() && p.scene.heat_slabs.empty();
+  // The particle results are the expensive ones: kept unless their inputs are unchanged (reused)
+  // or --force / --restart says otherwise; checked before anything runs (bad input writes
+  // nothing). Later stages are derived from them and recomputed whenever their inputs changed.
+  const StageInputs particle_inputs = stage_inputs(c, {"Scene/", "Particle/"}, {});
+  const bool reuse_particle =
+      !options.force && !options.restart && reusable(run_dir / "particle", particle_inputs);
+  if (!reuse_particle) io::StageDirectory(run_dir, "particle", options.force || options.restart);
+  std::cout << "run: '" << p.name << "': particle, transport, continuum"
+            << (walls ? " (nominal and calibrated)" : "") << ", compare\n";
+  if (const int rc =
+          run_or_reuse(run_dir / "particle", particle_inputs, options.force || options.restart,
+                       [&] { return particle_stage(c, options); }))
+    return rc;
+  RunOptions later = options;
+  later.restart = false;
+  later.force = true; // derived from the particle results: recomputed when their inputs change
+  later.out = run_dir;
+  // The coefficients at the temperature the particle fluid has, unless the case says: its
+  // measured mean to 4 digits (more would be noise, ~1e-3, and would defeat the transport cache).
+  if (p.transport.temperature == 0) {
+    const double T =
+        io::number(io::read_json(run_dir / "particle" / "summary.json"), {"results", "T_kinetic"});
+    if (T > 0) {
+      std::ostringstream text;
+      text << std::setprecision(4) << T;
+      p.transport.temperature = std::stod(text.str());
+      c.record_value("Transport/Temperature", text.str());
+      std::cout << "run: transport at the particle fluid's mean temperature: "
+                << "Transport/Temperature=" << text.str() << "\n";
+    }
+  }
+  const StageInputs transport_inputs =
+      stage_inputs(c, {"Scene/", "Particle/", "Transport/"}, {particle_inputs.hash},
+                   transport::kMeasurementMethod);
+  if (const int rc = run_or_reuse(run_dir / "transport", transport_inputs, false,
+                                  [&] { return transport_stage(c, later); }))
+    return rc;
+  bool chosen = false; // the user's own --set of the coefficients' source wins
+  for (const auto& s : c.settings) chosen |= s.rfind("Continuum/Coefficients/Source", 0) == 0;
+  if (!chosen) {
+    p.twin.coefficients_from_transport = true;
+    c.record_value("Continuum/Coefficients/Source", "transport");
+  }
+  const StageInputs continuum_inputs =
+      stage_inputs(c, {"Scene/", "Transport/", "Continuum/"}, {transport_inputs.hash});
+  if (const int rc = run_or_reuse(run_dir / "continuum", continuum_inputs, false,
+                                  [&] { return continuum_stage(c, later, "continuum"); }))
+    return rc;
+  if (walls && fs::exists(run_dir / "particle" / "fields.h5")) {
+    const Case calibrated = calibrated_case(c, run_dir);
+    const StageInputs calibrated_inputs =
+        stage_inputs(calibrated, {"Scene/", "Transport/", "Continuum/"},
+                     {transport_inputs.hash, particle_inputs.hash});
+    if (const int rc =
+            run_or_reuse(run_dir / "continuum_calibrated", calibrated_inputs, false, [&] {
+              return continuum_stage(calibrated, later, "continuum_calibrated");
+            }))
+      return rc;
+  }
+  if (!fs::exists(run_dir / "particle" / "fields.h5")) return 0; // nothing binned to compare
+  return compare_stage(c, run_dir);
+}
+
+} // namespace twinflow::study

@@ -1,0 +1,44 @@
+#pragma once
+// The stages of a paired run, each into its folder of the run directory: particle, transport,
+// continuum (nominal; calibrated), compare; and `run`, which chains them. Each takes the case as
+// resolved once at the edge; bad input throws io::InputError (exit 2), and nothing is written
+// before every input is checked.
+
+#include <filesystem>
+#include <string>
+
+#include "study/case.hpp"
+
+namespace twinflow::study {
+
+// RUNDIR/particle. Exit code: 0, 4 (the run went unstable), 5 (interrupted, checkpoint written).
+int particle_stage(const Case& c, const RunOptions& options);
+// `twinflow particle`: the stage, its inputs recorded as `run` records them (a later `run` of
+// the same case reuses the results).
+int particle_command(const Case& c, const RunOptions& options);
+
+// RUNDIR/transport: the fluid's coefficients at the state point; bulk measurements are cached
+// across run directories under the hash of their inputs ($TWINFLOW_CACHE).
+int transport_stage(const Case& c, const RunOptions& options);
+
+// RUNDIR/<stage_name>: the continuum twin of the case's Continuum section, its coefficients
+// from RUNDIR/transport where the case says so.
+int continuum_stage(const Case& c, const RunOptions& options,
+                    const std::string& stage_name = "continuum");
+
+// The calibrated twin's case: the nominal one with the walls calibrated from the particle run
+// in `run_dir` (compare/calibration.hpp), its values recorded.
+Case calibrated_case(const Case& nominal, const std::filesystem::path& run_dir);
+
+// RUNDIR/compare and RUNDIR/report; `c`: the case the particle run recorded (with the later
+// sections of this command).
+int compare_stage(const Case& c, const std::filesystem::path& run_dir);
+
+// Figures and report.md/html in DIR/report (a run, a sweep or a stability map), by the Python
+// package compare/report/; a missing python3 with matplotlib is said, not an error.
+void write_report(const std::filesystem::path& dir);
+
+// All stages; a stage whose inputs are unchanged is reused.
+int run_all(Case c, const RunOptions& options);
+
+} // namespace twinflow::study

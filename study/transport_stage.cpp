@@ -1,0 +1,152 @@
+#include <cstdlib>
+#include <iostream>
+
+#include "io/files.hpp"
+#include "study/stages.hpp"
+#include "transport/measurement.hpp"
+
+namespace twinflow::study {
+
+namespace fs = std::filesystem;
+
+namespace {
+// What the transport stage's outputs depend on: the fluid (the Particle section, less the scene's
+// run lengths and walls), the dimension, the state point and the measurement settings; not the
+// scene's box, walls or gravity; the method's version (transport::kMeasurementMethod).
+io::Json measurement_inputs(const Case& c, const particle::ParticleParameters& p,
+                            const transport::TransportParameters& t) {
+  io::Json j = io::Json::object();
+  const io::Json& resolved = c.record;
+  for (const auto& [path, value] : resolved.items()) {
+    const bool fluid = path.rfind("Particle/", 0) == 0 && path.rfind("Particle/Walls/", 0) != 0 &&
+                       path != "Particle/Steps" && path != "Particle/Equilibration steps" &&
+                       path != "Particle/Initial velocities" &&
+                       path != "Particle/Initial internal energy";
+    if (fluid) j[path] = value;
+  }
+  j["dimension"] = p.dim;
+  j["start"] = "equilibrium"; // bulk runs start at (c_v + k) T whatever the case says
+  j["density"] = p.density;
+  j["temperature"] = p.temperature;
+  j["measure_flows"] = t.measure_flows;
+  if (t.measure_flows) {
+    j["flow_particles"] = t.flow_particles;
+    j["flow_repeats"] = t.flow_repeats;
+    j["temperature_spread"] = t.temperature_spread;
+  }
+  j["method"] = transport::kMeasurementMethod;
+  if (t.kappa_from_walls) { // the scene and the particle walls enter the wall run
+    for (const auto& [path, value] : resolved.items())
+      if (path.rfind("Scene/", 0) == 0 || path.rfind("Particle/Walls/", 0) == 0) j[path] = value;
+    j["kappa_from_walls"] = true;
+    j["wall_steps"] = t.wall_steps;
+  }
+  return j;
+}
+
+// Bulk measurements are cached across run directories under the hash of their inputs, so sweeps
+// and reruns do not redo them: $TWINFLOW_CACHE/transport/HASH (default $XDG_CACHE_HOME/twinflow,
+// else ~/.cache/twinflow; TWINFLOW_CACHE=off disables it). Empty: no cache.
+fs::path cache_directory(const std::string& hash) {
+  const char* env = std::getenv("TWINFLOW_CACHE");
+  fs::path root;
+  if (env && *env) {
+    if (std::string(env) == "off") return {};
+    root = env;
+  } else if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg) {
+    root = fs::path(xdg) / "twinflow";
+  } else if (const char* home = std::getenv("HOME"); home && *home) {
+    root = fs::path(home) / ".cache" / "twinflow";
+  } else {
+    return {};
+  }
+  return root / "transport" / hash;
+}
+
+const char* kCachedFiles[] = {"coefficients.csv", "rdf.csv", "summary.json"};
+
+// Copies a cached result into the stage, with this case's name and parameters. False: no entry
+// (or an unreadable one: the cache is a convenience, never a reason to fail).
+bool restore_from_cache(const fs::path& entry, const io::StageDirectory& stage, const Case& c) {
+  for (const char* f : kCachedFiles)
+    if (!fs::exists(entry / f)) return false;
+  io::Json summary;
+  try {
+    summary = io::read_json(entry / "summary.json");
+  } catch (const std::exception& e) {
+    std::cerr << "transport: cache entry " << entry.string() << " unreadable (" << e.what()
+              << "): measuring\n";
+    return false;
+  }
+  const io::Json* made_by = io::find(summary, {"provenance"});
+  if (!made_by) return false; // not an entry this code wrote
+  const io::Json* revision = io::find(*made_by, {"twinflow_git_revision"});
+  const io::Json now = io::provenance();
+  if (revision && *revision != now.at("twinflow_git_revision"))
+    std::cout << "transport: the cached measurements were made by twinflow " << revision->dump()
+              << " (this is " << now.at("twinflow_git_revision").dump()
+              << "); --force or TWINFLOW_CACHE=off measures again\n";
+  io::Json cache = io::Json::object();
+  cache["entry"] = entry.string();
+  cache["made_by"] = *made_by;
+  summary["cache"] = cache;
+  summary["case"] = c.parameters.name;
+  summary["provenance"] = io::provenance();
+  summary["parameters"] = c.record;
+  stage.create();
+  io::write_file_atomically(stage.file("coefficients.csv"),
+                            io::read_file(entry / "coefficients.csv"));
+  io::write_file_atomically(stage.file("rdf.csv"), io::read_file(entry / "rdf.csv"));
+  io::write_file_atomically(stage.file("summary.json"), io::dump(summary));
+  return true;
+}
+} // namespace
+
+int transport_stage(const Case& c, const RunOptions& options) {
+  const CaseParameters& cp = c.parameters;
+  const fs::path run_dir = run_directory(options, cp.name);
+  const io::StageDirectory stage(run_dir, "transport", options.force);
+  const particle::ParticleParameters bulk =
+      transport::bulk_fluid(cp.scene, cp.particle, cp.transport);
+  const io::Json key_inputs = measurement_inputs(c, bulk, cp.transport);
+  const std::string key = io::content_hash(key_inputs.dump());
+  const fs::path cache = cache_directory(key);
+  // --force measures again (and refreshes the entry).
+  if (!cache.empty() && !options.force && restore_from_cache(cache, stage, c)) {
+    std::cout << io::read_file(stage.file("coefficients.csv"))
+              << "transport: measurements reused from the cache (" << cache.string()
+              << "; TWINFLOW_CACHE=off recomputes)\noutputs: "
+              << fs::absolute(stage.path()).string() << "\n";
+    return 0;
+  }
+  stage.create();
+  const transport::TransportMeasurement m =
+      transport::measure_transport(cp.scene, cp.particle, bulk, cp.transport);
+  io::write_file_atomically(stage.file("coefficients.csv"), m.coefficients_csv);
+  io::write_file_atomically(stage.file("rdf.csv"), m.rdf_csv);
+  io::Json summary = io::Json::object();
+  summary["stage"] = "transport";
+  summary["case"] = cp.name;
+  summary["provenance"] = io::provenance();
+  summary["parameters"] = c.record;
+  summary["results"] = m.results;
+  summary["measurement_key"] = key;
+  io::write_file_atomically(stage.file("summary.json"), io::dump(summary));
+  if (!cache.empty()) {
+    // summary.json last: an interrupted copy leaves no entry. Best effort (read-only home, full
+    // disk): the stage's own results are already written.
+    try {
+      fs::create_directories(cache);
+      io::write_file_atomically(cache / "inputs.json", io::dump(key_inputs));
+      io::write_file_atomically(cache / "coefficients.csv", m.coefficients_csv);
+      io::write_file_atomically(cache / "rdf.csv", m.rdf_csv);
+      io::write_file_atomically(cache / "summary.json", io::dump(summary));
+    } catch (const std::exception& e) {
+      std::cerr << "transport: not cached (" << e.what() << ")\n";
+    }
+  }
+  std::cout << m.coefficients_csv << "outputs: " << fs::absolute(stage.path()).string() << "\n";
+  return 0;
+}
+
+} // namespace twinflow::study

@@ -1,0 +1,24 @@
+#pragma once
+// What the transport stage measures, and how (case file section Transport).
+
+#include <string>
+
+namespace twinflow::transport {
+
+struct TransportParameters {
+  std::string source = "estimated"; // estimated | measured
+  bool measure_flows = false;       // also kappa and eta by the relaxation of sine modes
+  double temperature = 0;           // state point; 0: the walls' mean, else Scene/Temperature
+  double flow_particles = 4000;     // particles of the square/cubic base box of the flow runs
+  int flow_repeats = 4;             // independent relaxation runs (their spread is the error)
+  double temperature_spread = 0;    // > 0: also at T (1 -+ spread), power laws kappa(T), eta(T)
+  bool kappa_from_walls = false;    // kappa by conduction between the scene's thermal walls
+  long wall_steps = 100000;         // its sampled steps (after as many / 5 to settle)
+};
+
+// The version of the measurement: part of its cache key and of its stage inputs in `run`, bumped
+// when a measurement changes (results of an older method are not reused).
+constexpr int kMeasurementMethod = 4; // 3: relaxation fit window from the noise (decay_fit.hpp);
+                                      // 4: the wall run's slope and flux errors from the blockings
+
+} // namespace twinflow::transport

@@ -192,15 +192,19 @@ struct ConstantRepulsion {
     f = a0 * x; // 002:(3)
     phi = 0.5 * a0 * rc * x * x;
   }
+  double strength(double, double) const { return a0; } // a_ij
 };
 struct TemperatureRepulsion {
   static constexpr bool active = true;
   double a0, rc, inv_rc, inv_2tref;
   void eval(double r, double th_i, double th_j, double& f, double& phi) const {
-    const double a = a0 * (th_i + th_j) * inv_2tref; // a^T_ij = a0 (T_i + T_j)/(2 T-bar), 002 II.C
+    const double a = strength(th_i, th_j);
     const double x = 1 - r * inv_rc;
     f = a * x;
     phi = 0.5 * a * rc * x * x;
+  }
+  double strength(double th_i, double th_j) const {
+    return a0 * (th_i + th_j) * inv_2tref; // a^T_ij = a0 (T_i + T_j)/(2 T-bar), 002 II.C
   }
 };
 
@@ -217,6 +221,8 @@ struct ConstantSigma {
   double ito_gamma(double th_i, double th_j) const {
     return sigma * sigma * (th_i + th_j) / (4 * th_i * th_j);
   }
+  // Against a wall partner (infinite heat capacity): the same, sigma does not depend on u.
+  double wall_ito_gamma(double th_i, double th_w) const { return ito_gamma(th_i, th_w); }
   // gamma a for a factor a known before the temperatures: the constants multiplied first, so
   // the Shardlow sweep's chain of dependent operations through th is short.
   double ito_gamma_times(double th_i, double th_j, double a) const {
@@ -244,6 +250,12 @@ struct ConstantGamma {
     const double s = th_i + th_j;
     return gamma_ * (1 + (th_i * th_i + th_j * th_j) / (cv * s * s));
   }
+  // Against a wall partner of infinite heat capacity only d/du_i acts: xi = gamma [1 + k/2
+  // dTheta/du_i] (003:(18) with the partner's term left out).
+  double wall_ito_gamma(double th_i, double th_w) const {
+    const double s = th_i + th_w;
+    return gamma_ * (1 + th_w * th_w / (cv * s * s));
+  }
   double ito_gamma_times(double th_i, double th_j, double a) const {
     return ito_gamma(th_i, th_j) * a;
   }
@@ -259,6 +271,7 @@ struct IsothermalFriction { // seed 001: fixed T in the FDT, no internal energy
   double gamma(double) const { return gamma_; }
   double sigma_of(double) const { return sigma; }
   double ito_gamma(double, double) const { return gamma_; }
+  double wall_ito_gamma(double, double) const { return gamma_; }
   double ito_gamma_times(double, double, double a) const { return gamma_ * a; }
   static double harmonic(double, double) { return 1; }
 };
@@ -283,6 +296,12 @@ struct InverseConstantHeat {
     rate = kappa0 * wh * (th_j - th_i) / (th_i * th_j); // 002:(7): 1/th_i - 1/th_j
     amplitude = std::sqrt(2 * kappa0) * sqrt_wh;
   }
+  // Against a wall partner of infinite heat capacity at th_w: the Ito drift is 1/2 d/du_i
+  // Lambda^2 alone (physics.md), zero here.
+  void eval_wall(double wh, double sqrt_wh, double th_i, double th_w, double& rate,
+                 double& amplitude) const {
+    eval_w(wh, sqrt_wh, th_i, th_w, rate, amplitude);
+  }
 };
 struct InverseSeed002Heat {
   static constexpr bool active = true;
@@ -301,6 +320,13 @@ struct InverseSeed002Heat {
     rate = kappa * wh * (th_j - th_i) / (th_i * th_j); // 002:(7); drift (d_i - d_j) Lambda^2 = 0
     amplitude = std::sqrt(2 * kappa) * sqrt_wh;        // (alpha^A)^2 = 2 k kappa^A, 002 II.B
   }
+  // Against a wall partner of infinite heat capacity: 1/2 d/du_i Lambda^2 = W kappa0 c_v (th_i +
+  // th_w) / 2 (Lambda^2 = 2 k kappa^A W, d kappa^A / du_i = kappa0 c_v (th_i + th_w) / 2).
+  void eval_wall(double wh, double sqrt_wh, double th_i, double th_w, double& rate,
+                 double& amplitude) const {
+    eval_w(wh, sqrt_wh, th_i, th_w, rate, amplitude);
+    rate += 0.5 * wh * kappa0 * cv * (th_i + th_w);
+  }
 };
 struct LinearHeat {
   static constexpr bool active = true;
@@ -318,6 +344,13 @@ struct LinearHeat {
     // 002:(8) plus the Ito drift 1/2 (d/du_i - d/du_j) Lambda^2 = k kappa w_H (th_j - th_i)/c_v
     rate = kappa * wh * dt * (1 + (noise_factor * 0.5) / cv);
     amplitude = std::sqrt(noise_factor * kappa * th_i * th_j) * sqrt_wh; // 000:(2.38)
+  }
+  // Against a wall partner of infinite heat capacity at th_w: the drift 1/2 d/du_i Lambda^2 =
+  // (factor/2) kappa W th_w / c_v alone.
+  void eval_wall(double wh, double sqrt_wh, double th_i, double th_w, double& rate,
+                 double& amplitude) const {
+    rate = kappa * wh * ((th_w - th_i) + (noise_factor * 0.5) * th_w / cv);
+    amplitude = std::sqrt(noise_factor * kappa * th_i * th_w) * sqrt_wh; // 000:(2.38)
   }
 };
 

@@ -18,6 +18,13 @@ bool ParticleParameters::has_walls() const {
   return false;
 }
 
+bool ParticleParameters::has_wall_model(WallModel m) const {
+  for (int d = 0; d < dim; ++d)
+    for (int side = 0; side < 2; ++side)
+      if (walls[d].present && walls[d].model[side] == m) return true;
+  return false;
+}
+
 long ParticleParameters::particle_count() const {
   double volume = box[0] * box[1];
   if (dim == 3) volume *= box[2];

@@ -34,14 +34,20 @@ struct HeatSlab {
   double lower, upper, power;
 };
 
-// Walls at x_d = 0 and x_d = L_d of a non-periodic direction (physics.md, "External fields and
-// boundaries"): each interacts with a particle at distance h < range like a particle of infinite
-// mass and heat capacity at rest.
+// How a wall acts on a particle at distance h. Seed000: like one particle of infinite mass and
+// heat capacity at rest at the nearest point, within Particle/Walls/Range (physics.md, "External
+// fields and boundaries"; seed 000 section 3.1). HalfSpace: like the half-space of wall material
+// at density rho_w beyond the plane, every pair term integrated over it (wall_weights.hpp): the
+// coupling of the fluid's own neighbours.
+enum class WallModel { HalfSpace, Seed000 };
+
+// Walls at x_d = 0 and x_d = L_d of a non-periodic direction; nothing crosses them.
 struct WallPair {
   bool present = false;
   std::array<bool, 2> thermal{{true, true}}; // lower, upper; false: adiabatic
   std::array<double, 2> temperature{{1, 1}};
   bool no_slip = false;
+  std::array<WallModel, 2> model{{WallModel::HalfSpace, WallModel::HalfSpace}};
 };
 
 struct ParticleParameters {
@@ -89,11 +95,16 @@ struct ParticleParameters {
   double linear_noise_factor =
       2.0; // linear law: Lambda^2 = factor k kappa theta_i theta_j (2: FDT)
 
-  std::vector<HeatSlab> heat_slabs; // hot then cold: equal and opposite powers
-  std::array<WallPair, 3> walls;    // per direction
-  double wall_a0 = 25, wall_range = 1;
+  std::vector<HeatSlab> heat_slabs;    // hot then cold: equal and opposite powers
+  std::array<WallPair, 3> walls;       // per direction
+  double wall_a0 = 25, wall_range = 1; // seed 000's walls: repulsion and range
+  double wall_density = 0;             // half-space walls: rho_w; 0: the fluid's density
+  double wall_conduction = 1; // half-space walls: the wall material's heat-conduction strength
+                              // for its pairs with the fluid, in units of the fluid's own
+  bool wall_diffuse = true;   // half-space thermal walls re-emit what hits them at T_w (diffuse)
   std::array<double, 3> gravity{{0, 0, 0}};
   bool has_walls() const;
+  bool has_wall_model(WallModel m) const; // some wall of the scene acts this way
 
   // Diagnostics
   std::array<int, 3> bins{{1, 1, 1}}; // field bins per direction (1: averaged over it)

@@ -13,6 +13,7 @@
 #include "particle/pair_terms.hpp"
 #include "particle/parameters.hpp"
 #include "particle/system.hpp"
+#include "particle/wall_weights.hpp"
 
 namespace twinflow::particle {
 
@@ -126,11 +127,37 @@ private:
     return PairNoise(p_.seed, static_cast<std::uint64_t>(step_), PairNoise::Pair, p_.uniform_noise);
   }
   void apply_heat_slabs();
-  void external_forces(); // wall repulsion and gravity into carried f and potential
-  void wall_sweep(const PairNoise& noise);
+  // Walls and external fields (walls.tpp).
+  struct WallCoupling { // a wall's weights at distance h: friction (normal, tangent), heat
+    double normal = 0, sqrt_normal = 0, tangent = 0, sqrt_tangent = 0, heat = 0, sqrt_heat = 0;
+    bool half_space = false;
+  };
+  double wall_range(int d, int side) const;
+  double wall_temperature(int d, int side, double th_i) const;
+  WallCoupling wall_coupling(int d, int side, double h) const;
+  void wall_heat(const WallCoupling& c, double th_i, double th_wall, double& rate,
+                 double& amplitude) const;
+  double wall_gamma(const WallCoupling& c, double th_i, double th_wall) const;
+  // Wall repulsion, gravity, Poiseuille force into carried f (times scale) and potential.
+  void external_forces(double scale = 1, bool potentials = true);
+  void wall_sweep(const PairNoise& noise); // shardlow
+  double exchange_wall_heat(const PairNoise& noise, std::size_t i, int index, const WallCoupling& c,
+                            double th_wall, double g);
+  void wall_heat_pass(); // ec-verlet, euler
+  void wall_forces(const std::array<std::vector<double>, D>& v,
+                   std::array<std::vector<double>, D>& f, double scale); // ec-verlet, euler
+  bool wall_force(const PairNoise& noise, const std::array<std::vector<double>, D>& v,
+                  std::size_t i, int d, int side, double* force) const;
+  void wall_work_split(std::vector<double>& du); // euler without the energy offset
   void reflect_at_walls();
+  bool diffuse_wall(int d, int side) const;
+  void emit_from_walls();
+  void emit_from_wall(const PairNoise& noise, std::size_t i, int d, int side);
+  double gamma_variate(const PairNoise& noise, std::uint32_t id, std::uint32_t counter,
+                       double a) const;
   // One S1 update of velocity component `v` against a wall (infinite mass, at rest).
-  double wall_s1(double& v, double w, double sqrt_w, double th_i, double th_wall, double xi) const;
+  double wall_s1(double& v, double w, double sqrt_w, double gamma, double th_i, double th_wall,
+                 double xi) const;
   void check_energies(const char* where) const;
   [[noreturn]] void fail(std::size_t i, const char* where) const;
 
@@ -153,8 +180,15 @@ private:
   bool has_external_ = false; // walls or gravity: a per-particle pass, only if present
   typename M::Friction wall_friction_;
   typename M::Heat wall_heat_;
+  HalfSpaceWall half_space_; // the integrated wall weights, where a wall is of that model
   std::array<double, 6> wall_energy_in_{}, wall_momentum_in_{};
   long crossings_ = 0;
+  struct Emission { // a particle that reached a diffuse wall this step
+    std::uint32_t id;
+    int wall; // 2 d + side
+    bool operator<(const Emission& o) const { return id < o.id || (id == o.id && wall < o.wall); }
+  };
+  std::vector<Emission> emissions_;
 };
 
 std::string stability_hint(const ParticleParameters& p);
@@ -163,3 +197,4 @@ std::string stability_hint(const ParticleParameters& p);
 
 #include "particle/pair_kernels.tpp"
 #include "particle/simulation.tpp"
+#include "particle/walls.tpp"

@@ -29,6 +29,7 @@ Simulation<M>::Simulation(const M& model, const ParticleParameters& p)
   has_external_ |= p.poiseuille_force != 0;
   wall_friction_.w = Weight(p.wall_range, p.dissipation.exponent);
   if constexpr (M::Heat::active) wall_heat_.w = Weight(p.wall_range, p.heat_weight.exponent);
+  if (p.has_wall_model(WallModel::HalfSpace)) half_space_ = make_half_space_wall(p);
   dt_ = p.dt;
   sqrt_dt_ = std::sqrt(dt_);
   inv_sqrt_dt_ = 1 / sqrt_dt_;
@@ -244,6 +245,7 @@ template <class M> void Simulation<M>::conservative_pass(bool with_velocity_term
   else
     conservative_blocks();
   if (has_external_) external_forces();
+  if (with_velocity_terms && p_.has_walls()) wall_forces(state_.v, carried_.f, 1);
 }
 
 template <class M> void Simulation<M>::potential_pass() {
@@ -277,129 +279,8 @@ template <class M> void Simulation<M>::step() {
     step_shardlow();
     break;
   }
+  if (!emissions_.empty()) emit_from_walls();
   if (!p_.heat_slabs.empty()) apply_heat_slabs();
-}
-
-// Wall repulsion a_w (1 - h/range) along the inward normal with potential a_w range/2 (1 -
-// h/range)^2 (the pair force of physics.md against a wall particle), and gravity m g with potential
-// -m g.x.
-template <class M> void Simulation<M>::external_forces() {
-  const std::size_t n = state_.size();
-  const double range = p_.wall_range, inv_range = 1 / range, a = p_.wall_a0;
-  if (p_.poiseuille_force != 0) { // no potential: its work heats the fluid
-    const double half = 0.5 * p_.box[1], force = p_.poiseuille_force;
-    for (std::size_t i = 0; i < n; ++i) carried_.f[0][i] += state_.x[1][i] < half ? force : -force;
-  }
-  for (int d = 0; d < D; ++d) {
-    auto& f = carried_.f[d];
-    const auto& x = state_.x[d];
-    const double mg = model_.mass * p_.gravity[d];
-    if (mg != 0)
-      for (std::size_t i = 0; i < n; ++i) f[i] += mg, carried_.potential[i] -= mg * x[i];
-    if (!p_.walls[d].present) continue;
-    for (std::size_t i = 0; i < n; ++i) {
-      for (int side = 0; side < 2; ++side) {
-        const double h = side ? p_.box[d] - x[i] : x[i];
-        if (h >= range) continue;
-        const double c = 1 - h * inv_range;
-        f[i] += side ? -a * c : a * c;
-        wall_momentum_in_[2 * d + side] += a * c * dt_; // this force acts for one step
-        carried_.potential[i] += 0.5 * a * range * c * c;
-      }
-    }
-  }
-}
-
-// S1 against a wall for one velocity component v (along the wall's normal or, no-slip, a
-// tangent): as for a pair, with the wall's infinite mass (reduced mass m) and zero velocity.
-// Returns the kinetic energy change.
-template <class M>
-double Simulation<M>::wall_s1(double& v, double w, double sqrt_w, double th_i, double th_wall,
-                              double xi) const {
-  const auto& fr = wall_friction_;
-  const double m = model_.mass;
-  const double kick = fr.sigma_of(fr.harmonic(th_i, th_wall)) * sqrt_w * xi * sqrt_dt_;
-  const double gamma = fr.ito_gamma(th_i, th_wall);
-  const double v0 = v;
-  const double v1 = v0 + 0.5 * (-gamma * w * v0 * dt_ + kick) / m; // explicit half
-  v = (v1 + 0.5 * kick / m) / (1 + 0.5 * gamma * w * dt_ / m);     // implicit half
-  return 0.5 * m * (v * v - v0 * v0);
-}
-
-// The walls' dissipative, random and heat terms, particle by particle (serial: the energy that
-// crosses each wall is summed in one fixed order).
-template <class M> void Simulation<M>::wall_sweep(const PairNoise& noise) {
-  const std::size_t n = state_.size();
-  const double range = p_.wall_range;
-  for (int d = 0; d < D; ++d) {
-    const WallPair& wall = p_.walls[d];
-    if (!wall.present) continue;
-    for (std::size_t i = 0; i < n; ++i) {
-      for (int side = 0; side < 2; ++side) {
-        const double h = side ? p_.box[d] - state_.x[d][i] : state_.x[d][i];
-        if (h >= range) continue;
-        const int index = 2 * d + side;
-        double g[4];
-        noise.particle_gaussians(state_.id[i], 2 * index, g[0], g[1]);
-        noise.particle_gaussians(state_.id[i], 2 * index + 1, g[2], g[3]);
-        double th_i = p_.temperature, th_wall = p_.temperature;
-        const bool thermal = wall.thermal[side];
-        if constexpr (M::has_energy) {
-          th_i = theta(i);
-          th_wall = thermal ? wall.temperature[side] : th_i; // adiabatic: the particle alone
-        }
-        if constexpr (M::Heat::active) {
-          if (thermal && h < wall_heat_.w.rc) {
-            double rate, amplitude;
-            wall_heat_.eval(h, th_i, th_wall, rate, amplitude);
-            const double dq = rate * dt_ + amplitude * g[3] * sqrt_dt_; // q with theta_j = T_w
-            state_.u[i] += dq;
-            wall_energy_in_[index] += dq;
-            th_i = theta(i);
-          }
-        }
-        double w, sqrt_w;
-        wall_friction_.w.eval(h, w, sqrt_w);
-        const double v_normal = state_.v[d][i];
-        double dk = wall_s1(state_.v[d][i], w, sqrt_w, th_i, th_wall, g[0]);
-        wall_momentum_in_[index] += (side ? -1 : 1) * model_.mass * (state_.v[d][i] - v_normal);
-        if (wall.no_slip) {
-          int k = 1;
-          for (int t = 0; t < D; ++t)
-            if (t != d) dk += wall_s1(state_.v[t][i], w, sqrt_w, th_i, th_wall, g[k++]);
-        }
-        if constexpr (M::has_energy) {
-          // Thermal wall: it keeps half the work (physics.md); adiabatic: the particle all of it.
-          const double to_particle = thermal ? 0.5 * dk : dk;
-          state_.u[i] -= to_particle;
-          wall_energy_in_[index] += dk - to_particle;
-        }
-      }
-    }
-  }
-}
-
-// Nothing crosses a wall: a particle past the plane is put back by specular reflection
-// (free-slip) or bounce-back (no-slip). Kinetic energy is unchanged either way.
-template <class M> void Simulation<M>::reflect_at_walls() {
-  for (int d = 0; d < D; ++d) {
-    const WallPair& wall = p_.walls[d];
-    if (!wall.present) continue;
-    const double length = p_.box[d];
-    auto& x = state_.x[d];
-    for (std::size_t i = 0; i < state_.size(); ++i) {
-      if (x[i] >= 0 && x[i] <= length) continue;
-      const int side = x[i] < 0 ? 0 : 1;
-      wall_momentum_in_[2 * d + side] += 2 * model_.mass * std::fabs(state_.v[d][i]);
-      x[i] = x[i] < 0 ? -x[i] : 2 * length - x[i];
-      ++crossings_;
-      if (wall.no_slip)
-        for (int t = 0; t < D; ++t) state_.v[t][i] = -state_.v[t][i];
-      else
-        state_.v[d][i] = -state_.v[d][i];
-      if (x[i] < 0 || x[i] > length) fail(i, "a particle moved more than a box length in one step");
-    }
-  }
 }
 
 // 002 section III.B: every step the hot slab's particles share +power dt, the cold slab's
@@ -450,6 +331,7 @@ template <class M> void Simulation<M>::step_ec_verlet() {
       state_.u[i] += 0.5 * dt_ * carried_.q[i] - m2 * (k_half - k_old) + carried_.potential[i];
     carried_.q[i] = 0, carried_.potential[i] = 0;
   }
+  if (p_.has_walls()) reflect_at_walls();
   const bool sorted = update_neighbours(false);
   conservative_pass(true, !sorted); // F, q, P at t + dt from r(t+dt), v(t+dt/2), u(t+dt/2)
   bool bad = false;                 // a non-finite velocity or non-positive energy (check_energies)
@@ -468,6 +350,9 @@ template <class M> void Simulation<M>::step_ec_verlet() {
     bad = bad || !std::isfinite(k_new);
   }
   if (bad) check_energies("ec-verlet step");
+  // The walls' heat, split off the step (their friction's work stays in the particles' internal
+  // energies, as every force's does here).
+  if (p_.has_walls()) wall_heat_pass();
 }
 
 // Explicit first-order update: 001 eqs. (1)-(2) (isothermal); 000:(2.23)-(2.25) / 003:(15)-(17)
@@ -493,6 +378,8 @@ template <class M> void Simulation<M>::step_euler() {
         q[i] += pf.heat;
         q[j] -= pf.heat;
       });
+  if (has_external_) external_forces(dt_, false); // their impulses; potentials are up to date
+  if (p_.has_walls()) wall_forces(v, dp, dt_);
   for (int d = 0; d < D; ++d) v_old_[d] = v[d];
   for (std::size_t i = 0; i < n; ++i)
     for (int d = 0; d < D; ++d) v[d][i] += dp[d][i] / model_.mass; // 001:(2)
@@ -512,6 +399,7 @@ template <class M> void Simulation<M>::step_euler() {
             du[i] -= 0.5 * work;
             du[j] -= 0.5 * work;
           });
+      if (p_.has_walls()) wall_work_split(du);
     } else {
       for (std::size_t i = 0; i < n; ++i) { // 002 Appendix A offset: -dK_i
         double k_old = 0, k_new = 0;
@@ -521,9 +409,11 @@ template <class M> void Simulation<M>::step_euler() {
       }
     }
     for (std::size_t i = 0; i < n; ++i) state_.u[i] += du[i];
+    if (p_.has_walls()) wall_heat_pass(); // split off the step, as ec-verlet's
   }
   for (std::size_t i = 0; i < n; ++i)
     for (int d = 0; d < D; ++d) state_.x[d][i] += v_old_[d][i] * dt_; // 001:(1)
+  if (p_.has_walls()) reflect_at_walls();
   if constexpr (M::has_energy)
     if (p_.energy_offset)
       for (std::size_t i = 0; i < n; ++i) state_.u[i] += carried_.potential[i];

@@ -73,11 +73,11 @@ const std::string kTinyCavity = shipped("heated_cavity_2d") +
 } // namespace
 
 // Four points: one runs to the end, one fails at run time (dt = 2: a particle leaves the box in
-// the first step, exit 4), two are rejected by the case (walls with ec-verlet).
+// the first step, exit 4), two are rejected by the case (a Poiseuille force with walls along y).
 TEST(Sweep, FailedPointsAreRecordedOthersFinishRerunSkipsChangedGridRefused) {
   const fs::path dir = fresh_dir("grid");
   const std::string grid = " --vary 'Particle/Time step=0.01,2' "
-                           "--vary 'Particle/Integrator=shardlow,ec-verlet' --jobs 2";
+                           "--vary 'Scene/Reverse Poiseuille force=0,0.1' --jobs 2";
   const Result first = run("sweep " + kTinyCavity + " --out " + dir.string() + grid);
   ASSERT_EQ(first.code, 0) << first.output;
   EXPECT_NE(first.output.find("sweep: point 4/4 done"), std::string::npos) << first.output;
@@ -87,24 +87,26 @@ TEST(Sweep, FailedPointsAreRecordedOthersFinishRerunSkipsChangedGridRefused) {
   EXPECT_EQ(text(r[0], "status"), "done") << file_text(dir / "points/000/log.txt");
   EXPECT_EQ(number(r[0], "exit_code"), 0);
   EXPECT_EQ(text(r[0], "Particle/Time step"), "0.01");
-  EXPECT_EQ(text(r[0], "Particle/Integrator"), "shardlow");
+  EXPECT_EQ(text(r[0], "Scene/Reverse Poiseuille force"), "0");
   EXPECT_GT(number(r[0], "rayleigh"), 0);
   EXPECT_GT(number(r[0], "nusselt_nominal"), 0.9);
   EXPECT_GT(number(r[0], "wall_seconds"), 0);
   for (const std::size_t rejected : {1u, 3u}) {
     EXPECT_EQ(text(r[rejected], "status"), "failed");
     EXPECT_EQ(number(r[rejected], "exit_code"), 2);
-    EXPECT_NE(text(r[rejected], "reason").find("Particle/Integrator"), std::string::npos);
+    EXPECT_NE(text(r[rejected], "reason").find("Scene/Reverse Poiseuille force"),
+              std::string::npos);
   }
   EXPECT_EQ(text(r[2], "status"), "failed");
   EXPECT_EQ(number(r[2], "exit_code"), 4);
   EXPECT_NE(text(r[2], "reason").find("unstable"), std::string::npos) << text(r[2], "reason");
 
   const std::string csv = file_text(dir / "sweep.csv");
-  EXPECT_EQ(csv.rfind("point,status,reason,exit_code,Particle/Time step,Particle/Integrator,"
-                      "target_rayleigh,gravity,wall_seconds,",
-                      0),
-            0u)
+  EXPECT_EQ(
+      csv.rfind("point,status,reason,exit_code,Particle/Time step,Scene/Reverse Poiseuille force,"
+                "target_rayleigh,gravity,wall_seconds,",
+                0),
+      0u)
       << csv;
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 5) << csv;
 
@@ -138,7 +140,7 @@ TEST(Sweep, BadVaryOrRayleighExitsTwoAndWritesNothing) {
       {"sweep " + cavity + " --vary 'Particle/Time step=0.01' --vary 'Particle/Time step=0.02'",
        "varied twice"},
       {"sweep " + cavity, "needs at least one --vary"},
-      {"stability " + cavity + " --vary 'Particle/Integrator=ec-verlet,euler'",
+      {"stability " + cavity + " --vary 'Scene/Reverse Poiseuille force=0.1'",
        "no point of the grid is a valid case"},
       {"sweep " + cavity + " --vary 'Particle/Time step=0.01' --jobs 0", "--jobs"},
       {"run " + cavity + " --vary 'Particle/Time step=0.01'", "--vary belongs to sweep"},

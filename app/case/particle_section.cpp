@@ -89,11 +89,33 @@ void declare_particle(Registry& r) {
   r.declare(p + "Heat conduction/Cutoff", "1", Double(), "Cutoff rc_H of w_H, > 0.", kPositive);
   r.declare(p + "Heat conduction/Exponent", "0.5", Double(0), "w_H = (1 - r/rc_H)^n_H.");
 
+  r.declare(p + "Walls/Model", "half-space", List(Selection("half-space|seed000"), 1, 6),
+            "How a wall acts on the fluid: half-space: as the half-space of wall material beyond "
+            "its plane (density Walls/Density, at rest, at the wall's temperature), every pair "
+            "term (the fluid's repulsion, friction, noise, heat conduction) integrated over it: "
+            "a particle by the wall has the coupling of the fluid's own neighbours; seed000: as "
+            "one particle of infinite mass and heat capacity at the nearest point (seed 000 "
+            "section 3.1), with Repulsion and Range below. One value for every wall, or one per "
+            "wall in the order x lower, x upper, y lower, ...");
+  r.declare(p + "Walls/Density", "0", Double(0),
+            "half-space walls: the wall material's number density rho_w; 0: the fluid's "
+            "(Scene/Density). The walls' thermal coupling grows with it.");
+  r.declare(p + "Walls/Heat conduction", "1", Double(0),
+            "half-space walls: the wall material's heat-conduction strength for its pairs with "
+            "the fluid, in units of the fluid's own (kappa0 x this). Most of a DPDE fluid's heat "
+            "flux is carried by diffusing particles, which stop at a wall: a wall that holds its "
+            "temperature conducts better than the fluid.");
+  r.declare(p + "Walls/Diffuse reflection", "true", Bool(),
+            "half-space thermal walls: a particle that reaches the plane comes back as one "
+            "emitted by wall material at T_w (velocity from the flux-weighted Maxwell law, "
+            "tangential part only on no-slip walls; internal energy from u^c_v exp(-u/T_w)), "
+            "as a fluid particle beyond the plane would; false: bounced back (no-slip) or "
+            "mirrored (free-slip) with its own energies.");
   r.declare(p + "Walls/Repulsion", "25", Double(0),
-            "Wall repulsion a_w: force a_w (1 - h/range) along the wall normal at distance h.");
+            "seed000 walls: repulsion a_w: force a_w (1 - h/range) along the wall normal at "
+            "distance h.");
   r.declare(p + "Walls/Range", "1", Double(),
-            "Interaction range of the walls (repulsion, "
-            "friction, heat exchange), > 0.",
+            "seed000 walls: interaction range (repulsion, friction, heat exchange), > 0.",
             kPositive);
   r.declare(p + "Diagnostics/Sample interval", "10", Integer(1), "Steps between samples.");
   r.declare(p + "Diagnostics/Blocks", "20", Integer(2, 10000),
@@ -190,23 +212,28 @@ ParticleParameters resolve_particle(const Registry& r, const scene::SceneParamet
   p.wall_a0 = r.get_double(s + "Walls/Repulsion");
   p.wall_range = r.get_double(s + "Walls/Range");
   r.require(p.wall_range > 0, s + "Walls/Range", kPositive);
+  p.wall_density = r.get_double(s + "Walls/Density");
+  p.wall_conduction = r.get_double(s + "Walls/Heat conduction");
+  p.wall_diffuse = r.get_bool(s + "Walls/Diffuse reflection");
+  const std::string models = r.get(s + "Walls/Model");
+  std::vector<std::string> model = dealii::Utilities::split_string_list(models);
+  r.require(model.size() == 1 || static_cast<int>(model.size()) == 2 * p.dim, s + "Walls/Model",
+            "one value, or one per wall (2 x dimension)");
   for (int d = 0; d < p.dim; ++d) {
     const auto& b = scene.boundary[d];
     p.walls[d] = WallPair{!b.periodic, b.thermal, b.temperature, b.no_slip};
+    for (int side = 0; side < 2; ++side)
+      p.walls[d].model[side] = model[model.size() == 1 ? 0 : 2 * d + side] == "seed000"
+                                   ? WallModel::Seed000
+                                   : WallModel::HalfSpace;
     p.gravity[d] = scene.gravity[d];
     r.require(!(b.periodic && scene.gravity[d] != 0), "Scene/Gravity",
               "no component along a periodic direction (its potential would jump at the wrap)");
   }
-  r.require(p.poiseuille_force == 0 ||
-                (p.integrator != Integrator::Euler && p.dim >= 2 && !p.walls[1].present),
-            "Scene/Reverse Poiseuille force",
-            "0 with euler or walls along y (it needs a periodic y and ec-verlet or shardlow)");
+  r.require(p.poiseuille_force == 0 || (p.dim >= 2 && !p.walls[1].present),
+            "Scene/Reverse Poiseuille force", "0 with walls along y (it needs a periodic y)");
   r.require(p.shear_perturbation == 0 || (p.dim >= 2 && !p.walls[0].present && !p.walls[1].present),
             "Scene/Shear perturbation", "0 unless the scene is 2D or 3D with periodic x and y");
-  if (p.has_walls())
-    r.require(p.integrator == Integrator::Shardlow, s + "Integrator",
-              "shardlow in scenes with walls (walls in ec-verlet and euler are not implemented "
-              "yet)");
 
   // Minimum image needs every periodic edge >= 2 cutoffs.
   const double rc = p.largest_cutoff();

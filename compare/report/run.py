@@ -150,8 +150,8 @@ def figure_fields(out_dir, bins, geometry, twins, metrics, field="temperature"):
         [(t, TWIN_LABEL[t] + spec["twin"]) for t in twins
          if bins.has(f"{prefix}_{t}", optional=field == "density")]
     maps = {name: grid(f"{prefix}_{name}", optional=False) for name, _ in sources}
-    # The difference map against the calibrated twin when there is one, else the nominal.
-    reference = next((t for t in ("calibrated", "nominal") if t in maps), None)
+    # The difference map against the nominal twin (the prediction), else the calibrated one.
+    reference = next((t for t in ("nominal", "calibrated") if t in maps), None)
     t_low = min(np.nanmin(m) for m in maps.values())
     t_high = max(np.nanmax(m) for m in maps.values())
     interior = grid("interior", optional=False)

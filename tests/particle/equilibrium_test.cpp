@@ -54,6 +54,7 @@ Measured measure(const ParticleParameters& p, const F& friction, const H& heat) 
   const std::size_t n = sim.state().size();
   Measured m;
   m.t_eos = ideal_dpde_temperature(p, sim.total_energy() / n); // 000:(3.21)
+  if (p.walls[0].present) m.t_eos = p.walls[0].temperature[0]; // the walls set it
   for (int s = 0; s < 2000; ++s) sim.step();                   // equilibrate (10 tau)
   const int blocks = 20, per_block = 40, every = 10;
   const int vbins = 24, ubins = 24;
@@ -192,6 +193,24 @@ TEST(Equilibrium,
 TEST(Equilibrium, IdealDpdeEuler) {
   run_case<2>(Integrator::Euler, 10, true, false);
   run_case<3>(Integrator::Euler, 100, false, true);
+}
+
+// Half-space thermal walls (the default wall model, diffuse re-emission) at the fluid's
+// temperature along x: the fluid stays in equilibrium with them, walls included in every
+// average: T_K and T_I at T_w, Gaussian velocities, Gamma-law internal energies. Shardlow here;
+// ec-verlet (c_v = 100) and euler measured so too (docs/validation.md), ~90 s each.
+TEST(Equilibrium, HalfSpaceThermalWalls) {
+  for (const auto& [integrator, cv] : {std::pair{Integrator::Shardlow, 10.0}}) {
+    auto p = ideal(3, integrator, cv);
+    p.box = {{8, 6, 6}};
+    p.temperature = 1;
+    p.walls[0] = WallPair{true, {{true, true}}, {{1.0, 1.0}}, true};
+    p.initial_internal_energy = InitialInternalEnergy::Equilibrium;
+    const std::string label = std::string("walls 3D ") + to_string(integrator);
+    expect_equilibrium(measure<3>(p, ConstantSigma{p.sigma, Weight(1, 2)},
+                                  InverseConstantHeat{cv * 0.5, Weight(1, 2)}),
+                       label, integrator != Integrator::EcVerlet);
+  }
 }
 
 // Unit-variance uniform pair noise (Particle/Noise = uniform) leaves the equilibrium unchanged.

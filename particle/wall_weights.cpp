@@ -15,7 +15,7 @@ double WallTable::operator()(double h) const {
   const int last = static_cast<int>(values_.size()) - 1;
   const double x = std::max(h, 0.0) * inv_step_;
   const int k = std::clamp(static_cast<int>(x) - 1, 0, last - 3); // nodes k .. k + 3
-  const double t = x - k;                                          // in [0, 3]
+  const double t = x - k;                                         // in [0, 3]
   // Lagrange cubic through the nodes 0, 1, 2, 3
   const double l0 = -(t - 1) * (t - 2) * (t - 3) / 6, l1 = t * (t - 2) * (t - 3) / 2;
   const double l2 = -t * (t - 1) * (t - 3) / 2, l3 = t * (t - 1) * (t - 2) / 6;

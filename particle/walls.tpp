@@ -17,8 +17,7 @@ template <class M> double Simulation<M>::wall_temperature(int d, int side, doubl
 }
 
 template <class M>
-typename Simulation<M>::WallCoupling Simulation<M>::wall_coupling(int d, int side,
-                                                                  double h) const {
+typename Simulation<M>::WallCoupling Simulation<M>::wall_coupling(int d, int side, double h) const {
   WallCoupling c;
   if (p_.walls[d].model[side] == WallModel::Seed000) { // the pair weights at distance h
     wall_friction_.w.eval(h, c.normal, c.sqrt_normal);
@@ -147,8 +146,8 @@ template <class M> void Simulation<M>::wall_sweep(const PairNoise& noise) {
           int k = 1;
           for (int t = 0; t < D; ++t)
             if (t != d)
-              dk += wall_s1(state_.v[t][i], c.tangent, c.sqrt_tangent, gamma, th_i, th_wall,
-                            g[k++]);
+              dk +=
+                  wall_s1(state_.v[t][i], c.tangent, c.sqrt_tangent, gamma, th_i, th_wall, g[k++]);
         }
         if constexpr (M::has_energy) {
           // Thermal wall: it keeps half the work (physics.md); adiabatic: the particle all of it.
@@ -261,8 +260,9 @@ bool Simulation<M>::wall_force(const PairNoise& noise, const std::array<std::vec
   int k = 1;
   for (int t = 0; t < D; ++t)
     if (t != d)
-      force[t] = p_.walls[d].no_slip ? -gamma * c.tangent * v[t][i] + sigma * c.sqrt_tangent * g[k++]
-                                     : 0.0;
+      force[t] = p_.walls[d].no_slip
+                     ? -gamma * c.tangent * v[t][i] + sigma * c.sqrt_tangent * g[k++]
+                     : 0.0;
   return true;
 }
 

@@ -287,8 +287,13 @@ TEST(Cli, RunComparesTheTwinsAndReusesUnchangedStages) {
   // The calibrated twin with its walls at the particle walls' effective positions: a smaller
   // domain inside the scene's box, its bins still the scene's, Navier slip at each no-slip
   // wall (Compare/Wall slip, on by default) and its heat flow compared over the scene's wall.
+  // Seed 000's repulsive walls: the ideal fluid's half-space walls do not repel, so they leave
+  // no depleted layer to move the walls in.
   const Result effective =
-      run("run " + tiny + " --set 'Compare/Effective walls=true' --out " + dir.string());
+      run("run " + tiny +
+          " --set 'Compare/Effective walls=true' --set Particle/Walls/Model=seed000"
+          " --set Particle/Walls/Repulsion=5 --force --out " +
+          dir.string());
   ASSERT_EQ(effective.code, 0) << effective.output;
   EXPECT_NE(effective.output.find("Continuum/Wall positions="), std::string::npos);
   EXPECT_NE(effective.output.find("Continuum/Slip lengths="), std::string::npos);

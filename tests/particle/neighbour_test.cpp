@@ -28,7 +28,7 @@ State<D> random_state(const std::array<double, D>& box, std::size_t n, unsigned 
 
 template <int D>
 void check(const std::array<double, D>& box, double rc, std::size_t n, unsigned seed) {
-  State<D> s = random_state(box, n, seed, true);
+  State<D> s = random_state<D>(box, n, seed, true);
   Carried<D> carried;
   CellGrid<D> grid(box, rc);
   grid.sort(s, carried);
@@ -76,7 +76,7 @@ namespace {
 template <int D>
 void check_list(const std::array<double, D>& box, double rc, std::size_t n, unsigned seed,
                 std::array<bool, D> periodic) {
-  State<D> s = random_state(box, n, seed, false);
+  State<D> s = random_state<D>(box, n, seed, false);
   Carried<D> carried;
   CellGrid<D> grid(box, rc, periodic);
   grid.sort(s, carried);

@@ -47,17 +47,10 @@ std::vector<long> central_layers(long n) {
 } // namespace
 
 io::Json Distance::to_json() const {
-  io::Json j = io::Json::object();
-  j["l2"] = l2;
-  j["l2_stderr"] = l2_stderr;
-  j["noise"] = noise;
-  j["excess_over_noise"] = excess;
-  j["max"] = max;
-  j["max_stderr"] = max_stderr;
-  j["max_at"] = io::Json::array();
-  for (double x : max_at) j["max_at"].push_back(x);
-  j["bins"] = static_cast<double>(bins);
-  return j;
+  return io::Json{{"l2", l2},         {"l2_stderr", l2_stderr},
+                  {"noise", noise},   {"excess_over_noise", excess},
+                  {"max", max},       {"max_stderr", max_stderr},
+                  {"max_at", max_at}, {"bins", static_cast<double>(bins)}};
 }
 
 BinnedState particle_state(const io::Grid& grid, const io::Snapshot& snapshot) {

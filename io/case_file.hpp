@@ -16,10 +16,17 @@ namespace twinflow::io {
 
 class Registry {
 public:
+  static constexpr const char* kPositive = "a number > 0"; // what a positive number allows
   // path: "Particle/Dissipation/sigma"; `allowed` defaults to the pattern's description.
   void declare(const std::string& path, const std::string& default_value,
                const dealii::Patterns::PatternBase& pattern, const std::string& doc,
                const std::string& allowed = "");
+
+  // A real number > 0 (the pattern Double(); get_positive checks the sign).
+  void declare_positive(const std::string& path, const std::string& default_value,
+                        const std::string& doc) {
+    declare(path, default_value, dealii::Patterns::Double(), doc, kPositive);
+  }
 
   void parse_file(const std::string& filename);
   void set_override(const std::string& assignment); // "Particle/Time step=0.01"
@@ -28,6 +35,11 @@ public:
   double get_double(const std::string& path) const;
   long get_integer(const std::string& path) const;
   bool get_bool(const std::string& path) const;
+  double get_positive(const std::string& path) const { // fails unless > 0
+    const double value = get_double(path);
+    require(value > 0, path, kPositive);
+    return value;
+  }
   std::vector<double> get_doubles(const std::string& path) const;
 
   // Semantic check failed: throws InputError naming where the value came from.

@@ -24,24 +24,30 @@ void require_little_endian_host() {
     throw std::runtime_error("checkpoint: this host is not little-endian; the format is");
 }
 
-std::size_t element_size(RecordType type) {
-  switch (type) {
-  case RecordType::bytes:
-  case RecordType::string:
-    return 1;
-  case RecordType::int64:
-  case RecordType::uint64:
-  case RecordType::float64:
-  case RecordType::int64_array:
-  case RecordType::uint64_array:
-  case RecordType::float64_array:
-    return 8;
-  }
-  return 0; // not a RecordType
-}
+// What the reader and the messages know of each record type: its name, its element size in bytes
+// and whether it holds exactly one element.
+struct RecordTypeFacts {
+  RecordType type;
+  const char* name;
+  std::size_t element_size;
+  bool scalar;
+};
+constexpr RecordTypeFacts kRecordTypes[] = {
+    {RecordType::bytes, "bytes", 1, false},
+    {RecordType::int64, "int64", 8, true},
+    {RecordType::uint64, "uint64", 8, true},
+    {RecordType::float64, "float64", 8, true},
+    {RecordType::int64_array, "int64 array", 8, false},
+    {RecordType::uint64_array, "uint64 array", 8, false},
+    {RecordType::float64_array, "float64 array", 8, false},
+    {RecordType::string, "string", 1, false},
+};
 
-bool is_scalar(RecordType type) {
-  return type == RecordType::int64 || type == RecordType::uint64 || type == RecordType::float64;
+// nullptr: not a RecordType (a damaged type tag).
+const RecordTypeFacts* facts_of(RecordType type) {
+  for (const RecordTypeFacts& f : kRecordTypes)
+    if (f.type == type) return &f;
+  return nullptr;
 }
 
 template <class T> void append_raw(std::string& out, T value) {
@@ -97,25 +103,8 @@ std::uint32_t crc32(const void* data, std::size_t size, std::uint32_t crc) {
 }
 
 const char* record_type_name(RecordType type) {
-  switch (type) {
-  case RecordType::bytes:
-    return "bytes";
-  case RecordType::int64:
-    return "int64";
-  case RecordType::uint64:
-    return "uint64";
-  case RecordType::float64:
-    return "float64";
-  case RecordType::int64_array:
-    return "int64 array";
-  case RecordType::uint64_array:
-    return "uint64 array";
-  case RecordType::float64_array:
-    return "float64 array";
-  case RecordType::string:
-    return "string";
-  }
-  return "unknown type";
+  const RecordTypeFacts* f = facts_of(type);
+  return f ? f->name : "unknown type";
 }
 
 const Checkpoint::Record* Checkpoint::find(const std::string& name) const {
@@ -230,11 +219,12 @@ Checkpoint Checkpoint::deserialize(const std::string& bytes, const std::string& 
     const auto elements = in.take<std::uint64_t>(what + " element count");
     const auto payload_size = in.take<std::uint64_t>(what + " size");
     const char* payload = in.span(payload_size, what + " payload");
-    const std::size_t esize = element_size(type);
-    if (esize == 0) throw fail("corrupt checkpoint: " + what + " has an unknown type tag");
+    const RecordTypeFacts* facts = facts_of(type);
+    if (!facts) throw fail("corrupt checkpoint: " + what + " has an unknown type tag");
+    const std::size_t esize = facts->element_size;
     // Division, not elements * esize: a damaged count must not overflow into a match.
     if (payload_size % esize != 0 || payload_size / esize != elements ||
-        (is_scalar(type) && elements != 1))
+        (facts->scalar && elements != 1))
       throw fail("corrupt checkpoint: " + what + " size does not match its type and count");
     if (c.find(name)) throw fail("corrupt checkpoint: " + what + " appears twice");
     c.records_.push_back(Record{std::move(name), type, elements,

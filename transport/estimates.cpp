@@ -147,30 +147,28 @@ io::Json convection_numbers(const particle::ParticleParameters& p, double max_sp
 }
 
 io::Json Estimates::json() const {
-  io::Json j = io::Json::object();
-  j["temperature"] = temperature;
-  j["density"] = density;
-  j["collision_time"] = collision_time;
-  j["self_diffusion"] = diffusion;
-  j["viscosity_kinetic"] = viscosity_kinetic;
-  j["viscosity_dissipative"] = viscosity_dissipative;
-  j["viscosity"] = viscosity;
-  j["conductivity_particle_diffusion"] = conductivity_diffusion;
-  j["conductivity_pair_conduction"] = conductivity_conduction;
-  j["conductivity"] = conductivity;
-  j["conductivity_002_eq22"] = conductivity_002_eq22;
-  j["I1_002"] = i1_002;
-  j["I2"] = i2;
-  j["I3"] = i3;
-  j["thermal_expansion"] = expansion;
-  j["heat_capacity_v_per_particle"] = heat_capacity_v;
-  j["heat_capacity_p_per_particle"] = heat_capacity_p;
-  j["kinematic_viscosity"] = kinematic_viscosity;
-  j["thermal_diffusivity"] = diffusivity;
-  j["prandtl"] = prandtl;
-  j["prandtl_002_convention"] = prandtl_002;
-  j["schmidt"] = schmidt;
-  return j;
+  return io::Json{{"temperature", temperature},
+                  {"density", density},
+                  {"collision_time", collision_time},
+                  {"self_diffusion", diffusion},
+                  {"viscosity_kinetic", viscosity_kinetic},
+                  {"viscosity_dissipative", viscosity_dissipative},
+                  {"viscosity", viscosity},
+                  {"conductivity_particle_diffusion", conductivity_diffusion},
+                  {"conductivity_pair_conduction", conductivity_conduction},
+                  {"conductivity", conductivity},
+                  {"conductivity_002_eq22", conductivity_002_eq22},
+                  {"I1_002", i1_002},
+                  {"I2", i2},
+                  {"I3", i3},
+                  {"thermal_expansion", expansion},
+                  {"heat_capacity_v_per_particle", heat_capacity_v},
+                  {"heat_capacity_p_per_particle", heat_capacity_p},
+                  {"kinematic_viscosity", kinematic_viscosity},
+                  {"thermal_diffusivity", diffusivity},
+                  {"prandtl", prandtl},
+                  {"prandtl_002_convention", prandtl_002},
+                  {"schmidt", schmidt}};
 }
 
 } // namespace twinflow::transport

@@ -9,7 +9,6 @@
 namespace twinflow::app {
 
 namespace {
-const char* const kPositive = "a number > 0";
 const char* const kAxes = "xyz";
 const std::string s = "Continuum/";
 
@@ -115,31 +114,39 @@ void declare_continuum(Registry& r) {
             "temperature from RUNDIR/transport/summary.json (run `twinflow transport` first): "
             "measured where Transport/Source = measured and available, else the estimate with "
             "the measured g(r). The exponents below still apply.");
-  r.declare(c + "Viscosity", "1", Double(),
+  // eta and kappa: the value at T_ref, a power law in T or Sutherland's law.
+  struct TemperatureLaw {
+    const char* name;
+    const char* value_doc;
+    const char* exponent_doc;
+    const char* sutherland_doc;
+  };
+  for (const TemperatureLaw& law :
+       {TemperatureLaw{
+            "Viscosity",
             "Shear viscosity eta at the reference temperature (particle units m/(rc tau)), > 0.",
-            kPositive);
-  r.declare(c + "Viscosity exponent", "0", Double(),
-            "eta = eta_0 (T/T_ref)^exponent; 0: constant.");
-  r.declare(c + "Viscosity Sutherland temperature", "0", Double(0),
+            "eta = eta_0 (T/T_ref)^exponent; 0: constant.",
             "S > 0: Sutherland's law eta = eta_0 (T/T_ref)^(3/2) (T_ref + S)/(T + S) instead of "
-            "the power law (units of T0; Le Quere et al. 2005: S = 110.5 K / T0); 0: off.",
-            "a number >= 0 (0: off)");
-  r.declare(c + "Conductivity", "1", Double(),
+            "the power law (units of T0; Le Quere et al. 2005: S = 110.5 K / T0); 0: off."},
+        TemperatureLaw{
+            "Conductivity",
             "Thermal conductivity kappa at the reference temperature (k/(rc tau)), > 0.",
-            kPositive);
-  r.declare(c + "Conductivity exponent", "0", Double(),
-            "kappa = kappa_0 (T/T_ref)^exponent (seed 000: -2); 0: constant.");
-  r.declare(c + "Conductivity Sutherland temperature", "0", Double(0),
-            "S > 0: Sutherland's law for kappa as for the viscosity (constant Pr); 0: off.",
-            "a number >= 0 (0: off)");
-  r.declare(c + "Heat capacity", "1", Double(),
-            "Heat capacity at constant pressure per particle c_p (units of k); n c_p per volume, "
-            "> 0.",
-            kPositive);
+            "kappa = kappa_0 (T/T_ref)^exponent (seed 000: -2); 0: constant.",
+            "S > 0: Sutherland's law for kappa as for the viscosity (constant Pr); 0: off."}}) {
+    const std::string name = c + law.name;
+    r.declare_positive(name, "1", law.value_doc);
+    r.declare(name + " exponent", "0", Double(), law.exponent_doc);
+    r.declare(name + " Sutherland temperature", "0", Double(0), law.sutherland_doc,
+              "a number >= 0 (0: off)");
+  }
+  r.declare_positive(
+      c + "Heat capacity", "1",
+      "Heat capacity at constant pressure per particle c_p (units of k); n c_p per volume, "
+      "> 0.");
   r.declare(c + "Thermal expansion", "0", Double(0),
             "Thermal expansion coefficient alpha (1/T0) of the Boussinesq buoyancy.");
-  r.declare(c + "Reference temperature", "1", Double(),
-            "T_ref of the buoyancy and of the power laws (units of T0), > 0.", kPositive);
+  r.declare_positive(c + "Reference temperature", "1",
+                     "T_ref of the buoyancy and of the power laws (units of T0), > 0.");
 
   const std::string m = s + "Mesh/";
   r.declare(m + "Cells", "8", List(Integer(1, 4096), 1, 3),
@@ -154,9 +161,9 @@ void declare_continuum(Registry& r) {
   r.declare(n + "Newton tolerance", "1e-9", Double(0),
             "Newton stops when the relative update of velocity and temperature is below this.");
   r.declare(n + "Max Newton iterations", "25", Integer(1, 1000), "Per continuation step.");
-  r.declare(n + "Continuation start Rayleigh", "1e4", Double(),
-            "Larger Ra is reached in factor-10 steps starting here (halved on failure), > 0.",
-            kPositive);
+  r.declare_positive(
+      n + "Continuation start Rayleigh", "1e4",
+      "Larger Ra is reached in factor-10 steps starting here (halved on failure), > 0.");
 
   r.declare(n + "Linear solver", "auto", Selection("auto|direct|iterative"),
             "Boussinesq: direct (UMFPACK, one process) or iterative (p4est + Trilinos FGMRES with "
@@ -166,10 +173,10 @@ void declare_continuum(Registry& r) {
   const std::string t = s + "Time/";
   r.declare(t + "End time", "0", Double(0),
             "Mode transient: simulated time (tau), > 0 (unused when steady).");
-  r.declare(t + "Time step", "0.01", Double(),
-            "Mode transient: time step (tau), > 0; adjusted to End time / round(End time / "
-            "Time step).",
-            kPositive);
+  r.declare_positive(
+      t + "Time step", "0.01",
+      "Mode transient: time step (tau), > 0; adjusted to End time / round(End time / "
+      "Time step).");
   r.declare(t + "Theta", "0.5", Double(0.5, 1),
             "Heat conduction in time: theta scheme, 0.5 Crank-Nicolson, 1 implicit Euler "
             "(Boussinesq uses BDF2).");
@@ -271,25 +278,21 @@ continuum::ContinuumParameters resolve_continuum(const Registry& r,
   c.number_density = scene.density;
   c.particle_mass = r.get_double("Particle/Mass");
   const std::string k = s + "Coefficients/";
-  c.viscosity = {r.get_double(k + "Viscosity"), r.get_double(k + "Viscosity exponent"),
-                 r.get_double(k + "Viscosity Sutherland temperature")};
-  r.require(c.viscosity.value_at_reference > 0, k + "Viscosity", kPositive);
-  c.conductivity = {r.get_double(k + "Conductivity"), r.get_double(k + "Conductivity exponent"),
-                    r.get_double(k + "Conductivity Sutherland temperature")};
-  r.require(c.conductivity.value_at_reference > 0, k + "Conductivity", kPositive);
-  c.heat_capacity = r.get_double(k + "Heat capacity");
-  r.require(c.heat_capacity > 0, k + "Heat capacity", kPositive);
+  const auto law = [&](const std::string& name) {
+    return continuum::PowerLaw{r.get_positive(k + name), r.get_double(k + name + " exponent"),
+                               r.get_double(k + name + " Sutherland temperature")};
+  };
+  c.viscosity = law("Viscosity");
+  c.conductivity = law("Conductivity");
+  c.heat_capacity = r.get_positive(k + "Heat capacity");
   c.thermal_expansion = r.get_double(k + "Thermal expansion");
-  c.reference_temperature = r.get_double(k + "Reference temperature");
-  r.require(c.reference_temperature > 0, k + "Reference temperature", kPositive);
+  c.reference_temperature = r.get_positive(k + "Reference temperature");
 
   c.cells = cells_per_direction(r, s + "Mesh/Cells", scene);
   c.refinements = static_cast<int>(r.get_integer(s + "Mesh/Refinements"));
-  c.newton_tolerance = r.get_double(s + "Solver/Newton tolerance");
-  r.require(c.newton_tolerance > 0, s + "Solver/Newton tolerance", kPositive);
+  c.newton_tolerance = r.get_positive(s + "Solver/Newton tolerance");
   c.max_newton_iterations = static_cast<int>(r.get_integer(s + "Solver/Max Newton iterations"));
-  c.continuation_start_rayleigh = r.get_double(s + "Solver/Continuation start Rayleigh");
-  r.require(c.continuation_start_rayleigh > 0, s + "Solver/Continuation start Rayleigh", kPositive);
+  c.continuation_start_rayleigh = r.get_positive(s + "Solver/Continuation start Rayleigh");
 
   const std::string solver = r.get(s + "Solver/Linear solver");
   c.linear_solver = solver == "direct"      ? continuum::LinearSolver::Direct
@@ -303,8 +306,7 @@ continuum::ContinuumParameters resolve_continuum(const Registry& r,
   r.require(c.transient() ? c.end_time > 0 : c.end_time == 0, s + "Time/End time",
             c.transient() ? "> 0 with Mode = transient"
                           : "0 with Mode = steady (set Mode = transient to march in time)");
-  c.time_step = r.get_double(s + "Time/Time step");
-  r.require(c.time_step > 0, s + "Time/Time step", kPositive);
+  c.time_step = r.get_positive(s + "Time/Time step");
   c.theta = r.get_double(s + "Time/Theta");
   c.snapshot_times = r.get_doubles(s + "Time/Snapshot times");
   for (const double time : c.snapshot_times)

@@ -3,10 +3,6 @@
 namespace twinflow::app {
 
 namespace {
-const char* const kPositive = "a number > 0";
-}
-
-namespace {
 const char* kAxes[3] = {"x", "y", "z"};
 }
 
@@ -15,11 +11,10 @@ void declare_scene(Registry& r) {
   r.declare("Scene/Dimension", "3", Integer(2, 3), "Space dimension of both twins.");
   r.declare("Scene/Box size", "20, 10, 10", List(Double(), 2, 3),
             "Box edge lengths Lx, Ly[, Lz] in units of rc; Lz is ignored in 2D.");
-  r.declare("Scene/Density", "3", Double(), "Number density rho (particles per volume), > 0.",
-            kPositive);
-  r.declare("Scene/Temperature", "1", Double(),
-            "Initial temperature T (units of T0), > 0; the fixed temperature of isothermal DPD.",
-            kPositive);
+  r.declare_positive("Scene/Density", "3", "Number density rho (particles per volume), > 0.");
+  r.declare_positive(
+      "Scene/Temperature", "1",
+      "Initial temperature T (units of T0), > 0; the fixed temperature of isothermal DPD.");
   r.declare("Scene/Temperature perturbation", "0", Double(0, 0.9),
             "Relative amplitude A of an initial temperature mode T (1 + A sin(2 pi x / Lx)) (the "
             "thermal relaxation scene; its decay gives chi and kappa); 0: uniform.",
@@ -56,10 +51,10 @@ void declare_scene(Registry& r) {
               "Lower wall: thermal (fixed temperature, exchanges heat) or adiabatic.");
     r.declare(s + "Upper wall", "thermal", Selection("thermal|adiabatic"),
               "Upper wall: thermal or adiabatic.");
-    r.declare(s + "Lower wall temperature", "1", Double(),
-              "Temperature of a thermal lower wall, > 0.", kPositive);
-    r.declare(s + "Upper wall temperature", "1", Double(),
-              "Temperature of a thermal upper wall, > 0.", kPositive);
+    r.declare_positive(s + "Lower wall temperature", "1",
+                       "Temperature of a thermal lower wall, > 0.");
+    r.declare_positive(s + "Upper wall temperature", "1",
+                       "Temperature of a thermal upper wall, > 0.");
     r.declare(s + "Slip", "free-slip", Selection("free-slip|no-slip"),
               "Tangential condition at both walls of this direction.");
   }
@@ -73,10 +68,8 @@ scene::SceneParameters resolve_scene(const Registry& r) {
             "one length per dimension (" + std::to_string(s.dim) + ")");
   for (int d = 0; d < 3; ++d) s.box[d] = d < static_cast<int>(box.size()) ? box[d] : 1.0;
   for (int d = 0; d < s.dim; ++d) r.require(s.box[d] > 0, "Scene/Box size", "lengths > 0");
-  s.density = r.get_double("Scene/Density");
-  r.require(s.density > 0, "Scene/Density", kPositive);
-  s.temperature = r.get_double("Scene/Temperature");
-  r.require(s.temperature > 0, "Scene/Temperature", kPositive);
+  s.density = r.get_positive("Scene/Density");
+  s.temperature = r.get_positive("Scene/Temperature");
   s.temperature_perturbation = r.get_double("Scene/Temperature perturbation");
   s.shear_perturbation = r.get_double("Scene/Shear perturbation");
   s.poiseuille_force = r.get_double("Scene/Reverse Poiseuille force");
@@ -93,7 +86,7 @@ scene::SceneParameters resolve_scene(const Registry& r) {
     if (!b.periodic) {
       for (int side = 0; side < 2; ++side) {
         const std::string key = p + (side ? "Upper" : "Lower") + " wall temperature";
-        r.require(!b.thermal[side] || b.temperature[side] > 0, key, kPositive);
+        r.require(!b.thermal[side] || b.temperature[side] > 0, key, Registry::kPositive);
       }
     }
   }

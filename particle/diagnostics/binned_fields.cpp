@@ -1,4 +1,8 @@
-#include "particle/diagnostics/binned_fields.hpp"
+// Binned fields on the scene's bins (fields.csv, blocks.csv, and cumulative snapshots for
+// fields.h5), and the fit a reverse Poiseuille scene takes from them.
+#include "io/field_file.hpp"
+#include "particle/diagnostics/plugins.hpp"
+#include "particle/fields.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -27,43 +31,81 @@ io::Snapshot snapshot(const BinnedFields& f, double time, double wall, long part
   return s;
 }
 
+template <int D> class Fields : public Archived<D, Fields<D>> {
+public:
+  Fields(const ParticleParameters& p, const RunFacts& m)
+      : Archived<D, Fields<D>>("fields", {false, true}), p_(p), n_(m.particles),
+        sampler_(box3(p), p.bins, p.blocks, sampled_count(p), p.mass, p.cv) {}
+  void sample(const Sample<D>& s) override {
+    if (!s.sampled) return;
+    sampler_.sample(s.state, s.potential, s.conduction);
+    ++taken_;
+    const long rows = sampler_.total_samples();
+    if (taken_ == rows || taken_ % std::max(1L, rows / 10) == 0)
+      snapshots_.push_back(
+          snapshot(sampler_.result(), s.time, s.elapsed_seconds, static_cast<long>(n_) * s.step));
+  }
+  void finish(RunOutput& out) override {
+    result_ = sampler_.result();
+    out.fields_csv = result_.csv();
+    out.blocks_csv = result_.blocks_csv();
+    out.field_grid.dim = D;
+    for (int d = 0; d < D; ++d) {
+      out.field_grid.counts[d] = p_.bins[d];
+      out.field_grid.spacing[d] = p_.box[d] / p_.bins[d];
+    }
+    out.field_snapshots = std::move(snapshots_);
+  }
+  // The final fields, reduced over the blocks once (by finish) for the fits that use them.
+  const BinnedFields& result() const { return result_; }
+  template <class A> void archive(A& a) {
+    auto f = a.nested("sampler");
+    sampler_.archive(f);
+    a("taken", taken_);
+    auto s = a.nested("snapshots");
+    archive_snapshots(s);
+  }
+
+private:
+  // Cumulative averages at a sequence of times, saved with the run (they cannot be recomputed).
+  template <class A> void archive_snapshots(A& a) {
+    long count = static_cast<long>(snapshots_.size());
+    a("count", count);
+    if constexpr (A::loading) snapshots_.assign(static_cast<std::size_t>(count), io::Snapshot{});
+    for (long k = 0; k < count; ++k) {
+      auto s = a.nested(std::to_string(k));
+      io::Snapshot& snap = snapshots_[k];
+      long steps = snap.particle_steps, fields = static_cast<long>(snap.fields.size());
+      s("time", snap.time), s("wall_seconds", snap.wall_seconds), s("particle_steps", steps);
+      s("fields", fields);
+      if constexpr (A::loading) snap.particle_steps = steps, snap.fields.resize(fields);
+      for (long i = 0; i < fields; ++i) {
+        io::Field& f = snap.fields[i];
+        long components = f.components;
+        auto fs = s.nested("field" + std::to_string(i));
+        fs("name", f.name), fs("components", components);
+        fs("values", f.values), fs("standard_error", f.standard_error);
+        f.components = static_cast<int>(components);
+      }
+    }
+  }
+  ParticleParameters p_;
+  std::size_t n_;
+  FieldSampler<D> sampler_;
+  long taken_ = 0;
+  std::vector<io::Snapshot> snapshots_;
+  BinnedFields result_;
+};
+
 } // namespace
 
-template <int D>
-Fields<D>::Fields(const ParticleParameters& p, const RunFacts& m)
-    : p_(p), n_(m.particles), sampler_(box3(p), p.bins, p.blocks, sampled_count(p), p.mass, p.cv) {}
-
-template <int D> void Fields<D>::sample(const Sample<D>& s) {
-  if (!s.sampled) return;
-  sampler_.sample(s.state, s.potential, s.conduction);
-  ++taken_;
-  const long rows = sampler_.total_samples();
-  if (taken_ == rows || taken_ % std::max(1L, rows / 10) == 0)
-    snapshots_.push_back(
-        snapshot(sampler_.result(), s.time, s.elapsed_seconds, static_cast<long>(n_) * s.step));
-}
-
-template <int D> void Fields<D>::finish(RunOutput& out) {
-  result_ = sampler_.result();
-  out.fields_csv = result_.csv();
-  out.blocks_csv = result_.blocks_csv();
-  out.field_grid.dim = D;
-  for (int d = 0; d < D; ++d) {
-    out.field_grid.counts[d] = p_.bins[d];
-    out.field_grid.spacing[d] = p_.box[d] / p_.bins[d];
-  }
-  out.field_snapshots = std::move(snapshots_);
-}
-
-template <int D> void PoiseuilleFit<D>::finish(RunOutput& out) {
-  const BinnedFields& f = fields_.result();
+io::Json poiseuille_fit(const ParticleParameters& p, const BinnedFields& f) {
   io::Json j = io::Json::object();
   if (f.bins[1] < 8) {
     j["note"] = "needs at least 8 bins along y";
-    out.summary["poiseuille"] = j;
-    return;
+    return j;
   }
-  const double ly = p_.box[1];
+  const double ly = p.box[1];
   double wsum = 0, esum = 0;
   const char* names[2] = {"lower_half", "upper_half"};
   for (int half = 0; half < 2; ++half) {
@@ -90,8 +132,8 @@ template <int D> void PoiseuilleFit<D>::finish(RunOutput& out) {
       for (int c = 0; c < 3; ++c) mc[r][c] = c == 2 ? t[r] : m[r][c];
     const double c2 = det3(mc) / det;
     const double c2_var = (s[0] * s[2] - s[1] * s[1]) / det; // (M^-1)_22
-    const double force = half == 0 ? p_.poiseuille_force : -p_.poiseuille_force;
-    const double eta = -p_.density * force / (2 * c2); // v'' = 2 c2 = -n F / eta
+    const double force = half == 0 ? p.poiseuille_force : -p.poiseuille_force;
+    const double eta = -p.density * force / (2 * c2); // v'' = 2 c2 = -n F / eta
     const double eta_se = std::fabs(eta) * std::sqrt(c2_var) / std::fabs(c2);
     io::Json h = io::Json::object();
     h["curvature"] = 2 * c2, h["viscosity"] = eta, h["viscosity_stderr"] = eta_se;
@@ -100,12 +142,14 @@ template <int D> void PoiseuilleFit<D>::finish(RunOutput& out) {
   }
   j["viscosity"] = esum / wsum;
   j["viscosity_stderr"] = 1 / std::sqrt(wsum);
-  out.summary["poiseuille"] = j;
+  return j;
 }
 
-template class Fields<2>;
-template class Fields<3>;
-template class PoiseuilleFit<2>;
-template class PoiseuilleFit<3>;
+template <int D> BinnedDiagnostic<D> make_fields(const ParticleParameters& p, const RunFacts& m) {
+  return BinnedDiagnostic<D>(std::make_unique<Fields<D>>(p, m));
+}
+
+template BinnedDiagnostic<2> make_fields<2>(const ParticleParameters&, const RunFacts&);
+template BinnedDiagnostic<3> make_fields<3>(const ParticleParameters&, const RunFacts&);
 
 } // namespace twinflow::particle

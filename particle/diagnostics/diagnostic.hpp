@@ -1,14 +1,16 @@
 #pragma once
 // A particle run's diagnostics as plug-ins (the model: Mirheo's plugins, ASPECT's
 // postprocessors). The run owns a list of them, made for its scene (diagnostics.hpp: a scene
-// without walls has no wall plug-ins). At every sample the run measures once what several of
-// them use (energies, the virial pressure, the one serial pair pass) and hands it to each; at the
-// end each writes its own results; a checkpoint holds each one's state under its name.
+// without walls has no wall plug-ins; plugins.hpp: those it chooses from). At every sample the run
+// measures once what several of them use (energies, the virial pressure, the one serial pair pass)
+// and hands it to each; at the end each writes its own results; a checkpoint holds each one's state
+// under its name.
 
 #include <array>
 #include <functional>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "particle/archive.hpp"
@@ -60,27 +62,48 @@ struct PairNeeds {
 
 template <int D> class Diagnostic {
 public:
+  // name: its section of a checkpoint, unique within a run; needs: what it takes from the pair
+  // pass.
+  explicit Diagnostic(std::string name, PairNeeds needs = {})
+      : name_(std::move(name)), needs_(needs) {}
   virtual ~Diagnostic() = default;
-  // Its section of a checkpoint; unique within a run.
-  virtual std::string name() const = 0;
-  virtual PairNeeds pair_needs() const { return {}; }
+  const std::string& name() const { return name_; }
+  PairNeeds pair_needs() const { return needs_; }
   // At every sample, equilibration included (Sample::sampled tells them apart).
   virtual void sample(const Sample<D>&) {}
   // Its results: summary keys, a csv of RunOutput. Called once, in the list's order.
   virtual void finish(RunOutput& out) = 0;
   virtual void save(SaveArchive&) {}
   virtual void load(LoadArchive&) {}
+
+private:
+  std::string name_;
+  PairNeeds needs_;
 };
 
 // A diagnostic with state lists it once, in `template <class A> void archive(A& a)`, and
 // derives from Archived<D, Itself>: saving and loading then walk the same list.
 template <int D, class Derived> class Archived : public Diagnostic<D> {
 public:
+  using Diagnostic<D>::Diagnostic;
   void save(SaveArchive& a) override { static_cast<Derived&>(*this).archive(a); }
   void load(LoadArchive& a) override { static_cast<Derived&>(*this).archive(a); }
 };
 
-template <int D> using DiagnosticList = std::vector<std::unique_ptr<Diagnostic<D>>>;
+// A diagnostic without state of its own that at the end fits what others measured (the binned
+// fields, a slab profile): `fit` writes its results.
+template <int D> class Fit : public Diagnostic<D> {
+public:
+  Fit(std::string name, std::function<void(RunOutput&)> fit)
+      : Diagnostic<D>(std::move(name)), fit_(std::move(fit)) {}
+  void finish(RunOutput& out) override { fit_(out); }
+
+private:
+  std::function<void(RunOutput&)> fit_;
+};
+
+template <int D> using DiagnosticPtr = std::unique_ptr<Diagnostic<D>>;
+template <int D> using DiagnosticList = std::vector<DiagnosticPtr<D>>;
 
 // The number of sampled (post-equilibration) samples of a run: the block statistics' length.
 long sampled_count(const ParticleParameters& p);

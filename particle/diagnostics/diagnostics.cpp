@@ -1,12 +1,6 @@
 #include "particle/diagnostics/diagnostics.hpp"
 
-#include "particle/diagnostics/binned_fields.hpp"
-#include "particle/diagnostics/correlations.hpp"
-#include "particle/diagnostics/distributions.hpp"
-#include "particle/diagnostics/relaxation.hpp"
-#include "particle/diagnostics/slabs.hpp"
-#include "particle/diagnostics/thermo.hpp"
-#include "particle/diagnostics/walls.hpp"
+#include "particle/diagnostics/plugins.hpp"
 
 namespace twinflow::particle {
 
@@ -25,31 +19,35 @@ std::array<double, 3> box3(const ParticleParameters& p) {
 template <int D>
 DiagnosticList<D> make_diagnostics(const ParticleParameters& p, const RunFacts& m) {
   DiagnosticList<D> list;
-  auto add = [&](auto diagnostic) -> auto& {
-    auto& d = *diagnostic;
-    list.push_back(std::move(diagnostic));
-    return d;
+  auto add = [&](DiagnosticPtr<D> diagnostic) { list.push_back(std::move(diagnostic)); };
+  // A fit of binned fields: `fit` gives its results, stored under `key` of the summary.
+  auto add_fit = [&](const char* name, const char* key, std::function<io::Json()> fit) {
+    add(std::make_unique<Fit<D>>(name, [key, fit](RunOutput& out) { out.summary[key] = fit(); }));
   };
-  add(std::make_unique<Thermo<D>>(p, m));
+  add(make_thermo<D>(p, m));
   if (p.has_walls()) {
-    add(std::make_unique<WallFluxes<D>>(p));
-    add(std::make_unique<WallLayers<D>>(p, m));
+    add(make_wall_fluxes<D>(p));
+    add(make_wall_layers<D>(p, m));
   }
-  add(std::make_unique<Histograms<D>>(p, m));
-  add(std::make_unique<PairDistribution<D>>(p, m));
-  add(std::make_unique<Correlations<D>>(p, m));
+  add(make_histograms<D>(p, m));
+  add(make_pair_distribution<D>(p, m));
+  add(make_correlations<D>(p, m));
   const bool heat_mode = m.has_energy && p.temperature_perturbation != 0;
   const bool shear_mode = p.shear_perturbation != 0;
-  if (heat_mode || shear_mode)
-    add(std::make_unique<RelaxationModes<D>>(p, m, heat_mode, shear_mode));
-  const auto& fields = add(std::make_unique<Fields<D>>(p, m));
-  if (p.poiseuille_force != 0) add(std::make_unique<PoiseuilleFit<D>>(p, fields));
+  if (heat_mode || shear_mode) add(make_relaxation_modes<D>(p, m, heat_mode, shear_mode));
+  auto fields = make_fields<D>(p, m);
+  const BinnedFields& f = fields.fields;
+  add(std::move(fields.diagnostic));
+  if (p.poiseuille_force != 0)
+    add_fit("poiseuille_fit", "poiseuille", [p, &f] { return poiseuille_fit(p, f); });
   if (const int d = wall_profile_direction(p); d >= 0)
-    add(std::make_unique<WallProfileFit<D>>(p, d, fields));
+    add_fit("wall_profile_fit", "wall_profile", [p, d, &f] { return wall_profile_fit(p, d, f); });
   if (!p.heat_slabs.empty()) {
-    const auto& profile = add(std::make_unique<SlabProfile<D>>(p, m));
+    auto profile = make_slab_profile<D>(p, m);
+    const BinnedFields& slabs = profile.fields;
+    add(std::move(profile.diagnostic));
     if (m.has_energy && p.heat_slabs.size() == 2)
-      add(std::make_unique<SlabKappaFit<D>>(p, profile));
+      add_fit("slab_kappa_fit", "heat_slabs", [p, &slabs] { return slab_kappa_fit(p, slabs); });
   }
   return list;
 }

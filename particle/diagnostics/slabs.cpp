@@ -1,4 +1,8 @@
-#include "particle/diagnostics/slabs.hpp"
+// Heat-slab scenes (seed 002 section III.B): the profile along the slab direction in 0.5 rc bins
+// (slab_profile.csv), and kappa from its slopes between the slabs with the energy flux split
+// into its parts at two planes (SlabKappaFit).
+#include "particle/diagnostics/plugins.hpp"
+#include "particle/fields.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -98,30 +102,40 @@ io::Json flux_at_planes(const ParticleParameters& p, const BinnedFields& f, doub
   return out;
 }
 
+template <int D> class SlabProfile : public Archived<D, SlabProfile<D>> {
+public:
+  SlabProfile(const ParticleParameters& p, const RunFacts&)
+      : Archived<D, SlabProfile<D>>("slab_profile", {false, true}),
+        sampler_(box3(p), slab_bins(p), p.blocks, sampled_count(p), p.mass, p.cv) {}
+  void sample(const Sample<D>& s) override {
+    if (s.sampled) sampler_.sample(s.state, s.potential, s.conduction);
+  }
+  void finish(RunOutput& out) override {
+    result_ = sampler_.result();
+    out.slab_profile_csv = result_.csv();
+  }
+  const BinnedFields& result() const { return result_; } // after finish
+  template <class A> void archive(A& a) { sampler_.archive(a); }
+
+private:
+  FieldSampler<D> sampler_;
+  BinnedFields result_;
+};
+
 } // namespace
 
+io::Json slab_kappa_fit(const ParticleParameters& p, const BinnedFields& profile) {
+  io::Json j = slab_fit(p, profile);
+  j["flux_decomposition"] = flux_at_planes(p, profile, j["J0"].get<double>());
+  return j;
+}
+
 template <int D>
-SlabProfile<D>::SlabProfile(const ParticleParameters& p, const RunFacts&)
-    : sampler_(box3(p), slab_bins(p), p.blocks, sampled_count(p), p.mass, p.cv) {}
-
-template <int D> void SlabProfile<D>::sample(const Sample<D>& s) {
-  if (s.sampled) sampler_.sample(s.state, s.potential, s.conduction);
+BinnedDiagnostic<D> make_slab_profile(const ParticleParameters& p, const RunFacts& m) {
+  return BinnedDiagnostic<D>(std::make_unique<SlabProfile<D>>(p, m));
 }
 
-template <int D> void SlabProfile<D>::finish(RunOutput& out) {
-  result_ = sampler_.result();
-  out.slab_profile_csv = result_.csv();
-}
-
-template <int D> void SlabKappaFit<D>::finish(RunOutput& out) {
-  io::Json j = slab_fit(p_, profile_.result());
-  j["flux_decomposition"] = flux_at_planes(p_, profile_.result(), j["J0"].get<double>());
-  out.summary["heat_slabs"] = j;
-}
-
-template class SlabProfile<2>;
-template class SlabProfile<3>;
-template class SlabKappaFit<2>;
-template class SlabKappaFit<3>;
+template BinnedDiagnostic<2> make_slab_profile<2>(const ParticleParameters&, const RunFacts&);
+template BinnedDiagnostic<3> make_slab_profile<3>(const ParticleParameters&, const RunFacts&);
 
 } // namespace twinflow::particle

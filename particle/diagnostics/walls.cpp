@@ -1,4 +1,7 @@
-#include "particle/diagnostics/walls.hpp"
+// Walled scenes: each wall's pressure and heat flux (WallFluxes), the fluid layer along it
+// (WallLayers: effective position, friction), and the Kapitza fit of a conducting pair of thermal
+// walls (wall_profile_fit, from the binned fields).
+#include "particle/diagnostics/plugins.hpp"
 
 #include <algorithm>
 
@@ -7,81 +10,110 @@
 
 namespace twinflow::particle {
 
+namespace {
+
+// "x_lower", "x_upper", "y_lower", ... for wall 2 d + side.
 const char* wall_name(int wall) {
   static const char* names[6] = {"x_lower", "x_upper", "y_lower", "y_upper", "z_lower", "z_upper"};
   return names[wall];
 }
 
-template <int D> WallFluxes<D>::WallFluxes(const ParticleParameters& p) : p_(p) {}
-
-template <int D> void WallFluxes<D>::sample(const Sample<D>& s) {
-  const double interval = (s.step - last_step_) * p_.dt;
-  for (int w = 0; w < 2 * D; ++w) {
-    if (!p_.walls[w / 2].present) continue;
-    double area = 1;
-    for (int d = 0; d < D; ++d)
-      if (d != w / 2) area *= p_.box[d];
-    const double dp = s.wall_momentum_in[w] - last_momentum_[w];
-    const double dq = s.wall_energy_in[w] - last_energy_[w];
-    if (s.sampled) {
-      pressure_[w].push_back(dp / (interval * area));
-      heat_flux_[w].push_back(dq / (interval * area));
+// Per wall, over the interval since the last sample: pressure (momentum in per time and area) and
+// heat flux density in; the energy in since the start.
+template <int D> class WallFluxes : public Archived<D, WallFluxes<D>> {
+public:
+  explicit WallFluxes(const ParticleParameters& p)
+      : Archived<D, WallFluxes<D>>("wall_fluxes"), p_(p) {}
+  void sample(const Sample<D>& s) override {
+    const double interval = (s.step - last_step_) * p_.dt;
+    for (int w = 0; w < 2 * D; ++w) {
+      if (!p_.walls[w / 2].present) continue;
+      double area = 1;
+      for (int d = 0; d < D; ++d)
+        if (d != w / 2) area *= p_.box[d];
+      const double dp = s.wall_momentum_in[w] - last_momentum_[w];
+      const double dq = s.wall_energy_in[w] - last_energy_[w];
+      if (s.sampled) {
+        pressure_[w].push_back(dp / (interval * area));
+        heat_flux_[w].push_back(dq / (interval * area));
+      }
+      last_momentum_[w] = s.wall_momentum_in[w];
+      last_energy_[w] = s.wall_energy_in[w];
     }
-    last_momentum_[w] = s.wall_momentum_in[w];
-    last_energy_[w] = s.wall_energy_in[w];
+    last_step_ = s.step;
+    crossings_ = s.wall_crossings;
   }
-  last_step_ = s.step;
-  crossings_ = s.wall_crossings;
-}
-
-template <int D> void WallFluxes<D>::finish(RunOutput& out) {
-  io::Json walls = io::Json::object();
-  const double time = (p_.equilibration_steps + p_.steps) * p_.dt;
-  for (int w = 0; w < 2 * D; ++w) {
-    if (!p_.walls[w / 2].present) continue;
-    io::Json& j = walls[wall_name(w)];
-    // The last sample is the last step: its totals are the run's.
-    j["energy_in"] = last_energy_[w];
-    j["mean_heat_flow_in"] = last_energy_[w] / time; // per time
-    // Over the sampled steps, with block errors:
-    const statistics::Estimate pw = statistics::block_average(pressure_[w], p_.blocks);
-    const statistics::Estimate jw = statistics::block_average(heat_flux_[w], p_.blocks);
-    j["pressure"] = pw.mean, j["pressure_stderr"] = pw.stderr_;
-    j["heat_flux_in"] = jw.mean;
-    j["heat_flux_in_stderr"] = jw.stderr_;
-    // The same with 2 and 4 blocks merged: equal errors say the blocks are long enough.
-    j["heat_flux_in_stderr_blocking"] = statistics::blocking_errors(heat_flux_[w], p_.blocks);
-  }
-  out.summary["walls"] = walls;
-  out.summary["wall_reflections"] = crossings_;
-}
-
-template <int D>
-WallLayers<D>::WallLayers(const ParticleParameters& p, const RunFacts& m)
-    : p_(p), friction_(m.wall_friction),
-      sampler_(box3(p), {{p.walls[0].present, p.walls[1].present, D == 3 && p.walls[2].present}},
-               p.wall_range, 20, p.blocks, sampled_count(p), p.mass) {}
-
-template <int D> void WallLayers<D>::sample(const Sample<D>& s) {
-  if (s.sampled) sampler_.sample(s.state);
-}
-
-template <int D> void WallLayers<D>::finish(RunOutput& out) {
-  const auto layers = sampler_.result(friction_);
-  for (const auto& l : layers) {
-    io::Json& w = out.summary["walls"][wall_name(l.wall)];
-    w["effective_position"] = l.effective_position; // Gibbs depth from the wall plane
-    w["effective_position_stderr"] = l.effective_position_stderr;
-    w["layer_reference_density"] = l.reference;
-    w["layer_reference_density_stderr"] = l.reference_stderr;
-    if (p_.walls[l.wall / 2].no_slip) {
-      w["friction_per_area"] = l.friction; // tangential force / (area x slip velocity)
-      w["friction_per_area_stderr"] = l.friction_stderr;
-      w["friction_depth"] = l.friction_depth;
+  void finish(RunOutput& out) override {
+    io::Json walls = io::Json::object();
+    const double time = (p_.equilibration_steps + p_.steps) * p_.dt;
+    for (int w = 0; w < 2 * D; ++w) {
+      if (!p_.walls[w / 2].present) continue;
+      io::Json& j = walls[wall_name(w)];
+      // The last sample is the last step: its totals are the run's.
+      j["energy_in"] = last_energy_[w];
+      j["mean_heat_flow_in"] = last_energy_[w] / time; // per time
+      // Over the sampled steps, with block errors:
+      const statistics::Estimate pw = statistics::block_average(pressure_[w], p_.blocks);
+      const statistics::Estimate jw = statistics::block_average(heat_flux_[w], p_.blocks);
+      j["pressure"] = pw.mean, j["pressure_stderr"] = pw.stderr_;
+      j["heat_flux_in"] = jw.mean;
+      j["heat_flux_in_stderr"] = jw.stderr_;
+      // The same with 2 and 4 blocks merged: equal errors say the blocks are long enough.
+      j["heat_flux_in_stderr_blocking"] = statistics::blocking_errors(heat_flux_[w], p_.blocks);
     }
+    out.summary["walls"] = walls;
+    out.summary["wall_reflections"] = crossings_;
   }
-  out.wall_layers_csv = WallLayerSampler<D>::csv(layers, D);
-}
+  template <class A> void archive(A& a) {
+    a("last_momentum", last_momentum_), a("last_energy", last_energy_);
+    a("last_step", last_step_), a("crossings", crossings_);
+    a("pressure", pressure_), a("heat_flux", heat_flux_);
+  }
+
+private:
+  ParticleParameters p_;
+  std::array<double, 6> last_momentum_{}, last_energy_{}; // at the last sample
+  long last_step_ = 0, crossings_ = 0;
+  std::vector<std::vector<double>> pressure_ = std::vector<std::vector<double>>(6),
+                                   heat_flux_ = std::vector<std::vector<double>>(6);
+};
+
+// Density and velocity in thin slices along each wall (wall_layers.csv) and, into the summary's
+// "walls", each wall's effective position and, for no-slip walls, its friction.
+template <int D> class WallLayers : public Archived<D, WallLayers<D>> {
+public:
+  WallLayers(const ParticleParameters& p, const RunFacts& m)
+      : Archived<D, WallLayers<D>>("wall_layers"), p_(p), friction_(m.wall_friction),
+        sampler_(box3(p), {{p.walls[0].present, p.walls[1].present, D == 3 && p.walls[2].present}},
+                 p.wall_range, 20, p.blocks, sampled_count(p), p.mass) {}
+  void sample(const Sample<D>& s) override {
+    if (s.sampled) sampler_.sample(s.state);
+  }
+  void finish(RunOutput& out) override {
+    const auto layers = sampler_.result(friction_);
+    for (const auto& l : layers) {
+      io::Json& w = out.summary["walls"][wall_name(l.wall)];
+      w["effective_position"] = l.effective_position; // Gibbs depth from the wall plane
+      w["effective_position_stderr"] = l.effective_position_stderr;
+      w["layer_reference_density"] = l.reference;
+      w["layer_reference_density_stderr"] = l.reference_stderr;
+      if (p_.walls[l.wall / 2].no_slip) {
+        w["friction_per_area"] = l.friction; // tangential force / (area x slip velocity)
+        w["friction_per_area_stderr"] = l.friction_stderr;
+        w["friction_depth"] = l.friction_depth;
+      }
+    }
+    out.wall_layers_csv = WallLayerSampler<D>::csv(layers, D);
+  }
+  template <class A> void archive(A& a) { sampler_.archive(a); }
+
+private:
+  ParticleParameters p_;
+  std::function<double(int, double, double)> friction_;
+  WallLayerSampler<D> sampler_;
+};
+
+} // namespace
 
 int wall_profile_direction(const ParticleParameters& p) {
   for (int d = 0; d < p.dim; ++d) {
@@ -94,11 +126,10 @@ int wall_profile_direction(const ParticleParameters& p) {
   return -1;
 }
 
-template <int D> void WallProfileFit<D>::finish(RunOutput& out) {
-  const BinnedFields& f = fields_.result();
-  const int d = direction_;
-  const WallPair& w = p_.walls[d];
-  const double length = p_.box[d], lo = 0.2 * length, hi = 0.8 * length;
+io::Json wall_profile_fit(const ParticleParameters& p, int direction, const BinnedFields& f) {
+  const int d = direction;
+  const WallPair& w = p.walls[d];
+  const double length = p.box[d], lo = 0.2 * length, hi = 0.8 * length;
   const auto line = [&](const std::vector<double>& temperature) {
     statistics::LineFit fit;
     for (int bin = 0; bin < f.bin_count(); ++bin) {
@@ -128,14 +159,20 @@ template <int D> void WallProfileFit<D>::finish(RunOutput& out) {
   j["jump_upper"] = w.temperature[1] - (fit.intercept() + fit.slope() * length);
   j["jump_lower_stderr"] = fit.value_stderr(0);
   j["jump_upper_stderr"] = fit.value_stderr(length);
-  out.summary["wall_profile"] = j;
+  return j;
 }
 
-template class WallFluxes<2>;
-template class WallFluxes<3>;
-template class WallLayers<2>;
-template class WallLayers<3>;
-template class WallProfileFit<2>;
-template class WallProfileFit<3>;
+template <int D> DiagnosticPtr<D> make_wall_fluxes(const ParticleParameters& p) {
+  return std::make_unique<WallFluxes<D>>(p);
+}
+
+template <int D> DiagnosticPtr<D> make_wall_layers(const ParticleParameters& p, const RunFacts& m) {
+  return std::make_unique<WallLayers<D>>(p, m);
+}
+
+template DiagnosticPtr<2> make_wall_fluxes<2>(const ParticleParameters&);
+template DiagnosticPtr<3> make_wall_fluxes<3>(const ParticleParameters&);
+template DiagnosticPtr<2> make_wall_layers<2>(const ParticleParameters&, const RunFacts&);
+template DiagnosticPtr<3> make_wall_layers<3>(const ParticleParameters&, const RunFacts&);
 
 } // namespace twinflow::particle

@@ -52,13 +52,26 @@ io::Json wall_results(double q_hot, double q_cold) {
   return r;
 }
 
+// Compare parameters that extrapolate each wall's fluid temperature from the first two bin
+// layers (no layer left out).
+compare::CompareParameters without_wall_layer() {
+  compare::CompareParameters c;
+  c.wall_layer = 0;
+  return c;
+}
+
+// The cavity's walls calibrated from hot and cold wall fluxes q_hot, q_cold.
+compare::CalibratedWalls calibrate(const compare::CompareParameters& c,
+                                   const compare::TwinFacts& twin, double q_hot = 0.1,
+                                   double q_cold = -0.1) {
+  return compare::calibrate_walls(wall_results(q_hot, q_cold), linear_fluid(), cavity(), c, twin);
+}
+
 } // namespace
 
 TEST(Calibration, KapitzaConductanceIsTheWallFluxOverTheJump) {
-  compare::CompareParameters c;
-  c.wall_layer = 0; // extrapolate from the first two bin layers
-  const auto walls = compare::calibrate_walls(wall_results(0.1, -0.1), linear_fluid(), cavity(), c,
-                                              {true, false, 1.2});
+  compare::CompareParameters c = without_wall_layer();
+  const auto walls = calibrate(c, {true, false, 1.2});
   ASSERT_TRUE(walls.kapitza);
   // jumps 1.5 - 1.3 = 0.2 and 0.5 - 0.7 = -0.2
   EXPECT_NEAR(walls.wall[0][0].conductance, 0.1 / 0.2, 1e-12);
@@ -76,32 +89,26 @@ TEST(Calibration, KapitzaConductanceIsTheWallFluxOverTheJump) {
 }
 
 TEST(Calibration, InverseLawTakesTheWallTemperatureSquared) {
-  compare::CompareParameters c;
-  c.wall_layer = 0;
+  compare::CompareParameters c = without_wall_layer();
   c.wall_slip = false;
-  const auto walls = compare::calibrate_walls(wall_results(0.1, -0.1), linear_fluid(), cavity(), c,
-                                              {true, true, 1.0});
+  const auto walls = calibrate(c, {true, true, 1.0});
   // q = h T_w^2 (1/T_f - 1/T_w)
   EXPECT_NEAR(walls.wall[0][0].conductance, 0.1 / (1.5 * 1.5 * (1 / 1.3 - 1 / 1.5)), 1e-12);
   EXPECT_FALSE(walls.slip);
 }
 
 TEST(Calibration, AJumpAgainstTheHeatFlowKeepsTheFluidsWallTemperature) {
-  compare::CompareParameters c;
-  c.wall_layer = 0;
+  compare::CompareParameters c = without_wall_layer();
   // heat flowing out of the hot wall's fluid into the wall: no conductance can describe it
-  const auto walls = compare::calibrate_walls(wall_results(-0.1, -0.1), linear_fluid(), cavity(), c,
-                                              {true, false, 1.0});
+  const auto walls = calibrate(c, {true, false, 1.0}, -0.1, -0.1);
   EXPECT_EQ(walls.wall[0][0].conductance, 0);
   EXPECT_NEAR(walls.wall[0][0].fluid_temperature, 1.3, 1e-12);
   EXPECT_GT(walls.wall[0][1].conductance, 0);
 }
 
 TEST(Calibration, WallTemperaturesWithoutKapitzaAndALowMachTwin) {
-  compare::CompareParameters c;
-  c.wall_layer = 0;
-  const auto walls = compare::calibrate_walls(wall_results(0.1, -0.1), linear_fluid(), cavity(), c,
-                                              {false, false, 1.0});
+  compare::CompareParameters c = without_wall_layer();
+  const auto walls = calibrate(c, {false, false, 1.0});
   EXPECT_FALSE(walls.kapitza);
   EXPECT_FALSE(walls.slip); // Navier slip is a Boussinesq twin's
   EXPECT_EQ(walls.notes.size(), 1u);
@@ -112,11 +119,9 @@ TEST(Calibration, WallTemperaturesWithoutKapitzaAndALowMachTwin) {
 }
 
 TEST(Calibration, EffectiveWallsMoveInAndSpreadTheHeatFlowOverTheShorterWall) {
-  compare::CompareParameters c;
-  c.wall_layer = 0;
+  compare::CompareParameters c = without_wall_layer();
   c.effective_walls = true;
-  const auto walls = compare::calibrate_walls(wall_results(0.1, -0.1), linear_fluid(), cavity(), c,
-                                              {true, false, 1.2});
+  const auto walls = calibrate(c, {true, false, 1.2});
   EXPECT_TRUE(walls.effective_positions);
   EXPECT_EQ(walls.wall[0][0].position, 0.25);
   // the x walls are 10 long in the scene, 9.5 in the twin; the fluid met at x = 0.25

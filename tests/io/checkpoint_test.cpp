@@ -7,13 +7,15 @@
 #include <fstream>
 #include <limits>
 #include <string>
-#include <unistd.h>
 
+#include "helpers.hpp"
 #include "io/files.hpp"
 
 namespace fs = std::filesystem;
 using twinflow::io::Checkpoint;
 using twinflow::io::InputError;
+using twinflow::io::testing::input_error_of;
+using twinflow::io::testing::ScratchDirTest;
 
 namespace {
 
@@ -35,28 +37,9 @@ template <class T> T read_at(const std::string& bytes, std::size_t offset) {
   return v;
 }
 
-// Runs `f`, expects an InputError, returns its message.
-template <class F> std::string input_error_of(F&& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "no InputError thrown";
-  return "";
-}
-
-class CheckpointTest : public ::testing::Test {
+class CheckpointTest : public ScratchDirTest {
 protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("twinflow_checkpoint_test_" + std::to_string(::getpid()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-  fs::path dir_;
+  CheckpointTest() : ScratchDirTest("twinflow_checkpoint_test") {}
 };
 
 // Doubles whose bits an arithmetic or text round trip would change.

@@ -7,6 +7,8 @@
 
 #include <gtest/gtest.h>
 
+#include "helpers.hpp"
+#include "io/files.hpp"
 #include <cctype>
 #include <cstdlib>
 #include <cstring>
@@ -15,9 +17,6 @@
 #include <map>
 #include <memory>
 #include <sstream>
-#include <unistd.h>
-
-#include "io/files.hpp"
 
 namespace fs = std::filesystem;
 using twinflow::io::Field;
@@ -25,6 +24,8 @@ using twinflow::io::FieldFile;
 using twinflow::io::Grid;
 using twinflow::io::InputError;
 using twinflow::io::Snapshot;
+using twinflow::io::testing::input_error_of;
+using twinflow::io::testing::ScratchDirTest;
 
 namespace {
 
@@ -70,16 +71,6 @@ void expect_same(const Snapshot& a, const Snapshot& b) {
     EXPECT_EQ(a.fields[i].values, b.fields[i].values) << a.fields[i].name;
     EXPECT_EQ(a.fields[i].standard_error, b.fields[i].standard_error) << a.fields[i].name;
   }
-}
-
-template <class F> std::string input_error_of(F&& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "no InputError thrown";
-  return "";
 }
 
 // ---- a minimal, strict XML reader: enough to prove well-formedness and walk the XDMF ------------
@@ -228,16 +219,9 @@ std::vector<hsize_t> dataset_shape(const fs::path& file, const std::string& path
   return dims;
 }
 
-class FieldFileTest : public ::testing::Test {
+class FieldFileTest : public ScratchDirTest {
 protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("twinflow_field_file_test_" + std::to_string(::getpid()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
+  FieldFileTest() : ScratchDirTest("twinflow_field_file_test") {}
 
   // Writes `count` snapshots; checks that after each append the file on disk holds all so far.
   FieldFile write_sequence(const Grid& grid, int count, const std::string& name = "fields") {
@@ -250,8 +234,6 @@ protected:
     }
     return file;
   }
-
-  fs::path dir_;
 };
 
 } // namespace

@@ -9,18 +9,27 @@
 using namespace twinflow::particle;
 
 namespace {
+// n particles at rest, uniformly at random in the box; ids descending in storage order (not the
+// order a sort leaves) or ascending.
 template <int D>
-void check(const std::array<double, D>& box, double rc, std::size_t n, unsigned seed) {
+State<D> random_state(const std::array<double, D>& box, std::size_t n, unsigned seed,
+                      bool descending_ids) {
   State<D> s;
-  Carried<D> carried;
   s.box = box;
   std::srand(seed);
   for (int d = 0; d < D; ++d) s.x[d].resize(n), s.v[d].assign(n, 0.0);
   s.id.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
-    s.id[i] = static_cast<std::uint32_t>(n - 1 - i); // ids not in storage order
+    s.id[i] = static_cast<std::uint32_t>(descending_ids ? n - 1 - i : i);
     for (int d = 0; d < D; ++d) s.x[d][i] = box[d] * (std::rand() / (RAND_MAX + 1.0));
   }
+  return s;
+}
+
+template <int D>
+void check(const std::array<double, D>& box, double rc, std::size_t n, unsigned seed) {
+  State<D> s = random_state<D>(box, n, seed, true);
+  Carried<D> carried;
   CellGrid<D> grid(box, rc);
   grid.sort(s, carried);
   std::set<std::pair<std::uint32_t, std::uint32_t>> brute, cells;
@@ -67,16 +76,8 @@ namespace {
 template <int D>
 void check_list(const std::array<double, D>& box, double rc, std::size_t n, unsigned seed,
                 std::array<bool, D> periodic) {
-  State<D> s;
+  State<D> s = random_state<D>(box, n, seed, false);
   Carried<D> carried;
-  s.box = box;
-  std::srand(seed);
-  for (int d = 0; d < D; ++d) s.x[d].resize(n), s.v[d].assign(n, 0.0);
-  s.id.resize(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    s.id[i] = static_cast<std::uint32_t>(i);
-    for (int d = 0; d < D; ++d) s.x[d][i] = box[d] * (std::rand() / (RAND_MAX + 1.0));
-  }
   CellGrid<D> grid(box, rc, periodic);
   grid.sort(s, carried);
   std::set<std::pair<std::uint32_t, std::uint32_t>> reference, listed;

@@ -5,7 +5,7 @@ import os
 import tempfile
 import unittest
 
-import report_path  # noqa: F401  (compare/ on sys.path)
+import report_path  # compare/ on sys.path; FolderTestCase
 from report import data
 from report.data import (MissingKey, Record, Table, cell, finite, fmt, fmt_percent, fmt_pm,
                          lookup, number, plain, present, read_json, read_table, slug,
@@ -139,14 +139,7 @@ class Lookup(unittest.TestCase):
             self.assertTrue(math.isnan(number(record, key)), key)
 
 
-class Files(unittest.TestCase):
-    def setUp(self):
-        self.folder = tempfile.mkdtemp()
-
-    def tearDown(self):
-        import shutil
-        shutil.rmtree(self.folder)
-
+class Files(report_path.FolderTestCase):
     def test_read_json_attaches_the_file_to_every_object(self):
         path = write(self.folder, "summary.json", '{"results": {"walls": [{"x": 1}]}}')
         summary = read_json(path)

@@ -30,13 +30,7 @@ def run(*arguments, env=None):
                           env=environment, cwd=report_path.SOURCE_DIR)
 
 
-class KindOf(unittest.TestCase):
-    def setUp(self):
-        self.folder = tempfile.mkdtemp()
-
-    def tearDown(self):
-        shutil.rmtree(self.folder)
-
+class KindOf(report_path.FolderTestCase):
     def test_kinds(self):
         self.assertIsNone(kind_of(self.folder))
         touch(self.folder, "sweep.csv")
@@ -50,13 +44,7 @@ class KindOf(unittest.TestCase):
         self.assertEqual(kind_of(other), "stability")
 
 
-class CommandLine(unittest.TestCase):
-    def setUp(self):
-        self.folder = tempfile.mkdtemp()
-
-    def tearDown(self):
-        shutil.rmtree(self.folder)
-
+class CommandLine(report_path.FolderTestCase):
     def test_not_a_result_directory_exits_2(self):
         for arguments in ([self.folder], ["--strict", self.folder], [], ["a", "b"], ["--help"]):
             result = run(REPORT, *arguments)

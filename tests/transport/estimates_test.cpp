@@ -17,6 +17,13 @@ namespace {
 void expect_printed(double ours, double paper, double last_digit, const char* what) {
   EXPECT_NEAR(ours, paper, 0.5 * last_digit + 0.01 * std::fabs(paper)) << what;
 }
+
+void print(const Estimates& e, const char* g) {
+  std::printf("%s: I1 %.4f I2 %.4f I3 %.4f kappa(22) %.1f kappa %.1f eta %.3f D %.4f "
+              "Pr(002) %.2f Pr %.2f Sc %.2f\n",
+              g, e.i1_002, e.i2, e.i3, e.conductivity_002_eq22, e.conductivity, e.viscosity,
+              e.diffusion, e.prandtl_002, e.prandtl, e.schmidt);
+}
 } // namespace
 
 // With g = 1 the integrals are Beta functions: I2 = B(3, 3/2), I3 = B(5, 3/2),
@@ -30,10 +37,7 @@ TEST(TransportEstimates, Seed002IdealIntegralsAreBetaFunctions) {
   EXPECT_NEAR(e.i2, beta(3, 1.5), 1e-6);
   EXPECT_NEAR(e.i3, beta(5, 1.5), 1e-6);
   EXPECT_NEAR(e.i1_002, beta(5, 1.5) - beta(7, 1.5) / 3, 1e-6);
-  std::printf("g = 1: I1 %.4f I2 %.4f I3 %.4f kappa(22) %.1f kappa %.1f eta %.3f D %.4f "
-              "Pr(002) %.2f Pr %.2f Sc %.2f\n",
-              e.i1_002, e.i2, e.i3, e.conductivity_002_eq22, e.conductivity, e.viscosity,
-              e.diffusion, e.prandtl_002, e.prandtl, e.schmidt);
+  print(e, "g = 1");
   // 002 section III.E: "Pr = 2.1 and Sc = 4.1 ... with g(r) = 1"
   expect_printed(e.prandtl_002, 2.1, 0.1, "Pr (g = 1)");
   expect_printed(e.schmidt, 4.1, 0.1, "Sc (g = 1)");
@@ -48,10 +52,7 @@ TEST(TransportEstimates, Seed002WithMeasuredPairDistribution) {
   p.rdf_bins = 50;
   const auto run = particle::run_particles(p);
   const Estimates e = estimate(p, 1.0, PairDistribution::from_csv(run.rdf_csv));
-  std::printf("measured g: I1 %.4f I2 %.4f I3 %.4f kappa(22) %.1f kappa %.1f eta %.3f D %.4f "
-              "Pr(002) %.2f Pr %.2f Sc %.2f\n",
-              e.i1_002, e.i2, e.i3, e.conductivity_002_eq22, e.conductivity, e.viscosity,
-              e.diffusion, e.prandtl_002, e.prandtl, e.schmidt);
+  print(e, "measured g");
   expect_printed(e.i1_002, 0.058, 0.001, "I1");
   expect_printed(e.i2, 0.131, 0.001, "I2");
   expect_printed(e.i3, 0.073, 0.001, "I3");

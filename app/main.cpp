@@ -2,10 +2,13 @@
 
 #include <boost/program_options.hpp>
 
+#include <deal.II/base/config.h>
 #include <deal.II/base/mpi.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <iostream>
 #include <map>
 
@@ -14,6 +17,7 @@
 
 #include "app/commands.hpp"
 #include "io/files.hpp"
+#include "study/case.hpp"
 
 namespace po = boost::program_options;
 using namespace twinflow;
@@ -176,6 +180,12 @@ int main(int argc, char** argv) {
   } catch (const io::InputError& e) {
     std::cerr << "twinflow: error: " << e.what() << "\n";
     return 2;
+  } catch (const io::OutputError& e) {
+    std::cerr << "twinflow: output failed: " << e.what() << "\n";
+    return study::kExitOutputFailed;
+  } catch (const std::filesystem::filesystem_error& e) {
+    std::cerr << "twinflow: output failed: " << e.what() << "\n";
+    return study::kExitOutputFailed;
   } catch (const std::exception& e) {
     std::cerr << "twinflow: failed: " << e.what() << "\n";
     return 1;

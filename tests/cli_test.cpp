@@ -81,6 +81,65 @@ TEST(Cli, BrokenCasesExitTwoNameTheKeyAndWriteNothing) {
   }
 }
 
+// A case path that is a directory, an empty file or a binary file: exit 2, one line, nothing
+// written (check-case says so too).
+TEST(Cli, DirectoryEmptyAndBinaryCasePathsAreRefused) {
+  const fs::path dir = fresh_dir("not_cases");
+  fs::create_directories(dir / "a_directory");
+  std::ofstream(dir / "empty.prm").flush();
+  {
+    std::ofstream binary(dir / "binary.prm", std::ios::binary);
+    binary << std::string("\x7f"
+                          "ELF\x02\x01\x01\0\0\0 set x",
+                          16)
+           << "\n";
+  }
+  const struct {
+    std::string file, expect;
+  } cases[] = {{"a_directory", "is a directory, not a case file"},
+               {"empty.prm", "is empty"},
+               {"binary.prm", "a binary file, not a case file (starts '\\x7FELF\\x02"}};
+  for (const auto& c : cases)
+    for (const std::string command : {"check-case", "run"}) {
+      const fs::path out = dir / "out";
+      const Result r = run(command + " " + (dir / c.file).string() + " --out " + out.string());
+      EXPECT_EQ(r.code, 2) << command << " " << c.file << "\n" << r.output;
+      EXPECT_NE(r.output.find(c.expect), std::string::npos) << c.file << "\n" << r.output;
+      EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+      EXPECT_FALSE(fs::exists(out)) << command << " wrote " << out;
+    }
+}
+
+// Each command's own help (options, an example, exit codes); --version names the libraries.
+TEST(Cli, CommandHelpAndVersion) {
+  for (const std::string command : {"run", "particle", "transport", "continuum", "compare", "sweep",
+                                    "stability", "bench", "check-case", "print-parameters"}) {
+    const Result r = run(command + " --help");
+    EXPECT_EQ(r.code, 0) << command;
+    EXPECT_EQ(r.output.rfind("twinflow " + command, 0), 0u) << r.output;
+    EXPECT_NE(r.output.find("example"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("exit codes"), std::string::npos) << r.output;
+  }
+  const Result help = run("--help");
+  EXPECT_NE(help.output.find("6 an output"), std::string::npos) << help.output;
+  // The command column is aligned: every description starts in the same column.
+  std::istringstream lines(help.output.substr(help.output.find("commands:")));
+  std::string line;
+  std::getline(lines, line);
+  std::size_t column = 0;
+  while (std::getline(lines, line) && !line.empty()) {
+    const auto gap = line.find("  ", 2);
+    ASSERT_NE(gap, std::string::npos) << line;
+    const auto start = line.find_first_not_of(' ', gap);
+    if (column == 0) column = start;
+    EXPECT_EQ(start, column) << line;
+  }
+  const Result version = run("--version");
+  EXPECT_EQ(version.code, 0);
+  for (const char* part : {"twinflow ", "(git ", "deal.II 9.", "HDF5 1.", "MPI "})
+    EXPECT_NE(version.output.find(part), std::string::npos) << version.output;
+}
+
 TEST(Cli, MissingFileUnknownSetKeyAndBadValues) {
   const fs::path out = fresh_dir("misc");
   const std::string good = std::string(TWINFLOW_SOURCE_DIR) + "/cases/equilibrium_ideal_3d.prm";

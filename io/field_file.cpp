@@ -384,6 +384,13 @@ private:
 
 // ---- public ------------------------------------------------------------------------------------
 
+std::string hdf5_version() {
+  unsigned major = 0, minor = 0, release = 0;
+  H5get_libversion(&major, &minor, &release);
+  return "HDF5 " + std::to_string(major) + "." + std::to_string(minor) + "." +
+         std::to_string(release);
+}
+
 void Grid::validate() const {
   if (dim < 1 || dim > 3) throw std::invalid_argument("Grid: dim must be 1, 2 or 3");
   for (int d = 0; d < 3; ++d) {

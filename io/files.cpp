@@ -96,6 +96,11 @@ std::string content_hash(const std::string& text) {
   return hex.str();
 }
 
+std::string version_line() {
+  return std::string("twinflow ") + kVersion + " (git " + kGitRevision + ", " + kCompiler + ", " +
+         kBuildType + ")";
+}
+
 Json provenance() {
   Json j = Json::object();
   j["twinflow_git_revision"] = kGitRevision;

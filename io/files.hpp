@@ -48,6 +48,9 @@ private:
 
 // Fields every stage's summary.json carries: versions, git revision.
 Json provenance();
+// "twinflow 0.1.0 (git REV, COMPILER, BUILD TYPE)" and "HDF5 1.10.8": for --version.
+std::string version_line();
+std::string hdf5_version();
 
 // FNV-1a 64 of `text` as 16 hex digits: names results by their inputs (stage reuse, caches).
 std::string content_hash(const std::string& text);

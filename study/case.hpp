@@ -37,6 +37,7 @@ struct CaseParameters {
   transport::TransportParameters transport;
   continuum::ContinuumParameters continuum;
   TwinChoice twin;
+  double checkpoint_interval_minutes = 10; // Particle/Checkpoint interval; 0: when stopped only
   compare::CompareParameters compare;
   StabilityBounds stability;
 };

@@ -21,7 +21,7 @@ io::Json measurement_inputs(const Case& c, const particle::ParticleParameters& p
     const bool fluid = path.rfind("Particle/", 0) == 0 && path.rfind("Particle/Walls/", 0) != 0 &&
                        path != "Particle/Steps" && path != "Particle/Equilibration steps" &&
                        path != "Particle/Initial velocities" &&
-                       path != "Particle/Initial internal energy";
+                       path != "Particle/Initial internal energy" && !changes_no_result(path);
     if (fluid) j[path] = value;
   }
   j["dimension"] = p.dim;

@@ -24,6 +24,16 @@ Result run(const std::string& args) {
   return twinflow::testing::run_twinflow(args);
 }
 
+// A shell command as given (e.g. the hint an interrupted run prints): exit code and output.
+Result run_command(const std::string& command) {
+  FILE* pipe = popen((command + " 2>&1").c_str(), "r");
+  std::string out;
+  std::array<char, 4096> buf{};
+  while (fgets(buf.data(), buf.size(), pipe)) out += buf.data();
+  const int status = pclose(pipe);
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+}
+
 fs::path fresh_dir(const std::string& name) {
   return twinflow::testing::fresh_dir("cli_test", name);
 }
@@ -203,8 +213,24 @@ TEST(Cli, InterruptedRunRestartsToIdenticalOutputs) {
       run("particle " + c + " --out " + parts.string() + size + " --seed 99 --restart");
   EXPECT_EQ(changed.code, 2);
   EXPECT_NE(changed.output.find("other case parameters"), std::string::npos) << changed.output;
-  const Result resumed = run("particle " + c + " --out " + parts.string() + size + " --restart");
-  ASSERT_EQ(resumed.code, 0) << resumed.output;
+  // The hint is the exact command: every option of the stopped run, shell-quoted, --restart.
+  const std::string tag = "continue with: ";
+  const auto at = stopped.output.find(tag);
+  ASSERT_NE(at, std::string::npos) << stopped.output;
+  const std::string hint =
+      stopped.output.substr(at + tag.size(), stopped.output.find('\n', at) - at - tag.size());
+  EXPECT_NE(hint.find("'Particle/Equilibration steps=500'"), std::string::npos) << hint;
+  EXPECT_NE(hint.find("--threads 1"), std::string::npos) << hint;
+  EXPECT_NE(hint.find("--restart"), std::string::npos) << hint;
+  // It keeps --wall-time 0.5: each run continues for half a second, until one finishes.
+  Result resumed = run_command("TWINFLOW_CACHE=off " + hint);
+  for (int again = 0; resumed.code == 5 && again < 40; ++again) {
+    EXPECT_NE(resumed.output.find(hint), std::string::npos) << "the same hint each time";
+    resumed = run_command("TWINFLOW_CACHE=off " + hint);
+  }
+  ASSERT_EQ(resumed.code, 0) << hint << "\n" << resumed.output;
+  EXPECT_NE(resumed.output.find("resumed from step "), std::string::npos) << resumed.output;
+  EXPECT_NE(resumed.output.find("(checkpoint of 20"), std::string::npos) << resumed.output;
   EXPECT_FALSE(fs::exists(parts / "particle" / "checkpoint.twfc"));
   for (const char* f :
        {"thermo.csv", "fields.csv", "histograms.csv", "rdf.csv", "wall_layers.csv"}) {
@@ -223,6 +249,38 @@ TEST(Cli, InterruptedRunRestartsToIdenticalOutputs) {
   EXPECT_EQ(term.code, 5) << term.output;
   EXPECT_NE(term.output.find("interrupted by a signal"), std::string::npos) << term.output;
   EXPECT_TRUE(fs::exists(killed / "particle" / "checkpoint.twfc"));
+}
+
+// kill -9 after the first periodic checkpoint (Particle/Checkpoint interval): --restart continues
+// from it to outputs byte-identical to an uninterrupted run's.
+TEST(Cli, KilledRunRestartsFromItsPeriodicCheckpointToIdenticalOutputs) {
+  const std::string c = std::string(TWINFLOW_SOURCE_DIR) + "/cases/heated_cavity_2d.prm";
+  const std::string size =
+      " --set 'Particle/Equilibration steps=500' --set 'Particle/Steps=4000' --threads 1";
+  const fs::path whole = fresh_dir("kill_whole"), killed = fresh_dir("kill_parts");
+  ASSERT_EQ(run("particle " + c + " --out " + whole.string() + size).code, 0);
+  const fs::path checkpoint = killed / "particle" / "checkpoint.twfc";
+  const Result kill = run("particle " + c + " --out " + killed.string() + size +
+                          " --set 'Particle/Checkpoint interval=0.005' 2>&1 & pid=$!; "
+                          "until [ -f " +
+                          checkpoint.string() +
+                          " ] || ! kill -0 $pid 2>/dev/null; do sleep 0.02; done; "
+                          "kill -KILL $pid; wait $pid");
+  ASSERT_TRUE(fs::exists(checkpoint)) << kill.output;
+  ASSERT_FALSE(fs::exists(killed / "particle" / "summary.json")) << "finished before the kill";
+  // The interval changes no result: a restart with the default interval continues it.
+  const Result resumed = run("particle " + c + " --out " + killed.string() + size + " --restart");
+  ASSERT_EQ(resumed.code, 0) << resumed.output;
+  EXPECT_NE(resumed.output.find("resumed from step "), std::string::npos) << resumed.output;
+  EXPECT_FALSE(fs::exists(checkpoint));
+  for (const char* f : {"thermo.csv", "fields.csv", "histograms.csv", "rdf.csv", "wall_layers.csv",
+                        "blocks.csv", "correlations.csv"}) {
+    std::ifstream a(whole / "particle" / f), b(killed / "particle" / f);
+    std::stringstream sa, sb;
+    sa << a.rdbuf(), sb << b.rdbuf();
+    EXPECT_EQ(sa.str(), sb.str()) << f;
+    EXPECT_FALSE(sa.str().empty()) << f;
+  }
 }
 
 // `run` on a tiny cavity: every stage, then compare's metrics; the same command again reuses

@@ -126,7 +126,12 @@ bool restore_from_cache(const fs::path& entry, const io::StageDirectory& stage, 
   try {
     summary = io::read_json(entry / "summary.json");
   } catch (const std::exception& e) {
-    std::cerr << "transport: cache entry " << entry.string() << " unreadable (" << e.what()
+    // The parser's message may quote the damaged bytes: one printable line of it.
+    std::string why = e.what();
+    why = why.substr(0, why.find('\n')).substr(0, 160);
+    for (char& ch : why)
+      if (static_cast<unsigned char>(ch) < 32 || static_cast<unsigned char>(ch) > 126) ch = '?';
+    std::cerr << "transport: cache entry " << entry.string() << " unreadable (" << why
               << "): measuring\n";
     return false;
   }

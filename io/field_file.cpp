@@ -416,6 +416,9 @@ FieldFile::FieldFile(fs::path path_without_extension, Grid grid)
   std::error_code ignored;
   fs::remove(h5_path(), ignored);
   fs::remove(xdmf_path(), ignored);
+  fs::path stale = h5_path(); // what earlier versions wrote before renaming (a killed run's)
+  stale += ".tmp";
+  fs::remove(stale, ignored);
 }
 
 fs::path FieldFile::h5_path() const {

@@ -99,19 +99,114 @@ int bench(const CommandLine& cl) {
 
 } // namespace
 
+// The options every stage command takes, and the exit codes (docs/usage.md, "Exit codes").
+#define TWINFLOW_STAGE_OPTIONS                                                                     \
+  "  --out DIR, -o DIR     run directory (default: twinflow-runs/<case name>)\n"                   \
+  "  --set 'S/Key=value'   override a case key (repeatable; twinflow print-parameters lists "      \
+  "them)\n"                                                                                        \
+  "  --seed N              the same as --set Particle/Seed=N\n"                                    \
+  "  --threads N, -t N     OpenMP threads (default: every core; results are the same for any N)\n" \
+  "  --force               overwrite an earlier run's results\n"
+#define TWINFLOW_RESTART_OPTIONS                                                                   \
+  "  --wall-time T         checkpoint and stop after T (3600, 90m, 2h); continue with --restart\n" \
+  "  --restart             continue an interrupted particle run from its checkpoint\n"
+#define TWINFLOW_EXIT_CODES                                                                        \
+  "exit codes: 0 done, 1 internal failure, 2 bad input (nothing written), 4 the particle run\n"    \
+  "went unstable, 5 interrupted with a checkpoint (the message prints the command that\n"          \
+  "continues), 6 an output could not be written (disk full, permission denied: the message\n"      \
+  "names the file and the reason; no incomplete file is left under a final name)\n"
+
 const std::vector<Command>& commands() {
   static const std::vector<Command> table = {
-      {"run", "CASE", "all stages: particle, transport, continuum twins, compare and report", run},
-      {"particle", "CASE", "the DPDE particle scene", particle},
-      {"transport", "CASE", "the fluid's coefficients: estimated and measured", transport},
-      {"continuum", "CASE", "the deal.II continuum twin", continuum},
-      {"compare", "RUNDIR", "compare the twins of a finished run (and write its report)", compare},
-      {"sweep", "CASE", "a grid of paired runs (--vary, --rayleigh)", sweep},
-      {"stability", "CASE", "classify particle runs over a parameter grid (--vary)", stability},
-      {"bench", "", "particle-steps/s of the particle core", bench},
-      {"check-case", "CASE", "validate a case file and print its resolved parameters", check_case},
+      {"run", "CASE", "all stages: particle, transport, continuum twins, compare and report", run,
+       "twinflow run CASE [options]\n\n"
+       "All stages into RUNDIR: particle/, transport/, continuum/ (nominal twin),\n"
+       "continuum_calibrated/ (walled scenes), compare/ and report/report.html. A stage whose\n"
+       "inputs are unchanged is reused; changed particle inputs need --force.\n\n"
+       "options:\n" TWINFLOW_STAGE_OPTIONS TWINFLOW_RESTART_OPTIONS
+       "\nexample (every stage in under a minute):\n"
+       "  twinflow run cases/quickstart_2d.prm --out runs/quickstart\n\n" TWINFLOW_EXIT_CODES},
+      {"particle", "CASE", "the DPDE particle scene", particle,
+       "twinflow particle CASE [options]\n\n"
+       "The case's Scene and Particle sections as DPDE particles into RUNDIR/particle/\n"
+       "(summary.json, fields.h5 + fields.xdmf, thermo.csv, ...). Checkpoints every\n"
+       "Particle/Checkpoint interval minutes (default 10) and when stopped (Ctrl-C, SIGTERM).\n\n"
+       "options:\n" TWINFLOW_STAGE_OPTIONS TWINFLOW_RESTART_OPTIONS "\nexample:\n"
+       "  twinflow particle cases/heated_cavity_2d.prm --out runs/cavity --set "
+       "'Particle/Steps=4000'\n\n" TWINFLOW_EXIT_CODES},
+      {"transport", "CASE", "the fluid's coefficients: estimated and measured", transport,
+       "twinflow transport CASE [options]\n\n"
+       "The fluid's coefficients at the case's state point into RUNDIR/transport/: theory, and\n"
+       "measured D, p, alpha (kappa and eta with Transport/Measure kappa and eta = true).\n"
+       "Measurements are cached in $TWINFLOW_CACHE (default ~/.cache/twinflow; off: none).\n\n"
+       "options:\n" TWINFLOW_STAGE_OPTIONS "\nexample:\n"
+       "  twinflow transport cases/thermal_relaxation.prm --out "
+       "runs/relaxation\n\n" TWINFLOW_EXIT_CODES},
+      {"continuum", "CASE", "the deal.II continuum twin", continuum,
+       "twinflow continuum CASE [options]\n\n"
+       "The case's continuum twin (Boussinesq, low-Mach or heat conduction) into\n"
+       "RUNDIR/continuum/ (summary.json, fields.h5 + fields.xdmf, bins.csv). With\n"
+       "Continuum/Coefficients/Source = transport it needs RUNDIR/transport/ first.\n\n"
+       "options:\n" TWINFLOW_STAGE_OPTIONS "\nexample:\n"
+       "  twinflow continuum cases/continuum_de_vahl_davis_1e4.prm --out "
+       "runs/dvd\n\n" TWINFLOW_EXIT_CODES},
+      {"compare", "RUNDIR", "compare the twins of a finished run (and write its report)", compare,
+       "twinflow compare RUNDIR [--set 'Compare/...=value' ...]\n\n"
+       "The twins' distances to the particle run of RUNDIR (the --out of twinflow run), with\n"
+       "error bars, into RUNDIR/compare/ (metrics.json, bins.csv, ...) and RUNDIR/report/.\n\n"
+       "options:\n"
+       "  --set 'S/Key=value'   Transport/, Continuum/ and Compare/ keys over the recorded case\n"
+       "\nexample:\n"
+       "  twinflow compare runs/quickstart\n\n" TWINFLOW_EXIT_CODES},
+      {"sweep", "CASE", "a grid of paired runs (--vary, --rayleigh)", sweep,
+       "twinflow sweep CASE --out DIR --vary 'Section/Key=V1,V2,...' [--vary ...] [options]\n\n"
+       "`run` at every point of a grid (the Cartesian product of the --vary axes) into\n"
+       "DIR/points/NNN/, one table DIR/sweep.csv and a report. The same command again\n"
+       "continues an interrupted sweep.\n\n"
+       "options:\n"
+       "  --vary 'S/Key=V1,V2'  one axis (repeatable; vector components separated by spaces)\n"
+       "  --rayleigh R1,R2      target Rayleigh numbers, reached by scaling |g|\n"
+       "  --jobs N, -j N        points run at once (default: cores / --threads)\n"
+       "  --out, --set, --threads, --force as for run\n"
+       "\nexample:\n"
+       "  twinflow sweep cases/quickstart_2d.prm --out runs/seeds --vary 'Particle/Seed=1,2,3'\n\n"
+       "exit codes: 0 done (however many points failed), 2 bad input (nothing written),\n"
+       "5 interrupted (the same command continues), 6 an output could not be written\n"},
+      {"stability", "CASE", "classify particle runs over a parameter grid (--vary)", stability,
+       "twinflow stability CASE --out DIR --vary 'Section/Key=V1,V2,...' [options]\n\n"
+       "`particle` at every point of a grid, each classified (stable, energy_drift,\n"
+       "negative_internal_energy, ...) into DIR/stability.csv and a report.\n\n"
+       "options:\n"
+       "  --vary 'S/Key=V1,V2'  one axis (repeatable)\n"
+       "  --jobs N, -j N        points run at once (default: cores / --threads)\n"
+       "  --out, --set, --threads, --force as for run\n"
+       "\nexample:\n"
+       "  twinflow stability cases/stiff_cavity.prm --out runs/map --vary 'Particle/Time "
+       "step=0.005,0.01'\n\n"
+       "exit codes: 0 done (however many points failed), 2 bad input (nothing written),\n"
+       "5 interrupted (the same command continues), 6 an output could not be written\n"},
+      {"bench", "", "particle-steps/s of the particle core", bench,
+       "twinflow bench [--out DIR] [--set 'Bench/Key=value' ...]\n\n"
+       "Particle-steps/s per integrator, scene, size and thread count into DIR/bench/\n"
+       "(default twinflow-runs/bench). Keys: Bench/N, Bench/N2D, Bench/Scenes,\n"
+       "Bench/Integrators, Bench/Threads, Bench/Skin, Bench/Noise, Bench/Steps, Bench/Thermo.\n"
+       "\nexample:\n"
+       "  twinflow bench --set 'Bench/N=6000' --set 'Bench/Threads=1,2'\n\n" TWINFLOW_EXIT_CODES},
+      {"check-case", "CASE", "validate a case file and print its resolved parameters", check_case,
+       "twinflow check-case CASE [--set 'Section/Key=value' ...]\n\n"
+       "Loads the case as every stage would (includes, --set, every value checked) and prints\n"
+       "the resolved parameters. Writes nothing.\n"
+       "\nexample:\n"
+       "  twinflow check-case cases/quickstart_2d.prm --set 'Particle/Steps=2000'\n\n"
+       "exit codes: 0 valid, 2 not (one line naming file, line, key and the allowed range)\n"},
       {"print-parameters", "", "every parameter with its default, range and documentation",
-       print_parameters},
+       print_parameters,
+       "twinflow print-parameters\n\n"
+       "Every case-file key with its default, allowed values and documentation, as a valid\n"
+       "case file (the reference documentation of case files).\n"
+       "\nexample:\n"
+       "  twinflow print-parameters > all-keys.prm\n\n"
+       "exit codes: 0\n"},
   };
   return table;
 }

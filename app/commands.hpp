@@ -25,6 +25,8 @@ struct Command {
   const char* arguments; // "CASE", "RUNDIR" or ""
   const char* help;
   int (*run)(const CommandLine&);
+  // `twinflow COMMAND --help`: its options, an example, what it writes, its exit codes.
+  const char* details;
 };
 const std::vector<Command>& commands();
 

@@ -2,10 +2,13 @@
 
 #include <boost/program_options.hpp>
 
+#include <deal.II/base/config.h>
 #include <deal.II/base/mpi.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <iostream>
 #include <map>
 
@@ -14,6 +17,7 @@
 
 #include "app/commands.hpp"
 #include "io/files.hpp"
+#include "study/case.hpp"
 
 namespace po = boost::program_options;
 using namespace twinflow;
@@ -27,13 +31,59 @@ const app::Command* find_command(const std::string& name) {
 }
 
 void usage(std::ostream& out, const po::options_description& opts) {
-  out << "usage: twinflow COMMAND [CASE|RUNDIR] [options]\n\ncommands:\n";
+  out << "usage: twinflow COMMAND [CASE|RUNDIR] [options]\n"
+         "       twinflow COMMAND --help      (that command's options, an example, exit codes)\n"
+         "       twinflow --version\n\ncommands:\n";
+  std::size_t width = 0;
+  for (const auto& c : app::commands())
+    width = std::max(width, std::string(c.name).size() + 1 + std::string(c.arguments).size());
   for (const auto& c : app::commands()) {
-    const std::string head = std::string(c.name) + " " + c.arguments;
-    out << "  " << head << std::string(head.size() < 24 ? 24 - head.size() : 1, ' ') << c.help
-        << "\n";
+    std::string head = std::string(c.name) + (*c.arguments ? " " : "") + c.arguments;
+    head.resize(width + 2, ' ');
+    out << "  " << head << c.help << "\n";
   }
-  out << "\n" << opts;
+  out << "\n"
+      << opts
+      << "\nexit codes: 0 done, 1 internal failure, 2 bad input (nothing written), 4 the particle\n"
+         "run went unstable, 5 interrupted with a checkpoint (--restart continues), 6 an output\n"
+         "could not be written (disk full, permission denied; the message names file and reason)\n"
+         "\nfirst run: twinflow run cases/quickstart_2d.prm (every stage in under a minute)\n";
+}
+
+void version(std::ostream& out) {
+  int major = 0, minor = 0, length = 0;
+  MPI_Get_version(&major, &minor);
+  char library[MPI_MAX_LIBRARY_VERSION_STRING] = {};
+  MPI_Get_library_version(library, &length);
+  std::string mpi_library(library, static_cast<std::size_t>(std::max(length, 0)));
+  mpi_library = mpi_library.substr(0, mpi_library.find_first_of(",\n"));
+  out << io::version_line() << "\n"
+      << "deal.II " << DEAL_II_PACKAGE_VERSION << ", " << io::hdf5_version() << ", MPI " << major
+      << "." << minor << " (" << mpi_library << ")\n";
+}
+
+// A word as a POSIX shell reads it back: bare if it has only safe characters, else in single
+// quotes ('\'' for a quote inside).
+std::string shell_quoted(const std::string& word) {
+  if (!word.empty() &&
+      word.find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789"
+                             "_-./=:,+@%") == std::string::npos)
+    return word;
+  std::string out = "'";
+  for (char ch : word) out += ch == '\'' ? std::string("'\\''") : std::string(1, ch);
+  return out + "'";
+}
+
+// The command line as typed, every option kept, with --restart: what continues an interrupted
+// run (the same case, --set, --threads, --seed, --out; --restart once).
+std::string continue_command(int argc, char** argv) {
+  std::string out = shell_quoted(argv[0]);
+  bool restart = false;
+  for (int i = 1; i < argc; ++i) {
+    restart |= std::string(argv[i]) == "--restart";
+    out += " " + shell_quoted(argv[i]);
+  }
+  return restart ? out : out + " --restart";
 }
 
 // "3600", "90m", "2h", "30s" -> seconds
@@ -102,6 +152,7 @@ int main(int argc, char** argv) {
                                             "run directory (default: twinflow-runs/<case name>)")(
       "set,s", po::value<std::vector<std::string>>()->composing(),
       "override a case parameter: --set 'Particle/Time step=0.01' (repeatable)")(
+      "version", "version, git revision, deal.II, HDF5 and MPI versions")(
       "threads,t", po::value<int>(), "OpenMP threads")("seed", po::value<long>(),
                                                        "random seed (Particle/Seed)")(
       "force", "overwrite an earlier run's results")(
@@ -127,12 +178,21 @@ int main(int argc, char** argv) {
     po::variables_map vm;
     po::store(po::command_line_parser(argc, argv).options(all).positional(positional).run(), vm);
     po::notify(vm);
+    if (vm.count("version")) {
+      version(std::cout);
+      return 0;
+    }
+    const app::Command* command =
+        vm.count("command") ? find_command(vm["command"].as<std::string>()) : nullptr;
+    if (vm.count("help") && command) {
+      std::cout << command->details;
+      return 0;
+    }
     if (vm.count("help") || !vm.count("command")) {
       usage(vm.count("help") ? std::cout : std::cerr, opts);
       return vm.count("help") ? 0 : 2;
     }
     cl.command = vm["command"].as<std::string>();
-    const app::Command* command = find_command(cl.command);
     if (!command)
       throw io::InputError("unknown command '" + cl.command + "' (twinflow --help lists them)");
     if (vm.count("target")) cl.target = vm["target"].as<std::string>();
@@ -149,6 +209,7 @@ int main(int argc, char** argv) {
       omp_set_num_threads(cl.run.threads);
     }
     cl.run.force = vm.count("force") > 0;
+    cl.run.continue_command = continue_command(argc, argv);
     cl.run.restart = vm.count("restart") > 0;
     if (vm.count("wall-time"))
       cl.run.wall_time_limit = parse_duration(vm["wall-time"].as<std::string>());
@@ -176,6 +237,12 @@ int main(int argc, char** argv) {
   } catch (const io::InputError& e) {
     std::cerr << "twinflow: error: " << e.what() << "\n";
     return 2;
+  } catch (const io::OutputError& e) {
+    std::cerr << "twinflow: output failed: " << e.what() << "\n";
+    return study::kExitOutputFailed;
+  } catch (const std::filesystem::filesystem_error& e) {
+    std::cerr << "twinflow: output failed: " << e.what() << "\n";
+    return study::kExitOutputFailed;
   } catch (const std::exception& e) {
     std::cerr << "twinflow: failed: " << e.what() << "\n";
     return 1;

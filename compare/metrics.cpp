@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
+#include <sstream>
+#include <string>
+#include <vector>
 
 #include "io/files.hpp"
 #include "particle/wall_summary.hpp"
@@ -10,6 +13,38 @@
 namespace twinflow::compare {
 
 namespace fs = std::filesystem;
+
+namespace {
+// A number for a person: 4 significant digits; "n/a" where there is none.
+std::string say(double value, int digits = 4) {
+  if (!std::isfinite(value)) return "n/a";
+  std::ostringstream s;
+  s << std::setprecision(digits) << value;
+  return s.str();
+}
+
+// What one twin's verdict line says, and whether it agrees with the particles.
+struct TwinVerdict {
+  std::string line;
+  bool agrees = true;
+  std::vector<std::string> disagreements;
+};
+
+// A difference counts as within noise when the L2 exceeds the noise by at most this many of its
+// standard errors; Nu agrees when |particle - twin| is at most this many combined standard
+// errors (the report's rule, compare/report/run.py WITHIN_NOISE_STDERRS).
+constexpr double kWithinStderrs = 2;
+
+void distance_verdict(TwinVerdict& v, const char* name, const Distance& d) {
+  const bool within =
+      std::isfinite(d.l2) && std::isfinite(d.noise) &&
+      (d.l2 <= d.noise || (d.l2_stderr > 0 && d.l2 - d.noise <= kWithinStderrs * d.l2_stderr));
+  v.line += std::string("; ") + name + " L2 " + say(d.l2, 3) + " +- " + say(d.l2_stderr, 2) +
+            " against noise " + say(d.noise, 3) + ": " +
+            (within ? "within noise" : "NOT within noise");
+  if (!within) v.agrees = false, v.disagreements.push_back(name);
+}
+} // namespace
 
 BinnedState ParticleRecord::final_state() const {
   BinnedState s = particle_state(fields.grid, fields.snapshots.back());
@@ -196,8 +231,10 @@ Comparison compare_twins(const ParticleRecord& run, const std::vector<TwinRecord
         << io::number(particle, {"nusselt_hot_wall"}) << ", cold wall "
         << io::number(particle, {"nusselt_cold_wall"}) << "; with 20 blocks: +- "
         << io::number(particle, {"nusselt_stderr_20_blocks"}) << ")\n";
+  std::vector<std::pair<std::string, TwinVerdict>> verdicts;
   for (const TwinRecord& t : twins) {
     io::Json j = io::Json::object();
+    TwinVerdict verdict;
     j["stage"] = t.stage;
     if (t.name == "calibrated") j["calibration"] = calibration_description(compare, twin);
     const auto T = temperature_distance(final_state, t.state, interior, dT);
@@ -206,6 +243,7 @@ Comparison compare_twins(const ParticleRecord& run, const std::vector<TwinRecord
     table["temperature_l2_" + t.name + "_stderr"] = T.l2_stderr;
     table["temperature_l2_noise"] = T.noise;
     table["temperature_max_" + t.name] = T.max;
+    distance_verdict(verdict, "temperature", T);
     log << "compare: " << t.name << " twin: temperature L2 " << T.l2 << " +- " << T.l2_stderr
         << " (noise " << T.noise << "), max " << T.max << " +- " << T.max_stderr;
     if (compare_velocity) {
@@ -214,6 +252,7 @@ Comparison compare_twins(const ParticleRecord& run, const std::vector<TwinRecord
       table["velocity_l2_" + t.name] = v.l2;
       table["velocity_l2_" + t.name + "_stderr"] = v.l2_stderr;
       table["velocity_l2_noise"] = v.noise;
+      distance_verdict(verdict, "velocity", v);
       log << "; velocity L2 " << v.l2 << " +- " << v.l2_stderr << " (noise " << v.noise << ")";
     }
     if (!t.state.density.empty()) { // the low-Mach twin's n(P, T) against the particles'
@@ -258,7 +297,25 @@ Comparison compare_twins(const ParticleRecord& run, const std::vector<TwinRecord
                     : " (coefficients' errors)");
       log << " (own dT: " << nu_own << "); particle / twin heat flux - 1 = " << q_particle / q - 1
           << "\n";
+      const double nu_p = io::number(particle, {"nusselt"});
+      const double se_p = io::number(particle, {"nusselt_stderr"});
+      const double se_t = rel * q / q0;
+      const double combined = std::hypot(se_p, std::isfinite(se_t) ? se_t : 0.0);
+      const double over = std::fabs(nu_p - q / q0) / combined;
+      const bool within = std::isfinite(over) && over <= kWithinStderrs;
+      std::ostringstream nu;
+      nu << "Nu " << say(nu_p) << " +- " << say(se_p, 2) << " (particle) against " << say(q / q0)
+         << " +- " << (std::isfinite(se_t) ? say(se_t, 2) : "n/a (no measured coefficients)")
+         << " (twin), " << std::showpos << std::fixed << std::setprecision(1)
+         << 100 * (q_particle / q - 1) << std::noshowpos << "%, " << say(over, 2)
+         << " combined errors: " << (within ? "within errors" : "NOT within errors");
+      verdict.line = nu.str() + verdict.line;
+      if (!within)
+        verdict.agrees = false, verdict.disagreements.insert(verdict.disagreements.begin(), "Nu");
     }
+    if (verdict.line.rfind("; ", 0) == 0) verdict.line.erase(0, 2);
+    verdict.line = "particle vs " + t.name + " twin: " + verdict.line;
+    verdicts.emplace_back(t.name, verdict);
     j["rayleigh"] = io::number(t.summary, {"dimensionless", "rayleigh"});
     table["rayleigh_" + t.name] = io::number(t.summary, {"dimensionless", "rayleigh"});
     table["wall_seconds_continuum" + std::string(t.name == "nominal" ? "" : "_" + t.name)] =
@@ -268,6 +325,23 @@ Comparison compare_twins(const ParticleRecord& run, const std::vector<TwinRecord
   table["rayleigh"] = io::number(nominal.summary, {"dimensionless", "rayleigh"});
   table["prandtl"] = io::number(nominal.summary, {"dimensionless", "prandtl"});
   metrics["twins"] = twins_json;
+  // The verdict, first in the report and last on the console: one headline, one line per twin.
+  {
+    std::string headline = "verdict:";
+    for (std::size_t i = 0; i < verdicts.size(); ++i) {
+      const auto& [name, v] = verdicts[i];
+      std::string which;
+      for (std::size_t k = 0; k < v.disagreements.size(); ++k)
+        which += (k ? ", " : "") + v.disagreements[k];
+      headline += std::string(i ? ";" : "") + " the " + name + " twin " +
+                  (v.agrees ? "matches the particles within errors"
+                            : "differs from the particles beyond errors (" + which + ")");
+    }
+    io::Json lines = io::Json::array();
+    lines.push_back(headline);
+    for (const auto& [name, v] : verdicts) lines.push_back(v.line);
+    metrics["verdict"] = lines;
+  }
 
   // Error against run time: the same distances for each cumulative snapshot of the run.
   std::ostringstream series;

@@ -22,6 +22,8 @@
 
 #include "continuum/parameters.hpp"
 #include "continuum/results.hpp"
+#include "io/field_file.hpp"
+#include "io/files.hpp"
 
 namespace twinflow::continuum::detail {
 
@@ -205,8 +207,69 @@ void probe(const dealii::DoFHandler<dim>& dofs, const dealii::Vector<double>& so
   }
 }
 
-// HDF5 (parallel flavour, one process) + an XDMF file that ParaView opens; both written to a
-// temporary name and renamed, so an interrupted run leaves no half-written file.
+// The mesh and solution of `filter` as deal.II's write_hdf5_parallel lays them out (datasets
+// "nodes", "cells" and one per data set, which create_xdmf_entry references). One process: built
+// in memory and written by io::write_hdf5_datasets (temporary name, renamed when complete, every
+// HDF5 handle closed on every path: a full disk is an io::OutputError naming the file and the
+// reason, never a half-written file or a crash at MPI_Finalize). Several processes: deal.II's
+// collective writer into a temporary name, renamed by the root.
+inline void write_filtered_hdf5(
+    const dealii::DataOutBase::DataOutFilter& filter, bool with_mesh,
+    const std::filesystem::path& mesh_file, const std::filesystem::path& solution_file,
+    int spacedim,
+    const std::function<void(const std::string&, const std::string&)>& parallel_writer,
+    const MPI_Comm comm) {
+  if (dealii::Utilities::MPI::n_mpi_processes(comm) > 1) {
+    std::filesystem::path mesh_tmp = mesh_file, solution_tmp = solution_file;
+    mesh_tmp += ".tmp", solution_tmp += ".tmp";
+    parallel_writer(mesh_tmp.string(), solution_tmp.string());
+    if (dealii::Utilities::MPI::this_mpi_process(comm) == 0) {
+      if (with_mesh) std::filesystem::rename(mesh_tmp, mesh_file);
+      if (!with_mesh || solution_file != mesh_file)
+        std::filesystem::rename(solution_tmp, solution_file);
+    }
+    return;
+  }
+  using io::Hdf5Dataset;
+  std::vector<Hdf5Dataset> mesh, solution;
+  std::vector<double> nodes;
+  std::vector<unsigned int> cells;
+  if (with_mesh) {
+    filter.fill_node_data(nodes);
+    filter.fill_cell_data(0, cells);
+    const std::uint64_t n_nodes = filter.n_nodes(), n_cells = filter.n_cells();
+    const std::uint64_t node_columns = spacedim < 2 ? 2 : spacedim;
+    mesh.push_back({"nodes", {n_nodes, node_columns}, Hdf5Dataset::Type::float64, nodes.data()});
+    mesh.push_back({"cells",
+                    {n_cells, n_cells ? cells.size() / n_cells : 0},
+                    Hdf5Dataset::Type::uint32,
+                    cells.data()});
+  }
+  std::vector<Hdf5Dataset>& data = solution_file == mesh_file ? mesh : solution;
+  for (unsigned i = 0; i < filter.n_data_sets(); ++i)
+    data.push_back({filter.get_data_set_name(i),
+                    {static_cast<std::uint64_t>(filter.n_nodes()), filter.get_data_set_dim(i)},
+                    Hdf5Dataset::Type::float64,
+                    filter.get_data_set(i)});
+  if (solution_file != mesh_file) io::write_hdf5_datasets(solution_file, solution);
+  if (with_mesh) io::write_hdf5_datasets(mesh_file, mesh);
+}
+
+// The XDMF file ParaView opens, as DataOutInterface::write_xdmf_file writes it; root only.
+template <int dim>
+void write_xdmf(const std::vector<dealii::XDMFEntry>& entries, const std::filesystem::path& file,
+                const MPI_Comm comm) {
+  if (dealii::Utilities::MPI::this_mpi_process(comm) != 0) return;
+  std::string text = "<?xml version=\"1.0\" ?>\n<!DOCTYPE Xdmf SYSTEM \"Xdmf.dtd\" []>\n"
+                     "<Xdmf Version=\"2.0\">\n  <Domain>\n    <Grid Name=\"CellTime\" "
+                     "GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+  for (const auto& entry : entries)
+    text += entry.get_xdmf_content(3, dealii::ReferenceCells::get_hypercube<dim>());
+  text += "    </Grid>\n  </Domain>\n</Xdmf>\n";
+  io::write_file_atomically(file, text);
+}
+
+// fields.h5 (mesh and solution) + fields.xdmf, each complete under its name or not there.
 template <int dim>
 void write_hdf5_xdmf(const dealii::DataOut<dim>& data_out, const std::filesystem::path& dir,
                      double time, std::vector<std::string>& files,
@@ -216,12 +279,14 @@ void write_hdf5_xdmf(const dealii::DataOut<dim>& data_out, const std::filesystem
                                               /*xdmf_hdf5_output=*/true));
   data_out.write_filtered_data(filter);
   const std::string h5 = "fields.h5", xdmf = "fields.xdmf";
-  const bool root = dealii::Utilities::MPI::this_mpi_process(comm) == 0;
-  data_out.write_hdf5_parallel(filter, (dir / (h5 + ".tmp")).string(), comm);
-  if (root) std::filesystem::rename(dir / (h5 + ".tmp"), dir / h5);
+  write_filtered_hdf5(
+      filter, true, dir / h5, dir / h5, dim,
+      [&](const std::string& mesh, const std::string&) {
+        data_out.write_hdf5_parallel(filter, mesh, comm);
+      },
+      comm);
   const std::vector<dealii::XDMFEntry> entries{data_out.create_xdmf_entry(filter, h5, time, comm)};
-  data_out.write_xdmf_file(entries, (dir / (xdmf + ".tmp")).string(), comm);
-  if (root) std::filesystem::rename(dir / (xdmf + ".tmp"), dir / xdmf);
+  write_xdmf<dim>(entries, dir / xdmf, comm);
   files.push_back(h5);
   files.push_back(xdmf);
 }
@@ -239,20 +304,18 @@ public:
         dealii::DataOutBase::DataOutFilterFlags(/*filter_duplicate_vertices=*/true,
                                                 /*xdmf_hdf5_output=*/true));
     data_out.write_filtered_data(filter);
-    const bool root = dealii::Utilities::MPI::this_mpi_process(comm_) == 0;
     const bool first = entries_.empty();
     const std::string mesh = "fields_mesh.h5";
     const std::string solution =
         "fields_" + dealii::Utilities::int_to_string(entries_.size(), 4) + ".h5";
-    data_out.write_hdf5_parallel(filter, first, (dir_ / (mesh + ".tmp")).string(),
-                                 (dir_ / (solution + ".tmp")).string(), comm_);
-    if (root) {
-      if (first) std::filesystem::rename(dir_ / (mesh + ".tmp"), dir_ / mesh);
-      std::filesystem::rename(dir_ / (solution + ".tmp"), dir_ / solution);
-    }
+    write_filtered_hdf5(
+        filter, first, dir_ / mesh, dir_ / solution, dim,
+        [&](const std::string& mesh_tmp, const std::string& solution_tmp) {
+          data_out.write_hdf5_parallel(filter, first, mesh_tmp, solution_tmp, comm_);
+        },
+        comm_);
     entries_.push_back(data_out.create_xdmf_entry(filter, mesh, solution, time, comm_));
-    data_out.write_xdmf_file(entries_, (dir_ / "fields.xdmf.tmp").string(), comm_);
-    if (root) std::filesystem::rename(dir_ / "fields.xdmf.tmp", dir_ / "fields.xdmf");
+    write_xdmf<dim>(entries_, dir_ / "fields.xdmf", comm_);
     if (first) files.push_back(mesh), files.push_back("fields.xdmf");
     files.push_back(solution);
   }

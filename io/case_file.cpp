@@ -3,6 +3,7 @@
 #include <deal.II/base/utilities.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -71,15 +72,57 @@ void Registry::set_value(const std::string& path, const std::string& value,
   it->second.source = where;
 }
 
+namespace {
+// Up to 40 characters of `line` with anything unprintable shown as \xNN (a binary file's
+// message stays one readable line).
+std::string printable_excerpt(const std::string& line, std::size_t length = 40) {
+  std::string out;
+  for (std::size_t i = 0; i < line.size() && i < length; ++i) {
+    const auto ch = static_cast<unsigned char>(line[i]);
+    if (ch >= 32 && ch < 127) {
+      out += static_cast<char>(ch);
+    } else {
+      char buf[8];
+      std::snprintf(buf, sizeof buf, "\\x%02X", ch);
+      out += buf;
+    }
+  }
+  if (line.size() > length) out += "...";
+  return out;
+}
+
+// What a case path must be before its lines are read: an existing, non-empty regular file.
+void require_case_file(const std::string& filename) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::file_status status = fs::status(filename, ec);
+  if (!fs::exists(status))
+    throw InputError(filename + ": cannot open case file for reading (no such file)");
+  if (fs::is_directory(status))
+    throw InputError(filename + ": is a directory, not a case file (give a .prm file)");
+  if (!fs::is_regular_file(status))
+    throw InputError(filename + ": is not a regular file (give a .prm file)");
+  if (fs::file_size(filename, ec) == 0 && !ec)
+    throw InputError(filename + ": is empty; a case file has 'subsection' and 'set' lines "
+                                "(twinflow print-parameters prints one with every key)");
+}
+} // namespace
+
 void Registry::parse_file(const std::string& filename) {
+  require_case_file(filename);
   std::vector<std::string> sections;
+  statements_ = 0;
   parse_stream(filename, 0, sections);
+  if (statements_ == 0)
+    throw InputError(filename + ": has no 'subsection' or 'set' line: not a case file "
+                                "(twinflow print-parameters prints one with every key)");
 }
 
 void Registry::parse_stream(const std::string& filename, int depth,
                             std::vector<std::string>& sections) {
   if (depth > 8) throw InputError(filename + ": include nested too deeply");
-  std::ifstream in(filename);
+  if (depth > 0) require_case_file(filename);
+  std::ifstream in(filename, std::ios::binary);
   if (!in) throw InputError(filename + ": cannot open case file for reading");
   const std::size_t base_depth = sections.size();
   std::string line;
@@ -87,6 +130,10 @@ void Registry::parse_stream(const std::string& filename, int depth,
   while (std::getline(in, line)) {
     ++number;
     const std::string where = filename + ":" + std::to_string(number);
+    if (line.find('\0') != std::string::npos)
+      throw InputError(where + ": a binary file, not a case file (starts '" +
+                       printable_excerpt(line) + "')");
+    if (!line.empty() && line.back() == '\r') line.pop_back(); // written on Windows
     if (const auto hash = line.find('#'); hash != std::string::npos) line.erase(hash);
     line = dealii::Utilities::trim(line);
     if (line.empty()) continue;
@@ -94,6 +141,7 @@ void Registry::parse_stream(const std::string& filename, int depth,
     const std::string word = line.substr(0, space);
     const std::string rest =
         space == std::string::npos ? "" : dealii::Utilities::trim(line.substr(space));
+    if (word == "subsection" || word == "set") ++statements_;
     if (word == "subsection") {
       sections.push_back(rest);
       if (!subsections_.count(join(sections, sections.size())))
@@ -116,7 +164,7 @@ void Registry::parse_stream(const std::string& filename, int depth,
       if (inc.is_relative()) inc = std::filesystem::path(filename).parent_path() / inc;
       parse_stream(inc.string(), depth + 1, sections);
     } else {
-      throw InputError(where + ": cannot read line '" + line +
+      throw InputError(where + ": cannot read line '" + printable_excerpt(line, 200) +
                        "' (expected subsection, end, set or include)");
     }
   }

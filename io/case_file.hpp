@@ -68,6 +68,7 @@ private:
   std::map<std::string, Entry> entries_;
   std::vector<std::string> order_;
   std::map<std::string, bool> subsections_;
+  int statements_ = 0; // 'subsection' and 'set' lines read by parse_file, includes too
 };
 
 } // namespace twinflow::io

@@ -2,6 +2,7 @@
 
 #include <hdf5.h>
 
+#include <atomic>
 #include <cmath>
 #include <cstdio>
 #include <locale>
@@ -101,7 +102,7 @@ public:
   explicit Writer(fs::path path) : path_(std::move(path)) {}
 
   [[noreturn]] void fail(const std::string& what) const {
-    throw std::runtime_error(path_.string() + ": HDF5 error writing " + what);
+    throw std::runtime_error(path_.string() + ": HDF5 error building " + what + " (in memory)");
   }
   hid_t check(hid_t id, const std::string& what) const {
     if (id < 0) fail(what);
@@ -135,29 +136,52 @@ public:
   }
   void dataset(hid_t loc, const std::string& name, const std::vector<hsize_t>& shape,
                const double* data) const {
+    dataset(loc, name, shape, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, data);
+  }
+  void dataset(hid_t loc, const std::string& name, const std::vector<hsize_t>& shape,
+               hid_t file_type, hid_t memory_type, const void* data) const {
     Hid space(check(H5Screate_simple(static_cast<int>(shape.size()), shape.data(), nullptr), name),
               H5Sclose);
-    Hid set(check(H5Dcreate2(loc, name.c_str(), H5T_IEEE_F64LE, space.get(), H5P_DEFAULT,
-                             H5P_DEFAULT, H5P_DEFAULT),
+    Hid set(check(H5Dcreate2(loc, name.c_str(), file_type, space.get(), H5P_DEFAULT, H5P_DEFAULT,
+                             H5P_DEFAULT),
                   name),
             H5Dclose);
-    check(H5Dwrite(set.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, data), name);
+    check(H5Dwrite(set.get(), memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data), name);
   }
 
 private:
   fs::path path_;
 };
 
-void write_h5(const fs::path& path, const Grid& grid, const std::vector<Snapshot>& snapshots) {
+// An HDF5 file built in memory by the core driver (no backing store): HDF5 itself never touches
+// the disk, so a full disk cannot leave it with a half-written file or with handles still open
+// at MPI_Finalize; every handle is an Hid, closed on every path, exceptions included. Returns
+// the file's bytes, which write_file_atomically stores (temporary name, rename when complete).
+template <class Fill> std::string h5_image(const fs::path& path, Fill&& fill) {
   QuietHdf5Errors quiet;
   Writer w(path);
-  // Default file access property list = sec2 driver: serial, no MPI needed.
-  Hid file(w.check(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), "file"),
+  Hid fapl(w.check(H5Pcreate(H5P_FILE_ACCESS), "file access properties"), H5Pclose);
+  w.check(H5Pset_fapl_core(fapl.get(), 1 << 20, /*backing_store=*/0), "core driver");
+  static std::atomic<unsigned> images{0}; // HDF5 refuses to create a file it holds open
+  const std::string name = path.string() + ".image." + std::to_string(images++);
+  Hid file(w.check(H5Fcreate(name.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get()), "file"),
            H5Fclose);
-  w.string_attribute(file.get(), "format", kFormatName);
-  w.scalar_attribute(file.get(), "format_version", H5T_NATIVE_INT, kFormatVersion);
+  fill(w, file.get());
+  w.check(H5Fflush(file.get(), H5F_SCOPE_GLOBAL), "file (flush)");
+  const ssize_t size = H5Fget_file_image(file.get(), nullptr, 0);
+  if (size < 0) w.fail("file (image size)");
+  std::string bytes(static_cast<std::size_t>(size), '\0');
+  if (H5Fget_file_image(file.get(), bytes.data(), bytes.size()) != size) w.fail("file (image)");
+  if (!file.close()) w.fail("file (close)");
+  return bytes;
+}
+
+void fill_h5(const Writer& w, hid_t file, const Grid& grid,
+             const std::vector<Snapshot>& snapshots) {
+  w.string_attribute(file, "format", kFormatName);
+  w.scalar_attribute(file, "format_version", H5T_NATIVE_INT, kFormatVersion);
   {
-    Hid g(w.check(H5Gcreate2(file.get(), "grid", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), "/grid"),
+    Hid g(w.check(H5Gcreate2(file, "grid", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), "/grid"),
           H5Gclose);
     const auto d = static_cast<std::size_t>(grid.dim);
     w.scalar_attribute(g.get(), "dim", H5T_NATIVE_INT, grid.dim);
@@ -170,11 +194,11 @@ void write_h5(const fs::path& path, const Grid& grid, const std::vector<Snapshot
   }
   std::vector<double> times;
   for (const Snapshot& s : snapshots) times.push_back(s.time);
-  w.dataset(file.get(), "times", {static_cast<hsize_t>(times.size())}, times.data());
+  w.dataset(file, "times", {static_cast<hsize_t>(times.size())}, times.data());
 
-  Hid all(w.check(H5Gcreate2(file.get(), "snapshots", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
-                  "/snapshots"),
-          H5Gclose);
+  Hid all(
+      w.check(H5Gcreate2(file, "snapshots", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), "/snapshots"),
+      H5Gclose);
   // Track link creation order so the reader returns the fields in the order they were given.
   Hid ordered(w.check(H5Pcreate(H5P_GROUP_CREATE), "group properties"), H5Pclose);
   w.check(H5Pset_link_creation_order(ordered.get(), H5P_CRT_ORDER_TRACKED | H5P_CRT_ORDER_INDEXED),
@@ -195,7 +219,6 @@ void write_h5(const fs::path& path, const Grid& grid, const std::vector<Snapshot
         w.dataset(g.get(), f.name + kStderrSuffix, shape, f.standard_error.data());
     }
   }
-  if (!file.close()) w.fail("file (close)");
 }
 
 // ---- XDMF --------------------------------------------------------------------------------------
@@ -361,6 +384,13 @@ private:
 
 // ---- public ------------------------------------------------------------------------------------
 
+std::string hdf5_version() {
+  unsigned major = 0, minor = 0, release = 0;
+  H5get_libversion(&major, &minor, &release);
+  return "HDF5 " + std::to_string(major) + "." + std::to_string(minor) + "." +
+         std::to_string(release);
+}
+
 void Grid::validate() const {
   if (dim < 1 || dim > 3) throw std::invalid_argument("Grid: dim must be 1, 2 or 3");
   for (int d = 0; d < 3; ++d) {
@@ -386,6 +416,9 @@ FieldFile::FieldFile(fs::path path_without_extension, Grid grid)
   std::error_code ignored;
   fs::remove(h5_path(), ignored);
   fs::remove(xdmf_path(), ignored);
+  fs::path stale = h5_path(); // what earlier versions wrote before renaming (a killed run's)
+  stale += ".tmp";
+  fs::remove(stale, ignored);
 }
 
 fs::path FieldFile::h5_path() const {
@@ -426,19 +459,29 @@ void FieldFile::append(Snapshot snapshot) {
                                   std::to_string(expected));
   }
   snapshots_.push_back(std::move(snapshot));
-
-  fs::path tmp = h5_path();
-  tmp += ".tmp";
   try {
-    write_h5(tmp, grid_, snapshots_);
-    fs::rename(tmp, h5_path());
+    // The .h5 first: it always holds every snapshot the .xdmf beside it references.
+    write_file_atomically(h5_path(), h5_image(h5_path(), [&](const Writer& w, hid_t file) {
+                            fill_h5(w, file, grid_, snapshots_);
+                          }));
     write_file_atomically(xdmf_path(), xdmf_text(grid_, snapshots_, h5_path().filename().string()));
   } catch (...) {
     snapshots_.pop_back(); // the files still describe the earlier snapshots
-    std::error_code ignored;
-    fs::remove(tmp, ignored);
     throw;
   }
+}
+
+void write_hdf5_datasets(const fs::path& path, const std::vector<Hdf5Dataset>& datasets) {
+  write_file_atomically(
+      path, h5_image(path, [&](const Writer& w, hid_t file) {
+        for (const Hdf5Dataset& d : datasets) {
+          std::vector<hsize_t> shape(d.shape.begin(), d.shape.end());
+          if (d.type == Hdf5Dataset::Type::float64)
+            w.dataset(file, d.name, shape, H5T_NATIVE_DOUBLE, H5T_NATIVE_DOUBLE, d.data);
+          else
+            w.dataset(file, d.name, shape, H5T_NATIVE_UINT, H5T_NATIVE_UINT, d.data);
+        }
+      }));
 }
 
 FieldFile::Contents FieldFile::read(const fs::path& h5_path) {

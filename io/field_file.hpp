@@ -37,9 +37,11 @@
 //   needs the data shape to equal the topology shape, and a 3D image of one cell thickness is
 //   the best-trodden path there (a Polyline would need explicit geometry and connectivity).
 //
-// Crash safety: append() writes the whole NAME.h5 to NAME.h5.tmp, closes it and renames it over
-// NAME.h5 (atomic on POSIX), then writes NAME.xdmf the same way. An interrupted run leaves either
-// the previous complete pair, or a new .h5 that holds every snapshot the old .xdmf references.
+// Crash safety: append() builds the whole NAME.h5 in memory (HDF5's core driver), writes it to
+// a temporary name, closes and renames it over NAME.h5 (atomic on POSIX), then writes NAME.xdmf
+// the same way (io::write_file_atomically). An interrupted or failed write (disk full) leaves
+// either the previous complete pair, or a new .h5 that holds every snapshot the old .xdmf
+// references, and no temporary file.
 // ---------------------------------------------------------------------------------------------
 //
 // twinflow_io links the (parallel, openmpi) HDF5 that deal.II uses, but only ever opens files with
@@ -113,5 +115,18 @@ private:
   Grid grid_;
   std::vector<Snapshot> snapshots_;
 };
+
+// One dataset of a plain HDF5 file (e.g. the continuum twin's mesh and solution, in deal.II's
+// XDMF layout): `shape` in C order, `data` holds the product of `shape` elements.
+struct Hdf5Dataset {
+  enum class Type { float64, uint32 };
+  std::string name;
+  std::vector<std::uint64_t> shape;
+  Type type = Type::float64;
+  const void* data = nullptr;
+};
+// Writes them as one file, built in memory and stored as write_file_atomically does.
+void write_hdf5_datasets(const std::filesystem::path& path,
+                         const std::vector<Hdf5Dataset>& datasets);
 
 } // namespace twinflow::io

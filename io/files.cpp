@@ -1,9 +1,12 @@
 #include "io/files.hpp"
 
+#include <fcntl.h>
 #include <unistd.h>
 
 #include <atomic>
+#include <cerrno>
 #include <cstdint>
+#include <cstring>
 #include <fstream>
 #include <iomanip>
 #include <sstream>
@@ -14,20 +17,51 @@ namespace twinflow::io {
 
 namespace fs = std::filesystem;
 
+std::string cannot_write(const fs::path& path, int error_number) {
+  return "cannot write " + path.string() + ": " + std::strerror(error_number);
+}
+
 void write_file_atomically(const fs::path& path, const std::string& content) {
   // A name of its own per process and call: concurrent writers of one path (two runs filling
   // the same cache entry) each rename a whole file.
   static std::atomic<unsigned> calls{0};
   fs::path tmp = path;
   tmp += ".tmp." + std::to_string(::getpid()) + "." + std::to_string(calls++);
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out) throw std::runtime_error("cannot write " + tmp.string());
-    out << content;
-    out.flush();
-    if (!out) throw std::runtime_error("error writing " + tmp.string());
+  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
+  if (fd < 0) throw OutputError(cannot_write(path, errno));
+  auto fail = [&](int error_number, bool open) {
+    if (open) ::close(fd);
+    ::unlink(tmp.c_str());
+    throw OutputError(cannot_write(path, error_number));
+  };
+  const char* data = content.data();
+  std::size_t left = content.size();
+  while (left > 0) {
+    const ssize_t n = ::write(fd, data, left);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      fail(errno, true);
+    }
+    data += n;
+    left -= static_cast<std::size_t>(n);
   }
-  fs::rename(tmp, path);
+  if (::close(fd) != 0) fail(errno, false); // NFS and quotas report here
+  if (::rename(tmp.c_str(), path.c_str()) != 0) fail(errno, false);
+}
+
+void remove_stale_temporaries(const fs::path& dir) {
+  std::error_code ec;
+  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    const auto at = name.rfind(".tmp");
+    if (at == std::string::npos || at == 0) continue;
+    const std::string tail = name.substr(at + 4); // "" or ".PID.N"
+    if (!tail.empty() &&
+        (tail[0] != '.' || tail.find_first_not_of(".0123456789") != std::string::npos))
+      continue;
+    std::error_code ignored;
+    if (it->is_regular_file(ignored)) fs::remove(it->path(), ignored);
+  }
 }
 
 std::string read_file(const fs::path& path) {
@@ -48,7 +82,10 @@ StageDirectory::StageDirectory(const fs::path& run_dir, const std::string& stage
 }
 
 void StageDirectory::create() const {
-  fs::create_directories(path_);
+  std::error_code ec;
+  fs::create_directories(path_, ec);
+  if (ec) throw OutputError("cannot create " + path_.string() + ": " + ec.message());
+  remove_stale_temporaries(path_);
 }
 
 std::string content_hash(const std::string& text) {
@@ -57,6 +94,11 @@ std::string content_hash(const std::string& text) {
   std::ostringstream hex;
   hex << std::hex << std::setw(16) << std::setfill('0') << h;
   return hex.str();
+}
+
+std::string version_line() {
+  return std::string("twinflow ") + kVersion + " (git " + kGitRevision + ", " + kCompiler + ", " +
+         kBuildType + ")";
 }
 
 Json provenance() {

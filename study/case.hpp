@@ -37,6 +37,7 @@ struct CaseParameters {
   transport::TransportParameters transport;
   continuum::ContinuumParameters continuum;
   TwinChoice twin;
+  double checkpoint_interval_minutes = 10; // Particle/Checkpoint interval; 0: when stopped only
   compare::CompareParameters compare;
   StabilityBounds stability;
 };
@@ -58,12 +59,19 @@ struct RunOptions {
   bool restart = false;       // continue an interrupted particle run from its checkpoint
   double wall_time_limit = 0; // seconds; 0: none. Past it a particle run checkpoints and stops
   int threads = 0;            // OpenMP threads; 0: the runtime's default
+  // The command as typed, shell-quoted, with --restart: what an interrupted run tells the user
+  // to run to continue it. Empty: the stage composes a shorter one.
+  std::string continue_command;
 };
+
+// Case keys that change no result (how often a run checkpoints): left out of every inputs hash,
+// transport cache key and checkpoint comparison, so that changing them reuses and restarts.
+bool changes_no_result(const std::string& path);
 
 std::filesystem::path run_directory(const RunOptions& options, const std::string& case_name);
 
 // Exit codes shared by the commands.
 constexpr int kExitDone = 0, kExitFailed = 1, kExitBadInput = 2, kExitNotImplemented = 3,
-              kExitUnstable = 4, kExitInterrupted = 5;
+              kExitUnstable = 4, kExitInterrupted = 5, kExitOutputFailed = 6;
 
 } // namespace twinflow::study

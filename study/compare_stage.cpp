@@ -129,6 +129,10 @@ int compare_stage(const Case& c, const fs::path& run_dir) {
   io::write_file_atomically(stage.file("profiles.csv"), result.profiles_csv);
   io::write_file_atomically(stage.file("error_vs_time.csv"), result.error_vs_time_csv);
   io::write_file_atomically(stage.file("metrics.json"), io::dump(result.metrics)); // last
+  if (const io::Json* verdict = io::find(result.metrics, {"verdict"});
+      verdict && verdict->is_array())
+    for (const auto& line : *verdict)
+      if (line.is_string()) std::cout << "compare: " << line.get<std::string>() << "\n";
   std::cout << "compare: results in " << stage.path().string()
             << " (metrics.json, bins.csv, profiles.csv, error_vs_time.csv)" << std::endl;
   write_report(run_dir);

@@ -8,6 +8,10 @@ namespace twinflow::study {
 
 namespace fs = std::filesystem;
 
+bool changes_no_result(const std::string& path) {
+  return path == "Particle/Checkpoint interval";
+}
+
 fs::path run_directory(const RunOptions& options, const std::string& case_name) {
   return options.out.empty() ? fs::path("twinflow-runs") / case_name : options.out;
 }
@@ -18,7 +22,7 @@ StageInputs stage_inputs(const Case& c, std::initializer_list<const char*> secti
   io::Json parameters = io::Json::object();
   for (const auto& [path, value] : c.record.items())
     for (const char* section : sections)
-      if (path.rfind(section, 0) == 0) {
+      if (path.rfind(section, 0) == 0 && !changes_no_result(path)) {
         parameters[path] = value;
         s.defaults[path] = c.defaults.value(path, io::Json());
       }

@@ -2,6 +2,7 @@
 #include <cmath>
 #include <csignal>
 #include <cstdlib>
+#include <ctime>
 #include <iostream>
 #include <optional>
 
@@ -56,64 +57,19 @@ void print_summary(const io::Json& r, const io::Json& convection, const fs::path
             << ", g H/c^2 = " << get("stratification_g_H_over_c2")
             << ", Mach (measured) = " << get("mach_measured") << "\n";
 }
-} // namespace
+// "2026-11-30 17:20:05 UTC": when a checkpoint was written (printed on restart).
+std::string local_time_now() {
+  const std::time_t now = std::time(nullptr);
+  std::tm local{};
+  localtime_r(&now, &local);
+  char buf[64];
+  std::strftime(buf, sizeof buf, "%Y-%m-%d %H:%M:%S %Z", &local);
+  return buf;
+}
 
-int particle_stage(const Case& c, const RunOptions& options) {
+// Every result file, summary.json last; returns the convection estimates it printed.
+io::Json write_results(const Case& c, const io::StageDirectory& stage, particle::RunOutput& out) {
   const CaseParameters& p = c.parameters;
-  const fs::path run_dir = run_directory(options, p.name);
-  const io::StageDirectory stage(run_dir, "particle", options.force && !options.restart);
-  const fs::path checkpoint_path = stage.file("checkpoint.twfc");
-  // The checkpoint belongs to these exact parameters: a changed case cannot continue it.
-  const std::string parameters = c.record.dump();
-  std::optional<io::Checkpoint> resume;
-  if (options.restart) {
-    if (!fs::exists(checkpoint_path))
-      throw io::InputError(checkpoint_path.string() +
-                           ": no checkpoint to restart from (was the run interrupted?)");
-    resume = io::Checkpoint::read(checkpoint_path);
-    if (resume->get<std::string>("case_parameters") != parameters)
-      throw io::InputError(checkpoint_path.string() +
-                           ": was written for other case parameters; restart with the same case "
-                           "file and --set options (or start afresh with --force)");
-  }
-  stop_signal = 0; // from here on a signal stops the run cleanly, with a checkpoint
-  std::signal(SIGINT, on_stop_signal);
-  std::signal(SIGTERM, on_stop_signal);
-  stage.create();
-  if (!options.restart) fs::remove(checkpoint_path); // a fresh run leaves no old one behind
-  const auto started = std::chrono::steady_clock::now();
-  particle::RunControl control;
-  control.progress = isatty(STDERR_FILENO);
-  control.resume = resume ? &*resume : nullptr;
-  control.checkpoint_every_seconds = 1800; // a crash loses at most half an hour
-  control.stop_requested = [&] {
-    return stop_signal != 0 ||
-           (options.wall_time_limit > 0 &&
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count() >
-                options.wall_time_limit);
-  };
-  control.write_checkpoint = [&](const io::Checkpoint& state) {
-    io::Checkpoint file = state;
-    file.put("case_parameters", parameters);
-    file.write(checkpoint_path);
-  };
-  particle::RunOutput out;
-  try {
-    out = particle::run_particles(p.particle, control);
-  } catch (const particle::InstabilityError& e) {
-    std::cerr << "twinflow: particle run stopped: " << e.what() << "\n";
-    return kExitUnstable;
-  }
-  std::signal(SIGINT, SIG_DFL);
-  std::signal(SIGTERM, SIG_DFL);
-  if (out.interrupted) {
-    std::cerr << "twinflow: particle run "
-              << (stop_signal ? "interrupted by a signal" : "reached the wall-time limit")
-              << " at step " << out.steps_done << "; checkpoint written to "
-              << fs::absolute(checkpoint_path).string() << "\ncontinue with: twinflow particle "
-              << c.file << " --out " << run_dir.string() << " --restart\n";
-    return kExitInterrupted;
-  }
   io::write_file_atomically(stage.file("thermo.csv"), out.thermo_csv);
   io::write_file_atomically(stage.file("histograms.csv"), out.histograms_csv);
   io::write_file_atomically(stage.file("rdf.csv"), out.rdf_csv);
@@ -140,6 +96,92 @@ int particle_stage(const Case& c, const RunOptions& options) {
   summary["results"] = out.summary;
   summary["parameters"] = c.record;
   io::write_file_atomically(stage.file("summary.json"), io::dump(summary)); // last: complete
+  return convection;
+}
+} // namespace
+
+int particle_stage(const Case& c, const RunOptions& options) {
+  const CaseParameters& p = c.parameters;
+  const fs::path run_dir = run_directory(options, p.name);
+  const io::StageDirectory stage(run_dir, "particle", options.force && !options.restart);
+  const fs::path checkpoint_path = stage.file("checkpoint.twfc");
+  // The checkpoint belongs to these exact parameters: a changed case cannot continue it (keys
+  // that change no result, the checkpoint interval, may change).
+  io::Json record = c.record;
+  for (auto it = record.begin(); it != record.end();)
+    it = changes_no_result(it.key()) ? record.erase(it) : std::next(it);
+  const std::string parameters = record.dump();
+  std::optional<io::Checkpoint> resume;
+  if (options.restart) {
+    if (!fs::exists(checkpoint_path))
+      throw io::InputError(checkpoint_path.string() +
+                           ": no checkpoint to restart from (was the run interrupted?)");
+    resume = io::Checkpoint::read(checkpoint_path);
+    if (resume->get<std::string>("case_parameters") != parameters)
+      throw io::InputError(checkpoint_path.string() +
+                           ": was written for other case parameters; restart with the same case "
+                           "file and --set options (or start afresh with --force)");
+    std::cout << "particle: resumed from step "
+              << (resume->contains("step") ? std::to_string(resume->get<std::int64_t>("step"))
+                                           : std::string("?"))
+              << " (checkpoint of "
+              << (resume->contains("written_at") ? resume->get<std::string>("written_at")
+                                                 : std::string("an unknown date"))
+              << ")" << std::endl;
+  }
+  stop_signal = 0; // from here on a signal stops the run cleanly, with a checkpoint
+  std::signal(SIGINT, on_stop_signal);
+  std::signal(SIGTERM, on_stop_signal);
+  stage.create();
+  if (!options.restart) fs::remove(checkpoint_path); // a fresh run leaves no old one behind
+  const auto started = std::chrono::steady_clock::now();
+  particle::RunControl control;
+  control.progress = isatty(STDERR_FILENO);
+  control.resume = resume ? &*resume : nullptr;
+  control.checkpoint_every_seconds = 60 * p.checkpoint_interval_minutes; // 0: never
+  control.stop_requested = [&] {
+    return stop_signal != 0 ||
+           (options.wall_time_limit > 0 &&
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count() >
+                options.wall_time_limit);
+  };
+  control.write_checkpoint = [&](const io::Checkpoint& state) {
+    io::Checkpoint file = state;
+    file.put("case_parameters", parameters);
+    file.put("written_at", local_time_now());
+    file.write(checkpoint_path);
+  };
+  particle::RunOutput out;
+  try {
+    out = particle::run_particles(p.particle, control);
+  } catch (const particle::InstabilityError& e) {
+    std::cerr << "twinflow: particle run stopped: " << e.what() << "\n";
+    return kExitUnstable;
+  }
+  std::signal(SIGINT, SIG_DFL);
+  std::signal(SIGTERM, SIG_DFL);
+  if (out.interrupted) {
+    std::cerr << "twinflow: particle run "
+              << (stop_signal ? "interrupted by a signal" : "reached the wall-time limit")
+              << " at step " << out.steps_done << "; checkpoint written to "
+              << fs::absolute(checkpoint_path).string() << "\ncontinue with: "
+              << (options.continue_command.empty()
+                      ? "twinflow particle " + c.file + " --out " + run_dir.string() + " --restart"
+                      : options.continue_command)
+              << "\n";
+    return kExitInterrupted;
+  }
+  io::Json convection;
+  try {
+    convection = write_results(c, stage, out);
+  } catch (const io::OutputError& e) {
+    if (!fs::exists(checkpoint_path)) throw;
+    throw io::OutputError(
+        std::string(e.what()) +
+        "; the run's last checkpoint is kept: free the "
+        "space and continue with: " +
+        (options.continue_command.empty() ? std::string("--restart") : options.continue_command));
+  }
   fs::remove(checkpoint_path); // finished: nothing to continue
   print_summary(out.summary, convection, stage.path());
   return 0;

@@ -1,3 +1,4 @@
+#include <chrono>
 #include <iomanip>
 #include <iostream>
 #include <sstream>
@@ -12,7 +13,30 @@ namespace fs = std::filesystem;
 
 // The particle scene, the fluid's coefficients, the continuum twins fed with them (nominal;
 // calibrated: the walls at the temperatures the particle fluid reaches there), the comparison.
+namespace {
+// The last lines of a run: the verdict (compare/metrics.json) and the total wall time.
+void print_ending(const fs::path& run_dir, std::chrono::steady_clock::time_point started) {
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  if (fs::exists(run_dir / "compare" / "metrics.json")) {
+    const io::Json metrics = io::read_json(run_dir / "compare" / "metrics.json");
+    if (const io::Json* verdict = io::find(metrics, {"verdict"}); verdict && verdict->is_array())
+      for (const auto& line : *verdict)
+        if (line.is_string()) std::cout << "run: " << line.get<std::string>() << "\n";
+    std::cout << "run: report: " << fs::absolute(run_dir / "report" / "report.html").string()
+              << "\n";
+  }
+  std::ostringstream time;
+  time << std::fixed << std::setprecision(seconds < 100 ? 1 : 0) << seconds << " s";
+  if (seconds >= 100)
+    time << " (" << static_cast<int>(seconds) / 60 << " min " << static_cast<int>(seconds) % 60
+         << " s)";
+  std::cout << "run: total wall time " << time.str() << std::endl;
+}
+} // namespace
+
 int run_all(Case c, const RunOptions& options) {
+  const auto started = std::chrono::steady_clock::now();
   CaseParameters& p = c.parameters;
   const fs::path run_dir = run_directory(options, p.name);
   const bool walls = p.scene.has_walls() && p.scene.heat_slabs.empty();
@@ -75,8 +99,11 @@ int run_all(Case c, const RunOptions& options) {
             }))
       return rc;
   }
-  if (!fs::exists(run_dir / "particle" / "fields.h5")) return 0; // nothing binned to compare
-  return compare_stage(c, run_dir);
+  if (fs::exists(run_dir / "particle" / "fields.h5")) { // else nothing binned to compare
+    if (const int rc = compare_stage(c, run_dir)) return rc;
+  }
+  print_ending(run_dir, started);
+  return 0;
 }
 
 } // namespace twinflow::study

@@ -1,5 +1,9 @@
+#include <algorithm>
 #include <cstdlib>
 #include <iostream>
+#include <sstream>
+#include <string>
+#include <vector>
 
 #include "io/files.hpp"
 #include "study/stages.hpp"
@@ -21,7 +25,7 @@ io::Json measurement_inputs(const Case& c, const particle::ParticleParameters& p
     const bool fluid = path.rfind("Particle/", 0) == 0 && path.rfind("Particle/Walls/", 0) != 0 &&
                        path != "Particle/Steps" && path != "Particle/Equilibration steps" &&
                        path != "Particle/Initial velocities" &&
-                       path != "Particle/Initial internal energy";
+                       path != "Particle/Initial internal energy" && !changes_no_result(path);
     if (fluid) j[path] = value;
   }
   j["dimension"] = p.dim;
@@ -63,6 +67,54 @@ fs::path cache_directory(const std::string& hash) {
   return root / "transport" / hash;
 }
 
+// coefficients.csv as a person reads it on the console: aligned columns, "n/a (why)" where the
+// file has nan (a coefficient not measured, or without an estimate to compare with).
+std::string console_table(const std::string& csv) {
+  std::vector<std::vector<std::string>> rows;
+  std::string comment;
+  std::istringstream in(csv);
+  for (std::string line; std::getline(in, line);) {
+    if (line.empty()) continue;
+    if (line[0] == '#') {
+      comment += line + "\n";
+      continue;
+    }
+    std::vector<std::string> cells;
+    std::istringstream cells_in(line);
+    for (std::string cell; std::getline(cells_in, cell, ',');) cells.push_back(cell);
+    rows.push_back(cells);
+  }
+  if (rows.empty()) return csv;
+  const auto is_nan = [](const std::string& text) {
+    return text == "nan" || text == "-nan" || text == "inf" || text == "-inf";
+  };
+  for (std::size_t r = 1; r < rows.size(); ++r) {
+    auto& row = rows[r];
+    const bool measured = row.size() > 3 && !is_nan(row[3]);
+    for (std::size_t k = 1; k < row.size(); ++k)
+      if (is_nan(row[k]))
+        row[k] = !measured && (k == 3 || k == 4) ? "n/a (not measured)"
+                 : !measured                     ? "n/a"
+                                                 : "n/a (no estimate)";
+  }
+  std::vector<std::size_t> width;
+  for (const auto& row : rows)
+    for (std::size_t k = 0; k < row.size(); ++k) {
+      if (width.size() <= k) width.push_back(0);
+      width[k] = std::max(width[k], row[k].size());
+    }
+  std::string out = comment;
+  for (const auto& row : rows) {
+    std::string line;
+    for (std::size_t k = 0; k < row.size(); ++k) {
+      line += row[k];
+      if (k + 1 < row.size()) line += std::string(width[k] + 2 - row[k].size(), ' ');
+    }
+    out += line + "\n";
+  }
+  return out;
+}
+
 const char* kCachedFiles[] = {"coefficients.csv", "rdf.csv", "summary.json"};
 
 // Copies a cached result into the stage, with this case's name and parameters. False: no entry
@@ -74,12 +126,37 @@ bool restore_from_cache(const fs::path& entry, const io::StageDirectory& stage, 
   try {
     summary = io::read_json(entry / "summary.json");
   } catch (const std::exception& e) {
-    std::cerr << "transport: cache entry " << entry.string() << " unreadable (" << e.what()
+    // The parser's message may quote the damaged bytes: one printable line of it.
+    std::string why = e.what();
+    why = why.substr(0, why.find('\n')).substr(0, 160);
+    for (char& ch : why)
+      if (static_cast<unsigned char>(ch) < 32 || static_cast<unsigned char>(ch) > 126) ch = '?';
+    std::cerr << "transport: cache entry " << entry.string() << " unreadable (" << why
               << "): measuring\n";
     return false;
   }
   const io::Json* made_by = io::find(summary, {"provenance"});
-  if (!made_by) return false; // not an entry this code wrote
+  if (!made_by || !io::find(summary, {"results"})) {
+    std::cerr << "transport: cache entry " << entry.string()
+              << " incomplete (summary.json without results): measuring\n";
+    return false;
+  }
+  // Each file as it was stored (content hashes, written with the entry): a truncated or
+  // altered file is a miss, never a wrong coefficient.
+  if (const io::Json* hashes = io::find(summary, {"cache_files"}))
+    for (const char* f : {"coefficients.csv", "rdf.csv"}) {
+      const std::string stored = io::text(*hashes, {f});
+      std::string now;
+      try {
+        now = io::content_hash(io::read_file(entry / f));
+      } catch (const std::exception&) {
+      }
+      if (stored.empty() || stored != now) {
+        std::cerr << "transport: cache entry " << entry.string() << ": " << f
+                  << " is truncated or altered (content hash differs): measuring\n";
+        return false;
+      }
+    }
   const io::Json* revision = io::find(*made_by, {"twinflow_git_revision"});
   const io::Json now = io::provenance();
   if (revision && *revision != now.at("twinflow_git_revision"))
@@ -90,6 +167,7 @@ bool restore_from_cache(const fs::path& entry, const io::StageDirectory& stage, 
   cache["entry"] = entry.string();
   cache["made_by"] = *made_by;
   summary["cache"] = cache;
+  summary.erase("cache_files");
   summary["case"] = c.parameters.name;
   summary["provenance"] = io::provenance();
   summary["parameters"] = c.record;
@@ -113,7 +191,7 @@ int transport_stage(const Case& c, const RunOptions& options) {
   const fs::path cache = cache_directory(key);
   // --force measures again (and refreshes the entry).
   if (!cache.empty() && !options.force && restore_from_cache(cache, stage, c)) {
-    std::cout << io::read_file(stage.file("coefficients.csv"))
+    std::cout << console_table(io::read_file(stage.file("coefficients.csv")))
               << "transport: measurements reused from the cache (" << cache.string()
               << "; TWINFLOW_CACHE=off recomputes)\noutputs: "
               << fs::absolute(stage.path()).string() << "\n";
@@ -140,12 +218,18 @@ int transport_stage(const Case& c, const RunOptions& options) {
       io::write_file_atomically(cache / "inputs.json", io::dump(key_inputs));
       io::write_file_atomically(cache / "coefficients.csv", m.coefficients_csv);
       io::write_file_atomically(cache / "rdf.csv", m.rdf_csv);
-      io::write_file_atomically(cache / "summary.json", io::dump(summary));
+      io::Json entry_summary = summary;
+      io::Json hashes = io::Json::object();
+      hashes["coefficients.csv"] = io::content_hash(m.coefficients_csv);
+      hashes["rdf.csv"] = io::content_hash(m.rdf_csv);
+      entry_summary["cache_files"] = hashes;
+      io::write_file_atomically(cache / "summary.json", io::dump(entry_summary));
     } catch (const std::exception& e) {
       std::cerr << "transport: not cached (" << e.what() << ")\n";
     }
   }
-  std::cout << m.coefficients_csv << "outputs: " << fs::absolute(stage.path()).string() << "\n";
+  std::cout << console_table(m.coefficients_csv)
+            << "outputs: " << fs::absolute(stage.path()).string() << "\n";
   return 0;
 }
 

@@ -24,6 +24,16 @@ Result run(const std::string& args) {
   return twinflow::testing::run_twinflow(args);
 }
 
+// A shell command as given (e.g. the hint an interrupted run prints): exit code and output.
+Result run_command(const std::string& command) {
+  FILE* pipe = popen((command + " 2>&1").c_str(), "r");
+  std::string out;
+  std::array<char, 4096> buf{};
+  while (fgets(buf.data(), buf.size(), pipe)) out += buf.data();
+  const int status = pclose(pipe);
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+}
+
 fs::path fresh_dir(const std::string& name) {
   return twinflow::testing::fresh_dir("cli_test", name);
 }
@@ -79,6 +89,65 @@ TEST(Cli, BrokenCasesExitTwoNameTheKeyAndWriteNothing) {
       EXPECT_FALSE(fs::exists(out)) << command << " wrote " << out;
     }
   }
+}
+
+// A case path that is a directory, an empty file or a binary file: exit 2, one line, nothing
+// written (check-case says so too).
+TEST(Cli, DirectoryEmptyAndBinaryCasePathsAreRefused) {
+  const fs::path dir = fresh_dir("not_cases");
+  fs::create_directories(dir / "a_directory");
+  std::ofstream(dir / "empty.prm").flush();
+  {
+    std::ofstream binary(dir / "binary.prm", std::ios::binary);
+    binary << std::string("\x7f"
+                          "ELF\x02\x01\x01\0\0\0 set x",
+                          16)
+           << "\n";
+  }
+  const struct {
+    std::string file, expect;
+  } cases[] = {{"a_directory", "is a directory, not a case file"},
+               {"empty.prm", "is empty"},
+               {"binary.prm", "a binary file, not a case file (starts '\\x7FELF\\x02"}};
+  for (const auto& c : cases)
+    for (const std::string command : {"check-case", "run"}) {
+      const fs::path out = dir / "out";
+      const Result r = run(command + " " + (dir / c.file).string() + " --out " + out.string());
+      EXPECT_EQ(r.code, 2) << command << " " << c.file << "\n" << r.output;
+      EXPECT_NE(r.output.find(c.expect), std::string::npos) << c.file << "\n" << r.output;
+      EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+      EXPECT_FALSE(fs::exists(out)) << command << " wrote " << out;
+    }
+}
+
+// Each command's own help (options, an example, exit codes); --version names the libraries.
+TEST(Cli, CommandHelpAndVersion) {
+  for (const std::string command : {"run", "particle", "transport", "continuum", "compare", "sweep",
+                                    "stability", "bench", "check-case", "print-parameters"}) {
+    const Result r = run(command + " --help");
+    EXPECT_EQ(r.code, 0) << command;
+    EXPECT_EQ(r.output.rfind("twinflow " + command, 0), 0u) << r.output;
+    EXPECT_NE(r.output.find("example"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("exit codes"), std::string::npos) << r.output;
+  }
+  const Result help = run("--help");
+  EXPECT_NE(help.output.find("6 an output"), std::string::npos) << help.output;
+  // The command column is aligned: every description starts in the same column.
+  std::istringstream lines(help.output.substr(help.output.find("commands:")));
+  std::string line;
+  std::getline(lines, line);
+  std::size_t column = 0;
+  while (std::getline(lines, line) && !line.empty()) {
+    const auto gap = line.find("  ", 2);
+    ASSERT_NE(gap, std::string::npos) << line;
+    const auto start = line.find_first_not_of(' ', gap);
+    if (column == 0) column = start;
+    EXPECT_EQ(start, column) << line;
+  }
+  const Result version = run("--version");
+  EXPECT_EQ(version.code, 0);
+  for (const char* part : {"twinflow ", "(git ", "deal.II 9.", "HDF5 1.", "MPI "})
+    EXPECT_NE(version.output.find(part), std::string::npos) << version.output;
 }
 
 TEST(Cli, MissingFileUnknownSetKeyAndBadValues) {
@@ -144,8 +213,24 @@ TEST(Cli, InterruptedRunRestartsToIdenticalOutputs) {
       run("particle " + c + " --out " + parts.string() + size + " --seed 99 --restart");
   EXPECT_EQ(changed.code, 2);
   EXPECT_NE(changed.output.find("other case parameters"), std::string::npos) << changed.output;
-  const Result resumed = run("particle " + c + " --out " + parts.string() + size + " --restart");
-  ASSERT_EQ(resumed.code, 0) << resumed.output;
+  // The hint is the exact command: every option of the stopped run, shell-quoted, --restart.
+  const std::string tag = "continue with: ";
+  const auto at = stopped.output.find(tag);
+  ASSERT_NE(at, std::string::npos) << stopped.output;
+  const std::string hint =
+      stopped.output.substr(at + tag.size(), stopped.output.find('\n', at) - at - tag.size());
+  EXPECT_NE(hint.find("'Particle/Equilibration steps=500'"), std::string::npos) << hint;
+  EXPECT_NE(hint.find("--threads 1"), std::string::npos) << hint;
+  EXPECT_NE(hint.find("--restart"), std::string::npos) << hint;
+  // It keeps --wall-time 0.5: each run continues for half a second, until one finishes.
+  Result resumed = run_command("TWINFLOW_CACHE=off " + hint);
+  for (int again = 0; resumed.code == 5 && again < 40; ++again) {
+    EXPECT_NE(resumed.output.find(hint), std::string::npos) << "the same hint each time";
+    resumed = run_command("TWINFLOW_CACHE=off " + hint);
+  }
+  ASSERT_EQ(resumed.code, 0) << hint << "\n" << resumed.output;
+  EXPECT_NE(resumed.output.find("resumed from step "), std::string::npos) << resumed.output;
+  EXPECT_NE(resumed.output.find("(checkpoint of 20"), std::string::npos) << resumed.output;
   EXPECT_FALSE(fs::exists(parts / "particle" / "checkpoint.twfc"));
   for (const char* f :
        {"thermo.csv", "fields.csv", "histograms.csv", "rdf.csv", "wall_layers.csv"}) {
@@ -164,6 +249,38 @@ TEST(Cli, InterruptedRunRestartsToIdenticalOutputs) {
   EXPECT_EQ(term.code, 5) << term.output;
   EXPECT_NE(term.output.find("interrupted by a signal"), std::string::npos) << term.output;
   EXPECT_TRUE(fs::exists(killed / "particle" / "checkpoint.twfc"));
+}
+
+// kill -9 after the first periodic checkpoint (Particle/Checkpoint interval): --restart continues
+// from it to outputs byte-identical to an uninterrupted run's.
+TEST(Cli, KilledRunRestartsFromItsPeriodicCheckpointToIdenticalOutputs) {
+  const std::string c = std::string(TWINFLOW_SOURCE_DIR) + "/cases/heated_cavity_2d.prm";
+  const std::string size =
+      " --set 'Particle/Equilibration steps=500' --set 'Particle/Steps=4000' --threads 1";
+  const fs::path whole = fresh_dir("kill_whole"), killed = fresh_dir("kill_parts");
+  ASSERT_EQ(run("particle " + c + " --out " + whole.string() + size).code, 0);
+  const fs::path checkpoint = killed / "particle" / "checkpoint.twfc";
+  const Result kill = run("particle " + c + " --out " + killed.string() + size +
+                          " --set 'Particle/Checkpoint interval=0.005' 2>&1 & pid=$!; "
+                          "until [ -f " +
+                          checkpoint.string() +
+                          " ] || ! kill -0 $pid 2>/dev/null; do sleep 0.02; done; "
+                          "kill -KILL $pid; wait $pid");
+  ASSERT_TRUE(fs::exists(checkpoint)) << kill.output;
+  ASSERT_FALSE(fs::exists(killed / "particle" / "summary.json")) << "finished before the kill";
+  // The interval changes no result: a restart with the default interval continues it.
+  const Result resumed = run("particle " + c + " --out " + killed.string() + size + " --restart");
+  ASSERT_EQ(resumed.code, 0) << resumed.output;
+  EXPECT_NE(resumed.output.find("resumed from step "), std::string::npos) << resumed.output;
+  EXPECT_FALSE(fs::exists(checkpoint));
+  for (const char* f : {"thermo.csv", "fields.csv", "histograms.csv", "rdf.csv", "wall_layers.csv",
+                        "blocks.csv", "correlations.csv"}) {
+    std::ifstream a(whole / "particle" / f), b(killed / "particle" / f);
+    std::stringstream sa, sb;
+    sa << a.rdbuf(), sb << b.rdbuf();
+    EXPECT_EQ(sa.str(), sb.str()) << f;
+    EXPECT_FALSE(sa.str().empty()) << f;
+  }
 }
 
 // `run` on a tiny cavity: every stage, then compare's metrics; the same command again reuses

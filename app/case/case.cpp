@@ -51,6 +51,7 @@ study::Case CaseFile::resolve(const std::string& filename) const {
   if (c.name.empty()) c.name = std::filesystem::path(filename).stem().string();
   c.scene = resolve_scene(registry_);
   c.particle = resolve_particle(registry_, c.scene);
+  c.checkpoint_interval_minutes = registry_.get_double("Particle/Checkpoint interval");
   resolve_transport_and_compare(registry_, c);
   c.continuum = resolve_continuum(registry_, c.scene);
   c.twin.coefficients_from_transport =

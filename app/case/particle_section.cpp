@@ -40,6 +40,11 @@ void declare_particle(Registry& r) {
             "Steps run before averages start (not sampled).");
   r.declare(p + "Steps", "1000", Integer(0), "Sampled steps after equilibration.");
   r.declare(p + "Seed", "1", Integer(0), "Seed of the counter-based random numbers.");
+  r.declare(p + "Checkpoint interval", "10", Double(0),
+            "Wall-clock minutes between the checkpoints a particle run writes as it goes "
+            "(particle/checkpoint.twfc; a crash or kill -9 loses at most this much; --restart "
+            "continues). 0: only when interrupted. Changes no result: not part of the inputs "
+            "hash.");
   r.declare(p + "Mass", "1", Double(), "Particle mass m, > 0.", kPositive);
   r.declare(p + "Initial velocities", "maxwell", Selection("maxwell|rest"),
             "maxwell: Gaussian velocities at the scene temperature (zero total momentum); rest: "

@@ -78,9 +78,26 @@ class Document:
         return "\n".join(out)
 
 
+def write_atomically(path, write):
+    """Calls write(temporary_path), then renames it over path: no incomplete file ever sits
+    under path (disk full, a kill); the temporary file is removed on failure."""
+    tmp = f"{path}.tmp.{os.getpid()}"
+    try:
+        write(tmp)
+        os.replace(tmp, path)
+    except BaseException:
+        try:
+            os.remove(tmp)
+        except OSError:
+            pass
+        raise
+
+
 def write_text(path, text):
-    with open(path, "w", encoding="utf-8") as f:
-        f.write(text if text.endswith("\n") else text + "\n")
+    def write(tmp):
+        with open(tmp, "w", encoding="utf-8") as f:
+            f.write(text if text.endswith("\n") else text + "\n")
+    write_atomically(path, write)
 
 
 def write_documents(doc, out_dir):

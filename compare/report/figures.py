@@ -15,9 +15,13 @@ LINESTYLE = {"nominal": "-", "calibrated": "--"}
 
 
 def save_figure(fig, out_dir, file_name):
-    fig.savefig(os.path.join(out_dir, file_name), dpi=DPI)
+    from .document import write_atomically
     import matplotlib.pyplot as plt
-    plt.close(fig)
+    try:
+        write_atomically(os.path.join(out_dir, file_name),
+                         lambda tmp: fig.savefig(tmp, dpi=DPI, format="png"))
+    finally:
+        plt.close(fig)
     return file_name
 
 

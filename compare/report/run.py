@@ -439,6 +439,39 @@ def steady_verdict(imbalance_over_stderr):
             "state within errors (the fluid still heating or cooling).")
 
 
+def rayleigh_explanation(convection, summaries, twins, transport_summary):
+    """Why the particle stage's Ra and Pr differ from the twins': each uses other coefficients
+    at another temperature (the numbers named from the files)."""
+    parts = []
+    if convection:
+        parts.append(
+            "The particle stage's Ra and Pr are estimates made before any measurement: the "
+            "kinetic theory's coefficients with g(r) = 1 at the mean wall temperature "
+            f"{fmt(number(convection, 'mean_wall_temperature', optional=True))} T0 and "
+            "alpha = 1/T (particle/summary.json, results.convection).")
+    d = lookup(summaries.get("nominal"), "dimensionless")
+    if d:
+        state = lookup(transport_summary, "results", "state_point", optional=True) or {}
+        temperature = number(state, "temperature", optional=True)
+        parts.append(
+            "The twins' Ra and Pr use the coefficients the twins run with: the transport "
+            "stage's (measured where measured: Transport/Source)"
+            + (f" at the particle fluid's mean temperature {fmt(temperature)} T0"
+               if finite(temperature) else "")
+            + f" (nu {fmt(number(d, 'kinematic_viscosity_nu', optional=True))}, chi "
+            f"{fmt(number(d, 'thermal_diffusivity_chi', optional=True))}), over the nominal dT "
+            f"{fmt(number(d, 'temperature_difference', optional=True))} and H "
+            f"{fmt(number(d, 'height_H', optional=True))}.")
+        if convection:
+            parts.append("So the columns differ by the estimated against the measured "
+                         "coefficients and by the temperature they are taken at; the twins' "
+                         "numbers are the ones the comparison rests on.")
+        if "calibrated" in twins:
+            parts.append("The calibrated twin has the nominal twin's coefficients and dT: "
+                         "its Ra and Pr are the same; only its walls differ.")
+    return " ".join(parts) or "No dimensionless numbers were recorded."
+
+
 def report_run(run_dir, out_dir):
     compare_dir = os.path.join(run_dir, "compare")
     metrics = read_json(os.path.join(compare_dir, "metrics.json"))
@@ -470,6 +503,11 @@ def report_run(run_dir, out_dir):
         os.path.abspath(run_dir))
     excluded = number(metrics, "wall_layer_excluded")
     doc = Document(f"Twin comparison: {case}")
+    verdict = [line for line in (lookup(metrics, "verdict", optional=True) or [])
+               if isinstance(line, str)]
+    if verdict:
+        doc.heading("Verdict")
+        doc.bullets(verdict)
     doc.paragraph(f"Run directory: {os.path.abspath(run_dir)}. Twins compared: "
                   + (", ".join(TWIN_LABEL[t] for t in twins) or "none") + ". " + UNITS_NOTE + ".")
 
@@ -491,11 +529,12 @@ def report_run(run_dir, out_dir):
                          fmt(number(d, "rayleigh")), fmt(number(d, "prandtl")),
                          "–", "–", fmt(number(d, "epsilon"), 3)])
     if rows:
-        doc.heading("Dimensionless numbers")
+        doc.heading("Dimensionless numbers: which Ra and Pr each column uses")
         doc.table(["source", "Ra", "Pr", "Mach (measured)", "dT/T", "epsilon"], rows)
-        note = lookup(convection, "note")
-        if note:
-            doc.paragraph(f"The particle stage's numbers: {note}.")
+        doc.paragraph(rayleigh_explanation(convection, summaries, twins,
+                                           read_json(os.path.join(run_dir, "transport",
+                                                                  "summary.json"),
+                                                     optional=True)))
 
     doc.heading("What was compared")
     counts = lookup(metrics, "bins") or []
@@ -739,7 +778,10 @@ def parameter_differences(nominal_summary, calibrated_summary):
     enumerated from the files, none named here: plain dict reads)."""
     a = lookup(nominal_summary, "case_parameters") or {}
     b = lookup(calibrated_summary, "case_parameters") or {}
-    return [(k, a.get(k, "–"), b.get(k, "–")) for k in sorted(set(a) | set(b))
+    def shown(value):
+        # An empty value is a key the twin leaves unset: say so, never an empty "from".
+        return "(not set)" if value in (None, "") else value
+    return [(k, shown(a.get(k)), shown(b.get(k))) for k in sorted(set(a) | set(b))
             if a.get(k) != b.get(k)]
 
 

@@ -1,6 +1,7 @@
 """report.run: the verdict sentences, the scene's geometry, and what a run report may lack."""
 
 import math
+import os
 import unittest
 
 import report_path  # noqa: F401  (compare/ on sys.path)
@@ -8,8 +9,8 @@ from report import data
 from report.data import MissingKey, strict_mode
 from report.document import Document
 from report.run import (RunGeometry, calibration_text, heat_flow_optional, nusselt_sentence,
-                        parameter_differences, steady_verdict, wall_layer_table,
-                        within_noise_sentence)
+                        parameter_differences, rayleigh_explanation, steady_verdict,
+                        wall_layer_table, within_noise_sentence)
 
 
 def metrics_json(tree):
@@ -113,7 +114,34 @@ class Sentences(unittest.TestCase):
         nominal = {"case_parameters": {"a": "1", "b": "2", "c": "3"}}
         calibrated = {"case_parameters": {"a": "1", "b": "5", "d": "4"}}
         self.assertEqual(parameter_differences(nominal, calibrated),
-                         [("b", "2", "5"), ("c", "3", "–"), ("d", "–", "4")])
+                         [("b", "2", "5"), ("c", "3", "(not set)"), ("d", "(not set)", "4")])
+
+    def test_an_empty_value_is_named_not_left_blank(self):
+        # The calibrated twin's Kapitza conductances are empty in the nominal twin's case: the
+        # line said "Kapitza conductances:  -> 1.30" (issue 29).
+        nominal = {"case_parameters": {"Continuum/Kapitza conductances": ""}}
+        calibrated = {"case_parameters": {"Continuum/Kapitza conductances": "1.30, 5.0"}}
+        self.assertEqual(parameter_differences(nominal, calibrated),
+                         [("Continuum/Kapitza conductances", "(not set)", "1.30, 5.0")])
+
+
+class DimensionlessNumbers(unittest.TestCase):
+    def test_explains_which_coefficients_and_temperature_each_column_uses(self):
+        convection = {"rayleigh": 3511, "prandtl": 1.1, "mean_wall_temperature": 1.0}
+        dimensionless = {"rayleigh": 1955, "prandtl": 0.79, "kinematic_viscosity_nu": 0.29,
+                         "thermal_diffusivity_chi": 0.37, "temperature_difference": 1.0,
+                         "height_H": 20}
+        transport = {"results": {"state_point": {"temperature": 0.814}}}
+        text = rayleigh_explanation(convection, {"nominal": {"dimensionless": dimensionless}},
+                                    ["nominal", "calibrated"], transport)
+        for part in ("estimates", "g(r) = 1", "mean wall temperature 1 T0", "measured",
+                     "mean temperature 0.814 T0", "nu 0.29", "chi 0.37", "H 20",
+                     "calibrated twin has the nominal twin's coefficients"):
+            self.assertIn(part, text)
+
+    def test_without_numbers(self):
+        self.assertEqual(rayleigh_explanation(None, {}, [], None),
+                         "No dimensionless numbers were recorded.")
 
 
 class Geometry(unittest.TestCase):
@@ -191,3 +219,43 @@ class WallLayers(unittest.TestCase):
 
 if __name__ == "__main__":
     unittest.main()
+
+
+class Verdict(unittest.TestCase):
+    """The report opens with compare's verdict (metrics.json "verdict"): the headline and one
+    line per twin, before anything else."""
+
+    def test_the_verdict_comes_first(self):
+        import json
+        import shutil
+        import tempfile
+        from report.run import report_run
+        fixture = os.path.join(report_path.SOURCE_DIR, "tests", "study", "fixtures",
+                               "run_2d_calibrated")
+        folder = tempfile.mkdtemp()
+        try:
+            run_dir = os.path.join(folder, "run")
+            shutil.copytree(fixture, run_dir)
+            path = os.path.join(run_dir, "compare", "metrics.json")
+            with open(path, encoding="utf-8") as f:
+                metrics = json.load(f)
+            verdict = ["verdict: the calibrated twin matches the particles within errors",
+                       "particle vs nominal twin: Nu 0.57 +- 0.01 against 1.29 +- 0.02",
+                       "particle vs calibrated twin: Nu 0.57 +- 0.01 against 0.57 +- 0.01"]
+            metrics["verdict"] = verdict
+            with open(path, "w", encoding="utf-8") as f:
+                json.dump(metrics, f)
+            out_dir = os.path.join(run_dir, "report")
+            os.makedirs(out_dir, exist_ok=True)
+            report_run(run_dir, out_dir)
+            with open(os.path.join(out_dir, "report.md"), encoding="utf-8") as f:
+                text = f.read()
+            self.assertEqual(text.split("\n")[2], "## Verdict")
+            for line in verdict:
+                self.assertIn("- " + line, text)
+            self.assertLess(text.index(verdict[2]), text.index("## Dimensionless numbers"))
+            self.assertNotIn("nan", text.replace("nano", ""))
+            leftovers = [n for n in os.listdir(out_dir) if ".tmp" in n]
+            self.assertEqual(leftovers, [])
+        finally:
+            shutil.rmtree(folder)

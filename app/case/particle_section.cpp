@@ -235,6 +235,20 @@ ParticleParameters resolve_particle(const Registry& r, const scene::SceneParamet
     r.require(!(b.periodic && scene.gravity[d] != 0), "Scene/Gravity",
               "no component along a periodic direction (its potential would jump at the wrap)");
   }
+  // Repulsion and Range shape seed 000's walls only (a half-space wall's pair terms are the
+  // fluid's own, integrated over the wall material): a value set for walls that ignore it is a
+  // mistake the user should hear of, not a silent no-op.
+  bool walls_present = false, seed000_wall = false;
+  for (int d = 0; d < p.dim; ++d)
+    for (int side = 0; side < 2; ++side)
+      if (p.walls[d].present) {
+        walls_present = true;
+        seed000_wall |= p.walls[d].model[side] == WallModel::Seed000;
+      }
+  for (const std::string key : {"Walls/Repulsion", "Walls/Range"})
+    r.require(!walls_present || seed000_wall || r.get(s + key) == r.default_value(s + key), s + key,
+              "its default unless a wall is seed000 (Particle/Walls/Model); half-space walls take "
+              "the fluid's own pair terms");
   r.require(p.poiseuille_force == 0 || (p.dim >= 2 && !p.walls[1].present),
             "Scene/Reverse Poiseuille force", "0 with walls along y (it needs a periodic y)");
   r.require(p.shear_perturbation == 0 || (p.dim >= 2 && !p.walls[0].present && !p.walls[1].present),

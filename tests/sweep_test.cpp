@@ -188,6 +188,9 @@ TEST(Sweep, RayleighPointsLandOnTheirTargets) {
     const Json reference =
         twinflow::io::read_json(dir / "reference" / name / "transport" / "summary.json");
     const Json own = twinflow::io::read_json(dir / "points" / name / "transport" / "summary.json");
+    EXPECT_NE(file_text(dir / "points" / name / "log.txt").find("reused from the cache"),
+              std::string::npos)
+        << name << ": its run measured again";
     for (const char* key : {"conductivity", "viscosity"})
       EXPECT_EQ(twinflow::io::number(reference, {"results", "measured", key}),
                 twinflow::io::number(own, {"results", "measured", key}))

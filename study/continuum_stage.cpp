@@ -12,11 +12,25 @@
 #include "continuum/twin_walls.hpp"
 #include "io/files.hpp"
 #include "study/stages.hpp"
+#include "study/twin_coefficients.hpp"
 #include "transport/coefficients.hpp"
 
 namespace twinflow::study {
 
 namespace fs = std::filesystem;
+
+void take_coefficients(const transport::Coefficients& k, continuum::ContinuumParameters& p) {
+  const auto take = [](continuum::PowerLaw& law, const transport::Coefficient& c) {
+    law.value_at_reference = c.value;
+    if (!std::isfinite(c.exponent)) return;
+    law.exponent = c.exponent;
+    law.sutherland_temperature = 0; // the measured law replaces any Sutherland law of the case
+  };
+  take(p.viscosity, k.viscosity);
+  take(p.conductivity, k.conductivity);
+  p.heat_capacity = k.heat_capacity_p.value;
+  p.thermal_expansion = k.thermal_expansion.value;
+}
 
 namespace {
 // The measured coefficients' standard errors (NaN for estimates): the twin's own uncertainty.
@@ -39,22 +53,18 @@ CoefficientErrors take_transport_coefficients(const fs::path& run_dir, const std
     std::cout << "continuum: " << what << " = " << c.value << " ("
               << (c.measured ? "measured" : "estimated") << ", from " << file.string() << ")\n";
   };
-  const auto take = [&](continuum::PowerLaw& law, const transport::Coefficient& c,
-                        const char* what) {
-    law.value_at_reference = c.value;
+  take_coefficients(k, p);
+  const auto say_law = [&](const char* what, const continuum::PowerLaw& law,
+                           const transport::Coefficient& c) {
     say(what, c);
     if (!std::isfinite(c.exponent)) return;
-    law.exponent = c.exponent;
-    law.sutherland_temperature = 0; // the measured law replaces any Sutherland law of the case
     std::cout << "continuum: " << what << "(T) = " << law.value_at_reference << " (T / "
               << p.reference_temperature << ")^" << c.exponent
               << " (measured at T = " << k.measured_temperature << ")\n";
   };
-  take(p.viscosity, k.viscosity, "eta");
-  take(p.conductivity, k.conductivity, "kappa");
-  p.heat_capacity = k.heat_capacity_p.value;
+  say_law("eta", p.viscosity, k.viscosity);
+  say_law("kappa", p.conductivity, k.conductivity);
   say("c_p", k.heat_capacity_p);
-  p.thermal_expansion = k.thermal_expansion.value;
   say("alpha", k.thermal_expansion);
   return {k.conductivity.stderr_, k.viscosity.stderr_};
 }

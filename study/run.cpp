@@ -74,8 +74,14 @@ int run_all(Case c, const RunOptions& options) {
   const StageInputs transport_inputs =
       stage_inputs(c, {"Scene/", "Particle/", "Transport/"}, {particle_inputs.hash},
                    transport::kMeasurementMethod);
-  if (const int rc = run_or_reuse(run_dir / "transport", transport_inputs, false,
-                                  [&] { return transport_stage(c, later); }))
+  // Its folder is rewritten when its inputs changed, but its measurement may come from the
+  // transport cache (later.force would bypass that): only the user's --force measures again.
+  RunOptions transport_options = later;
+  transport_options.force = options.force;
+  if (const int rc = run_or_reuse(run_dir / "transport", transport_inputs, false, [&] {
+        fs::remove(run_dir / "transport" / "summary.json"); // stale: its inputs changed
+        return transport_stage(c, transport_options);
+      }))
     return rc;
   bool chosen = false; // the user's own --set of the coefficients' source wins
   for (const auto& s : c.settings) chosen |= s.rfind("Continuum/Coefficients/Source", 0) == 0;

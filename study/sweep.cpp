@@ -1,6 +1,7 @@
 // twinflow sweep CASE --vary 'Section/Key=V1,V2' [--rayleigh R1,R2]: one paired run (`twinflow
 // run`) per point of the grid, in child processes, and one table of their metrics.
 
+#include <algorithm>
 #include <cmath>
 #include <csignal>
 #include <cstdio>
@@ -12,6 +13,7 @@
 #include "io/files.hpp"
 #include "study/grid.hpp"
 #include "study/sweeps.hpp"
+#include "study/twin_coefficients.hpp"
 #include "transport/coefficients.hpp"
 
 namespace twinflow::study {
@@ -19,6 +21,10 @@ namespace twinflow::study {
 namespace fs = std::filesystem;
 
 namespace {
+
+// How far a point's twin may land from its target Ra (issue 31's acceptance); by construction
+// it lands exactly, so a miss means its coefficients changed after its gravity was set.
+constexpr double kRayleighTolerance = 0.03;
 
 // A point's run is complete when its comparison wrote metrics.json or, before the compare
 // stage exists, when the continuum twin wrote its summary.
@@ -69,41 +75,46 @@ std::string status_of(int exit_code) {
   return "failed";
 }
 
+std::string number_text(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.6g", v);
+  return text;
+}
+
 double magnitude(const std::array<double, 3>& v, int dim) {
   double s = 0;
   for (int d = 0; d < dim; ++d) s += v[d] * v[d];
   return std::sqrt(s);
 }
 
-// The gravity that gives `point` the target Ra with the reference coefficients, along the case's
-// own gravity direction.
-std::array<double, 3> gravity_for_rayleigh(const CaseParameters& point,
-                                           const transport::Coefficients& k,
+// Scales the case's gravity (its direction kept) so that the twin `twin` (the point's continuum
+// parameters with the coefficients it will take) runs at the target Ra. Throws std::runtime_error
+// when no gravity does.
+std::array<double, 3> gravity_for_rayleigh(const continuum::ContinuumParameters& twin,
                                            double target_rayleigh) {
-  continuum::ContinuumParameters c = point.continuum;
-  c.viscosity.value_at_reference = k.viscosity.value;
-  c.conductivity.value_at_reference = k.conductivity.value;
-  c.heat_capacity = k.heat_capacity_p.value;
-  c.thermal_expansion = k.thermal_expansion.value;
-  const continuum::DimensionlessNumbers n = continuum::dimensionless_numbers(c);
-  // the low-Mach ideal gas's alpha = 1/T_ref, as dimensionless_numbers takes it
-  const double alpha =
-      c.model == continuum::Model::LowMach ? 1 / c.reference_temperature : c.thermal_expansion;
-  const double H = n.height, dT = std::abs(n.temperature_difference);
-  // Boussinesq Ra definition, continuum/parameters.hpp dimensionless_numbers: Ra = g alpha dT
-  // H^3 / (nu chi), nu = eta / (n m), chi = kappa / (n c_p)
-  const double g =
-      target_rayleigh * n.kinematic_viscosity * n.thermal_diffusivity / (alpha * dT * H * H * H);
-  if (!(g > 0) || !std::isfinite(g))
-    throw std::runtime_error("the reference coefficients give no finite gravity for Ra = " +
-                             std::to_string(target_rayleigh) +
-                             " (nu = " + std::to_string(n.kinematic_viscosity) +
-                             ", chi = " + std::to_string(n.thermal_diffusivity) +
-                             ", alpha = " + std::to_string(alpha) + ")");
-  const double scale = g / magnitude(point.scene.gravity, point.scene.dim);
+  const continuum::DimensionlessNumbers n = continuum::dimensionless_numbers(twin);
+  // Ra = g alpha dT H^3 / (nu chi) is proportional to |g| (de Vahl Davis 1983, eq. 5)
+  const double scale = target_rayleigh / n.rayleigh;
+  if (!(scale > 0) || !std::isfinite(scale))
+    throw std::runtime_error(
+        "no gravity gives Ra = " + number_text(target_rayleigh) + ": at the case's gravity the " +
+        "twin's Ra is " + number_text(n.rayleigh) + " (nu = " + number_text(n.kinematic_viscosity) +
+        ", chi = " + number_text(n.thermal_diffusivity) +
+        ", dT = " + number_text(n.temperature_difference) + ")");
   std::array<double, 3> gravity{{0, 0, 0}};
-  for (int d = 0; d < point.scene.dim; ++d) gravity[d] = scale * point.scene.gravity[d];
+  for (int d = 0; d < twin.dim; ++d) gravity[d] = scale * twin.gravity[d];
   return gravity;
+}
+
+// True when the point's twin takes the transport stage's coefficients, as `run` decides
+// (study/run.cpp): unless a --set or --vary chooses Continuum/Coefficients/Source.
+bool twin_takes_transport(const GridOptions& cl, const Point& p) {
+  const auto chooses = [](const std::string& a) {
+    return a.rfind("Continuum/Coefficients/Source", 0) == 0;
+  };
+  return p.resolved.twin.coefficients_from_transport ||
+         (std::none_of(cl.settings.begin(), cl.settings.end(), chooses) &&
+          std::none_of(p.assignments.begin(), p.assignments.end(), chooses));
 }
 
 std::string vector_text(const std::array<double, 3>& v, int dim) {
@@ -133,7 +144,9 @@ int sweep(const GridOptions& cl, const CaseReader& reader) {
   Study s;
   s.name = "sweep";
   s.child_command = "run";
+  // The achieved Ra (the nominal twin's) beside the target.
   s.columns_before_wall = {"target_rayleigh", "gravity"};
+  if (!cl.rayleigh.empty()) s.columns_before_wall = {"target_rayleigh", "rayleigh", "gravity"};
   s.grid = io::Json::object();
   s.grid["case_file"] = fs::absolute(cl.case_file).lexically_normal().string();
   s.grid["base_parameters"] = reader.record(cl.settings);
@@ -167,68 +180,106 @@ int sweep(const GridOptions& cl, const CaseReader& reader) {
       throw io::InputError(where + ": --rayleigh needs a heated direction (two thermal walls of "
                                    "one direction at different temperatures); the case has none");
   }
-  std::set<std::string> varied_outside_gravity;
-  for (const auto& a : axes)
-    if (a.key.rfind("Particle/", 0) == 0 || a.key == "Scene/Density" ||
-        a.key == "Scene/Temperature" || a.key.find("wall temperature") != std::string::npos ||
-        a.key.rfind("Transport/", 0) == 0)
-      varied_outside_gravity.insert(a.key);
-  if (!cl.rayleigh.empty() && !varied_outside_gravity.empty())
-    std::cerr << "sweep: note: --rayleigh takes the coefficients of the base case's reference "
-                 "run; the varied '"
-              << *varied_outside_gravity.begin()
-              << "' may change them, so a point's continuum Ra may differ from its target\n";
+  // The twin's coefficients must be known before the point's particle run sets g. `run` measures
+  // them at the particle fluid's mean temperature, known only after that run: here each point's
+  // transport stage is pinned to Scene/Temperature instead (unless the case or the grid gives
+  // Transport/Temperature), so that it can run first.
+  std::string pinned_note;
+  for (Point& p : points) {
+    if (cl.rayleigh.empty() || !p.rejected.empty() || !twin_takes_transport(cl, p) ||
+        p.resolved.transport.temperature > 0)
+      continue;
+    p.resolved.transport.temperature = p.resolved.scene.temperature;
+    p.assignments.push_back("Transport/Temperature=" + number_text(p.resolved.scene.temperature));
+    pinned_note = p.assignments.back();
+  }
+  if (!pinned_note.empty())
+    std::cerr << "sweep: --rayleigh sets g from each point's coefficients before its particle run, "
+                 "so they are measured at the case's Scene/Temperature, not at the particle "
+                 "fluid's mean temperature as `run` does: "
+              << pinned_note << " (--set Transport/Temperature=... chooses another)\n";
 
   s.prepare = [&](const fs::path& dir) {
-    if (cl.rayleigh.empty()) return 0;
-    // The transport stage runs the bulk fluid without gravity: one run serves every target Ra.
-    const fs::path reference = dir / "reference";
-    const fs::path summary_file = reference / "transport" / "summary.json";
-    if (!fs::exists(summary_file)) {
-      fs::create_directories(reference);
-      ChildTask t;
-      t.arguments = {"transport", cl.case_file, "--out", reference.string()};
-      for (const auto& o : cl.settings) t.arguments.insert(t.arguments.end(), {"--set", o});
-      if (cl.run.threads > 0)
-        t.arguments.insert(t.arguments.end(), {"--threads", std::to_string(cl.run.threads)});
-      t.log = reference / "log.txt";
-      std::cerr << "sweep: reference transport run for --rayleigh (log: " << t.log.string()
-                << ")\n";
-      ChildResult result;
-      const int signal =
-          run_children({t}, 1, [&](std::size_t, const ChildResult& r) { result = r; });
-      if (signal || result.exit_code == kExitInterrupted) {
-        std::cerr << "sweep: interrupted in the reference run; run the same command again\n";
-        return kExitInterrupted;
-      }
-      if (result.exit_code != 0) {
-        std::cerr << "twinflow: failed: the reference transport run (exit " << result.exit_code
-                  << "): " << result.message << " (log: " << t.log.string() << ")\n";
-        return 1;
-      }
-    }
-    const io::Json summary = io::read_json(summary_file);
     for (std::size_t i = 0; i < points.size(); ++i) {
       Point& p = points[i];
-      if (!p.rejected.empty()) continue;
-      const transport::Coefficients k = transport::read_coefficients(
-          summary, p.resolved.transport.source, p.resolved.continuum.reference_temperature);
-      const auto g = gravity_for_rayleigh(p.resolved, k, cl.rayleigh[i % copies]);
-      p.assignments.push_back("Scene/Gravity=" + vector_text(g, p.resolved.scene.dim));
-      p.columns["gravity"] = magnitude(g, p.resolved.scene.dim);
+      if (cl.rayleigh.empty() || !p.rejected.empty()) continue;
+      continuum::ContinuumParameters twin = p.resolved.continuum;
+      if (twin_takes_transport(cl, p)) {
+        // The point's own transport stage, with the inputs its run's will have (gravity is none
+        // of them): that run takes this measurement from the cache, or repeats it bit for bit.
+        const fs::path reference = dir / "reference" / p.name;
+        const fs::path summary_file = reference / "transport" / "summary.json";
+        if (!fs::exists(summary_file)) {
+          fs::create_directories(reference);
+          ChildTask t;
+          t.arguments = {"transport", cl.case_file, "--out", reference.string()};
+          for (const auto& o : cl.settings) t.arguments.insert(t.arguments.end(), {"--set", o});
+          for (const auto& a : p.assignments) t.arguments.insert(t.arguments.end(), {"--set", a});
+          if (cl.run.threads > 0)
+            t.arguments.insert(t.arguments.end(), {"--threads", std::to_string(cl.run.threads)});
+          t.log = reference / "log.txt";
+          std::cerr << "sweep: point " << p.name
+                    << ": its transport stage, for its gravity (log: " << t.log.string() << ")\n";
+          ChildResult result;
+          const int signal =
+              run_children({t}, 1, [&](std::size_t, const ChildResult& r) { result = r; });
+          if (signal || result.exit_code == kExitInterrupted) {
+            std::cerr << "sweep: interrupted in a transport stage; run the same command again\n";
+            return kExitInterrupted;
+          }
+          if (result.exit_code != 0) {
+            p.rejected = "its transport stage failed (exit " + std::to_string(result.exit_code) +
+                         "): " + result.message + " (log: " + t.log.string() + ")";
+            p.columns["gravity"] = io::Json();
+            continue;
+          }
+        }
+        const transport::Coefficients k = transport::read_coefficients(
+            io::read_json(summary_file), p.resolved.transport.source, twin.reference_temperature);
+        take_coefficients(k, twin);
+      }
+      try {
+        const auto g = gravity_for_rayleigh(twin, cl.rayleigh[i % copies]);
+        p.assignments.push_back("Scene/Gravity=" + vector_text(g, p.resolved.scene.dim));
+        p.columns["gravity"] = magnitude(g, p.resolved.scene.dim);
+      } catch (const std::runtime_error& e) {
+        p.rejected = e.what();
+        p.columns["gravity"] = io::Json();
+      }
     }
     return 0;
   };
-  s.finished = [&](const Point&, const fs::path& point_dir, const io::Json*, io::Json& row) {
+  // A point lands when its twin's Ra is within kRayleighTolerance of the target. Its particle
+  // fluid's mean temperature is recorded beside: the coefficients were pinned to another.
+  const auto check_landing = [&](const Point& p, const fs::path& point_dir, io::Json& row) {
+    const double target = io::number(p.columns, {"target_rayleigh"});
+    if (!std::isfinite(target) || io::text(row, {"status"}) != "done") return;
+    row["transport_temperature"] = p.resolved.transport.temperature;
+    row["particle_temperature"] = number_or_null(io::number(
+        read_json_or_empty(point_dir / "particle" / "summary.json"), {"results", "T_kinetic"}));
+    const double achieved = io::number(row, {"rayleigh"});
+    if (std::isfinite(achieved) && std::fabs(achieved / target - 1) <= kRayleighTolerance) return;
+    row["status"] = "failed";
+    row["reason"] = std::isfinite(achieved)
+                        ? "the twin ran at Ra = " + number_text(achieved) + ", " +
+                              number_text(100 * (achieved / target - 1)) + "% from the target " +
+                              number_text(target) +
+                              " (allowed: " + number_text(100 * kRayleighTolerance) +
+                              "%): its coefficients are not those its gravity was set with"
+                        : "the twin recorded no Ra to compare with the target";
+  };
+  s.finished = [&](const Point& p, const fs::path& point_dir, const io::Json*, io::Json& row) {
     if (!run_finished(point_dir)) return false;
     row["status"] = "done";
     row["exit_code"] = 0;
     add_metrics(point_dir, reserved, row);
+    check_landing(p, point_dir, row);
     return true;
   };
-  s.describe = [&](const Point&, const fs::path& point_dir, const ChildResult& r, io::Json& row) {
+  s.describe = [&](const Point& p, const fs::path& point_dir, const ChildResult& r, io::Json& row) {
     row["status"] = status_of(r.exit_code);
     if (r.exit_code == 0) add_metrics(point_dir, reserved, row);
+    check_landing(p, point_dir, row);
   };
   return run_study(cl, s, points);
 }

@@ -16,7 +16,8 @@ namespace fs = std::filesystem;
 namespace {
 // What the transport stage's outputs depend on: the fluid (the Particle section, less the scene's
 // run lengths and walls), the dimension, the state point and the measurement settings; not the
-// scene's box, walls or gravity; the method's version (transport::kMeasurementMethod).
+// scene's box, walls or gravity (with kappa from walls its box and walls, never its gravity); the
+// method's version (transport::kMeasurementMethod).
 io::Json measurement_inputs(const Case& c, const particle::ParticleParameters& p,
                             const transport::TransportParameters& t) {
   io::Json j = io::Json::object();
@@ -40,8 +41,13 @@ io::Json measurement_inputs(const Case& c, const particle::ParticleParameters& p
   }
   j["method"] = transport::kMeasurementMethod;
   if (t.kappa_from_walls) { // the scene and the particle walls enter the wall run
+    // Not its gravity: a conduction run must not convect, and the wall run has none
+    // (transport/wall_kappa.cpp). Else each --rayleigh point would measure again, with other
+    // noise, what is the same measurement.
     for (const auto& [path, value] : resolved.items())
-      if (path.rfind("Scene/", 0) == 0 || path.rfind("Particle/Walls/", 0) == 0) j[path] = value;
+      if ((path.rfind("Scene/", 0) == 0 && path != "Scene/Gravity") ||
+          path.rfind("Particle/Walls/", 0) == 0)
+        j[path] = value;
     j["kappa_from_walls"] = true;
     j["wall_steps"] = t.wall_steps;
   }

@@ -61,14 +61,19 @@ std::string file_text(const fs::path& file) {
 
 // The default cavity shrunk to 100 particles, 600 steps and a 4 x 4 (Q2) continuum mesh: one
 // paired run takes ~15 s, nearly all of it the transport stage's fixed bulk runs.
-const std::string kTinyCavity = shipped("heated_cavity_2d") +
-                                " --set 'Scene/Box size=10, 10' --set 'Scene/Density=1'"
-                                " --set 'Scene/Field bins=5, 5'"
-                                " --set 'Particle/Equilibration steps=200'"
-                                " --set 'Particle/Steps=400' --set 'Continuum/Mesh/Cells=4'"
-                                " --set 'Continuum/Mesh/Refinements=1'"
-                                " --set 'Transport/Measure kappa and eta=false'"
-                                " --set 'Transport/Kappa from walls=false'";
+const std::string kTinyScene = shipped("heated_cavity_2d") +
+                               " --set 'Scene/Box size=10, 10' --set 'Scene/Density=1'"
+                               " --set 'Scene/Field bins=5, 5'"
+                               " --set 'Particle/Equilibration steps=200'"
+                               " --set 'Particle/Steps=400' --set 'Continuum/Mesh/Cells=4'"
+                               " --set 'Continuum/Mesh/Refinements=1'";
+const std::string kTinyCavity = kTinyScene + " --set 'Transport/Measure kappa and eta=false'"
+                                             " --set 'Transport/Kappa from walls=false'";
+// The same with the case's measured coefficients, shrunk: kappa by conduction between the walls
+// (1000 steps), eta by relaxation (2 runs of 100 particles).
+const std::string kTinyMeasuredCavity = kTinyScene + " --set 'Transport/Flow particles=100'"
+                                                     " --set 'Transport/Flow repeats=2'"
+                                                     " --set 'Transport/Wall steps=1000'";
 
 } // namespace
 
@@ -179,6 +184,46 @@ TEST(Stability, WalledSceneIsHeldToTheWallsRange) {
     EXPECT_LT(number(point, T), 1.5) << T;
     EXPECT_GT(std::abs(number(point, T) / number(point, "T_target") - 1), 0.05) << T;
   }
+}
+
+// --rayleigh: each point's twin runs at its target Ra. Before issue 31 gravity came from a run at
+// the walls' mean temperature while each twin took coefficients measured at its particle
+// fluid's mean temperature (alpha = 1/T alone differed by the ratio of the two). With a cache of
+// its own, as a user's sweep has one: one measurement serves both points (gravity is none of its
+// inputs), and each point's run takes the coefficients its gravity was set with.
+TEST(Sweep, RayleighPointsLandOnTheirTargets) {
+  const fs::path dir = fresh_dir("rayleigh"), cache = fresh_dir("rayleigh_cache");
+  const Result r = twinflow::testing::run_twinflow(
+      "sweep " + kTinyMeasuredCavity + " --rayleigh 20,60 --jobs 2 --out " + dir.string(),
+      cache.string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  // The transport stage runs before the particles, at Scene/Temperature: said.
+  EXPECT_NE(r.output.find("Transport/Temperature=0.8"), std::string::npos) << r.output;
+  const auto points = rows(dir / "sweep.json");
+  ASSERT_EQ(points.size(), 2u);
+  for (const Json& p : points) {
+    const std::string name = text(p, "point");
+    ASSERT_EQ(text(p, "status"), "done")
+        << text(p, "reason") << file_text(dir / "points" / name / "log.txt");
+    EXPECT_NEAR(number(p, "rayleigh") / number(p, "target_rayleigh"), 1, 0.03) << name;
+    EXPECT_EQ(number(p, "transport_temperature"), 0.8);
+    EXPECT_GT(number(p, "particle_temperature"), 0); // the fluid's own, beside the pinned one
+    const Json reference =
+        twinflow::io::read_json(dir / "reference" / name / "transport" / "summary.json");
+    const Json own = twinflow::io::read_json(dir / "points" / name / "transport" / "summary.json");
+    EXPECT_NE(file_text(dir / "points" / name / "log.txt").find("reused from the cache"),
+              std::string::npos)
+        << name << ": its run measured again";
+    for (const char* key : {"conductivity", "viscosity"})
+      EXPECT_EQ(twinflow::io::number(reference, {"results", "measured", key}),
+                twinflow::io::number(own, {"results", "measured", key}))
+          << name << " " << key;
+  }
+  const std::string csv = file_text(dir / "sweep.csv");
+  EXPECT_EQ(
+      csv.rfind("point,status,reason,exit_code,target_rayleigh,rayleigh,gravity,wall_seconds,", 0),
+      0u)
+      << csv;
 }
 
 // A small periodic ideal DPDE box: dt = 0.005 is stable, dt = 2 is not; the table states

@@ -25,6 +25,40 @@ def metric(row, column):
     return cell(row, column, optional=True)
 
 
+def rayleigh_miss(row):
+    """How far the point's twin landed from its target Ra: Ra / target - 1 (NaN unless both)."""
+    target = to_float(cell(row, "target_rayleigh", optional=True))
+    achieved = to_float(metric(row, "rayleigh"))
+    if not (finite(target) and finite(achieved)) or target == 0:
+        return math.nan
+    return achieved / target - 1
+
+
+def fmt_signed_percent(fraction):
+    return "–" if not finite(fraction) else f"{100 * fraction:+.1f} %"
+
+
+def landing_summary(rows):
+    """One sentence on how far the twins landed from their target Ra, None without targets."""
+    misses = [(cell(r, "point"), rayleigh_miss(r)) for r in rows]
+    misses = [(p, m) for p, m in misses if finite(m)]
+    if not misses:
+        return None
+    point, worst = max(misses, key=lambda pm: abs(pm[1]))
+    return (f"The twins' Ra against their targets: {len(misses)} point(s) ran, the farthest "
+            f"(point {point}) at {fmt_signed_percent(worst)} from its target; each point's "
+            "miss is in the table (Ra / target - 1).")
+
+
+def in_range(pairs, xs, margin=1.05):
+    """The (x, y) pairs whose x lies within the range of xs (a relative margin on each side)."""
+    xs = [x for x in xs if finite(x) and x > 0]
+    if not xs:
+        return []
+    low, high = min(xs) / margin, max(xs) * margin
+    return [(x, y) for x, y in pairs if low <= x <= high]
+
+
 def walls_no_slip(grid):
     """True / False from the base parameters' walled directions' Slip, None when not stated."""
     parameters = lookup(grid, "base_parameters") or {}
@@ -272,18 +306,25 @@ def report_sweep(sweep_dir, out_dir):
             ("calibrated twin", "nusselt_calibrated", None, COLOUR["calibrated"])])
         no_slip = walls_no_slip(grid)
         benchmark_note = None
-        if by_rayleigh and no_slip is not False:
+        # The benchmark only where the sweep has points: its range sets the axis.
+        sweep_ra = [x_axis.position(cell(r, x_column)) for r in table.rows]
+        benchmark = in_range(DE_VAHL_DAVIS_NUSSELT, sweep_ra)
+        if by_rayleigh and no_slip is not False and benchmark:
             from matplotlib.lines import Line2D
-            ra, nu = zip(*DE_VAHL_DAVIS_NUSSELT)
+            ra, nu = zip(*benchmark)
             label = "de Vahl Davis 1983, no-slip, Pr 0.71" + (
                 "" if no_slip else " (walls' slip not stated)")
             ax.plot(ra, nu, "*", ms=10, color=COLOUR["benchmark"], zorder=4)
             handles.append(Line2D([], [], marker="*", ls="", ms=10, color=COLOUR["benchmark"],
                                   label=label))
             benchmark_note = ("Stars: de Vahl Davis (1983), Int. J. Numer. Meth. Fluids 3, 249, "
-                              "Boussinesq cavity with no-slip walls at Pr = 0.71"
+                              "Boussinesq cavity with no-slip walls at Pr = 0.71, its values "
+                              "within the sweep's Ra range"
                               + ("" if no_slip else "; the sweep does not state its walls' slip")
                               + ".")
+        elif by_rayleigh and no_slip is not False:
+            benchmark_note = ("de Vahl Davis's no-slip benchmark (Ra 1e3-1e6) has no value "
+                              "within the sweep's Ra range.")
         elif by_rayleigh:
             benchmark_note = ("de Vahl Davis's no-slip benchmark is not drawn: this case's walls "
                               "are not all no-slip.")
@@ -342,6 +383,8 @@ def report_sweep(sweep_dir, out_dir):
         # (rayleigh, the nominal twin's, is a metric; target_rayleigh the sweep's own)
         cells = [plain(cell(r, c)) if c in ("point", "status") or c in keys else
                  fmt(to_float(cell(r, c, optional=c == "rayleigh"))) for _, c in columns]
+        if by_rayleigh:
+            cells.append(fmt_signed_percent(rayleigh_miss(r)))
         cells += [fmt_pm(to_float(metric(r, "nusselt_particle")),
                          to_float(metric(r, "nusselt_particle_stderr"))),
                   fmt(to_float(metric(r, "nusselt_nominal"))),
@@ -353,6 +396,11 @@ def report_sweep(sweep_dir, out_dir):
                   fmt(to_float(metric(r, "temperature_l2_noise"))),
                   fmt(to_float(cell(r, "wall_seconds")))]
         rows.append(cells)
+    if by_rayleigh:
+        columns.append(("Ra / target - 1", None))
+        summary = landing_summary(table.rows)
+        if summary:
+            doc.paragraph(summary)
     doc.table([c[0] for c in columns] + ["Nu particle", "Nu nominal", "Nu calibrated",
                                           "T L2 nominal", "T L2 calibrated", "T noise",
                                           "wall s"], rows)

@@ -6,7 +6,8 @@ import unittest
 
 import report_path  # noqa: F401  (compare/ on sys.path)
 from report.data import MissingKey, Table, cell, strict_mode
-from report.sweep import metric, pareto_front, source_style, sweep_groups, walls_no_slip
+from report.sweep import (DE_VAHL_DAVIS_NUSSELT, in_range, landing_summary, metric, pareto_front,
+                          rayleigh_miss, source_style, sweep_groups, walls_no_slip)
 
 
 class Pareto(unittest.TestCase):
@@ -50,6 +51,30 @@ class WallsNoSlip(unittest.TestCase):
         self.assertFalse(walls_no_slip(self.grid(x="no-slip", y="free-slip")))
         self.assertIsNone(walls_no_slip(self.grid()))  # no walls
         self.assertIsNone(walls_no_slip(self.grid(x=None)))  # slip not stated
+
+
+class RayleighTargets(unittest.TestCase):
+    rows = [{"point": "000", "status": "done", "target_rayleigh": "100", "rayleigh": "101.5"},
+            {"point": "001", "status": "done", "target_rayleigh": "1e4", "rayleigh": "9600"},
+            {"point": "002", "status": "failed", "target_rayleigh": "3000", "rayleigh": ""}]
+
+    def test_miss_is_achieved_over_target_minus_one(self):
+        self.assertAlmostEqual(rayleigh_miss(self.rows[0]), 0.015)
+        self.assertAlmostEqual(rayleigh_miss(self.rows[1]), -0.04)
+        self.assertNotEqual(rayleigh_miss(self.rows[2]), rayleigh_miss(self.rows[2]))  # NaN
+
+    def test_summary_names_the_farthest_point(self):
+        text = landing_summary(self.rows)
+        self.assertIn("2 point(s)", text)
+        self.assertIn("point 001", text)
+        self.assertIn("-4.0 %", text)
+        self.assertIsNone(landing_summary([self.rows[2]]))
+
+    def test_benchmark_only_within_the_sweeps_range(self):
+        self.assertEqual(in_range(DE_VAHL_DAVIS_NUSSELT, [100, 3000, 1e4]),
+                         [(1e3, 1.118), (1e4, 2.243)])
+        self.assertEqual(in_range(DE_VAHL_DAVIS_NUSSELT, [200, 500]), [])
+        self.assertEqual(in_range(DE_VAHL_DAVIS_NUSSELT, []), [])
 
 
 class Columns(unittest.TestCase):

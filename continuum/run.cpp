@@ -4,6 +4,7 @@
 
 #include "continuum/boussinesq.hpp"
 #include "continuum/boussinesq_distributed.hpp"
+#include "continuum/compressible.hpp"
 #include "continuum/heat_conduction.hpp"
 #include "continuum/low_mach.hpp"
 
@@ -24,6 +25,10 @@ ContinuumResult run(const ContinuumParameters& p, const std::filesystem::path& o
   if (p.model == Model::LowMach) {
     if (p.dim == 2) return LowMachProblem<2>(p).run(output_dir);
     return LowMachProblem<3>(p).run(output_dir);
+  }
+  if (p.model == Model::Compressible) {
+    if (p.dim == 2) return CompressibleProblem<2>(p).run(output_dir);
+    return CompressibleProblem<3>(p).run(output_dir);
   }
   if (p.uses_iterative_solver()) return DistributedBoussinesqProblem<3>(p).run(output_dir);
   if (p.dim == 2) return BoussinesqProblem<2>(p).run(output_dir);

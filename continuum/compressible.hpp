@@ -74,9 +74,9 @@ public:
   CompressibleModel(const ContinuumParameters& prm, const DimensionlessNumbers& numbers,
                     const dealii::FiniteElement<dim>& fe)
       : FlowModel<dim>(prm, numbers), values_(fe, dealii::QGauss<dim>(3)), walls_(fe, prm),
-        c_v_(heat_capacity_v(prm.equation_of_state, prm.heat_capacity)),
-        grad_n_(values_.n_q), history_u_(values_.n_q), history_n_(values_.n_q),
-        history_T_(values_.n_q), dofs_(fe.n_dofs_per_cell()) {
+        c_v_(heat_capacity_v(prm.equation_of_state, prm.heat_capacity)), grad_n_(values_.n_q),
+        history_u_(values_.n_q), history_n_(values_.n_q), history_T_(values_.n_q),
+        dofs_(fe.n_dofs_per_cell()) {
     volume_ = 1;
     for (int d = 0; d < dim; ++d) volume_ *= prm.box[d];
     total_particles_ = prm.number_density * volume_; // N = n_mean |Omega|
@@ -245,7 +245,7 @@ void CompressibleModel<dim>::assemble_cell(const CellIterator<dim>& cell, const 
       dn_dt = a0 * n[q] + history_n_[q];
       dT_dt += a0 * T[q] + history_T_[q];
     }
-    const dealii::Tensor<1, dim> flux = n[q] * u[q];            // n u
+    const dealii::Tensor<1, dim> flux = n[q] * u[q];                           // n u
     const double heating = 2 * eta * (eps_u * eps_u) + lambda * div_u * div_u; // tau : grad u
     const double JxW = v.fe_values.JxW(q);
     if (forcing_) forcing_(v.fe_values.quadrature_point(q), force_);
@@ -277,22 +277,20 @@ void CompressibleModel<dim>::assemble_cell(const CellIterator<dim>& cell, const 
         double ddT_dt = phi_u[j] * grad_T[q] + u[q] * grad_phi_T[j];
         if (in_time) ddu_dt += a0 * phi_u[j], ddT_dt += a0 * phi_T[j];
         const double dn_j = phi_n[j], dT_j = phi_T[j];
-        const double momentum =
-            m * dn_j * (du_dt * phi_u[i]) + m * n[q] * (ddu_dt * phi_u[i]) +
-            2 * eta * (eps_phi_u[j] * eps_phi_u[i]) + lambda * div_j * div_phi_u[i] +
-            dT_j * deta * stress_u_i -
-            (s.p_n * dn_j + s.p_T * dT_j) * div_phi_u[i] - m * dn_j * (g * phi_u[i]);
-        const double mass =
-            (in_time ? a0 * dn_j * phi_n[i] : 0.0) -
-            grad_phi_n[i] * (dn_j * u[q] + n[q] * phi_u[j]);
-        const double dheating = 4 * eta * (eps_u * eps_phi_u[j]) +
-                                2 * lambda * div_u * div_j + heating_T * dT_j;
+        const double momentum = m * dn_j * (du_dt * phi_u[i]) + m * n[q] * (ddu_dt * phi_u[i]) +
+                                2 * eta * (eps_phi_u[j] * eps_phi_u[i]) +
+                                lambda * div_j * div_phi_u[i] + dT_j * deta * stress_u_i -
+                                (s.p_n * dn_j + s.p_T * dT_j) * div_phi_u[i] -
+                                m * dn_j * (g * phi_u[i]);
+        const double mass = (in_time ? a0 * dn_j * phi_n[i] : 0.0) -
+                            grad_phi_n[i] * (dn_j * u[q] + n[q] * phi_u[j]);
+        const double dheating =
+            4 * eta * (eps_u * eps_phi_u[j]) + 2 * lambda * div_u * div_j + heating_T * dT_j;
         const double energy =
-            (dn_j * c_v * dT_dt + n[q] * c_v * ddT_dt + (work.d_n * dn_j + work.d_T * dT_j) * div_u +
-             work.value * div_j - dheating) *
+            (dn_j * c_v * dT_dt + n[q] * c_v * ddT_dt +
+             (work.d_n * dn_j + work.d_T * dT_j) * div_u + work.value * div_j - dheating) *
                 phi_T[i] +
-            kappa * (grad_phi_T[j] * grad_phi_T[i]) +
-            dkappa * dT_j * (grad_T[q] * grad_phi_T[i]);
+            kappa * (grad_phi_T[j] * grad_phi_T[i]) + dkappa * dT_j * (grad_T[q] * grad_phi_T[i]);
         out.matrix(i, j) += (momentum + mass + energy) * JxW;
       }
     }
@@ -315,8 +313,8 @@ void CompressibleModel<dim>::assemble_cell(const CellIterator<dim>& cell, const 
 
 template <int dim>
 template <class VectorType>
-void CompressibleModel<dim>::finish_result(const dealii::DoFHandler<dim>& dofs,
-                                           const VectorType& x, const FlowIntegrals& flow,
+void CompressibleModel<dim>::finish_result(const dealii::DoFHandler<dim>& dofs, const VectorType& x,
+                                           const FlowIntegrals& flow,
                                            ContinuumResult& result) const {
   double lo = HUGE_VAL, hi = -HUGE_VAL;
   for (const auto i : dealii::DoFTools::extract_dofs(

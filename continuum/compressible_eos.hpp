@@ -15,8 +15,8 @@
 namespace twinflow::continuum {
 
 struct PressureState {
-  double p = 0;                     // pressure
-  double p_n = 0, p_T = 0;          // dp/dn at fixed T, dp/dT at fixed n
+  double p = 0;            // pressure
+  double p_n = 0, p_T = 0; // dp/dn at fixed T, dp/dT at fixed n
   double p_nn = 0, p_nT = 0, p_TT = 0;
 };
 

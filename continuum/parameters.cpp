@@ -117,7 +117,6 @@ void check(const ContinuumParameters& p) {
   }
   if (p.model == Model::Compressible) {
     require(p.bulk_viscosity >= 0, "bulk viscosity must be >= 0");
-    require(p.heat_capacity > 1.0, "the compressible model needs c_p > k (c_V = c_p - k > 0)");
     // The barometric scale height k T_min / (m g_d) (T_min: the coldest thermal wall, else T_ref)
     // must span 4 cells of the finest mesh: Q1 then interpolates exp(-z / H_s) to < 1%.
     double T_min = p.reference_temperature;

@@ -130,8 +130,13 @@ io::Json to_json(const ContinuumResult& r) {
   j["mesh"] = mesh;
 
   io::Json results = io::Json::object();
-  if (r.model == "boussinesq" || r.model == "low-mach") {
+  if (r.model == "boussinesq" || r.model == "low-mach" || r.model == "compressible") {
     results["nusselt_volume_average"] = r.nusselt;
+    if (r.model == "compressible") {
+      results["relative_mass_error"] = r.mass_error;
+      results["number_density_min"] = r.density_min;
+      results["number_density_max"] = r.density_max;
+    }
     if (r.model == "low-mach") {
       results["thermodynamic_pressure"] = r.thermodynamic_pressure;
       results["pressure_ratio_P_over_p0"] = r.pressure_ratio;

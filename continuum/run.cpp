@@ -27,6 +27,10 @@ ContinuumResult run(const ContinuumParameters& p, const std::filesystem::path& o
     return LowMachProblem<3>(p).run(output_dir);
   }
   if (p.model == Model::Compressible) {
+    // Here, not in check(): c_p may come from the transport stage after the case is read.
+    if (!(p.heat_capacity > 1.0))
+      throw std::invalid_argument(
+          "continuum parameters: the compressible model needs c_p > k (c_V = c_p - k > 0)");
     if (p.dim == 2) return CompressibleProblem<2>(p).run(output_dir);
     return CompressibleProblem<3>(p).run(output_dir);
   }

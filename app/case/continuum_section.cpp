@@ -307,6 +307,10 @@ continuum::ContinuumParameters resolve_continuum(const Registry& r,
   c.viscosity = law("Viscosity");
   c.conductivity = law("Conductivity");
   c.heat_capacity = r.get_positive(k + "Heat capacity");
+  r.require(c.model != continuum::Model::Compressible || c.heat_capacity > 1 ||
+                r.get(k + "Source") == "transport",
+            k + "Heat capacity",
+            "> 1 (c_p > k: c_V = c_p - k > 0) with Continuum/Model = compressible");
   c.thermal_expansion = r.get_double(k + "Thermal expansion");
   c.reference_temperature = r.get_positive(k + "Reference temperature");
   c.bulk_viscosity = r.get_double(k + "Bulk viscosity");

@@ -2,9 +2,9 @@
 // What a flow model gives FlowProblem (flow_problem.hpp), and the pieces models share.
 //
 // Unknowns (u_0..u_{dim-1}, s, T): velocity (Q2), one scalar s (Q1 by default: the pressure of
-// Boussinesq and low-Mach; a compressible model's number density, with gauge_pressure = false,
-// scalar_name "n" and density(s, T) = s), temperature (Q2). A model is a class derived from
-// FlowModel<dim> that defines
+// Boussinesq and low-Mach; the compressible model's number density, with gauge_pressure = false,
+// scalar_name "n" and density(s, T) = s, compressible.hpp), temperature (Q2). A model is a class
+// derived from FlowModel<dim> that defines
 //   static constexpr const char* name;          // "boussinesq", ContinuumResult::model
 //   std::unique_ptr<dealii::Function<dim>> initial_state() const;  (or keeps FlowModel's)
 //   template <class VectorType>
@@ -21,6 +21,7 @@
 #include <deal.II/dofs/dof_handler.h>
 #include <deal.II/dofs/dof_tools.h>
 #include <deal.II/fe/fe_values.h>
+#include <deal.II/lac/affine_constraints.h>
 #include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/vector.h>
 
@@ -120,10 +121,12 @@ public:
   double pressure_ratio() const { return 0.0; } // MeshLevel::pressure_ratio
   std::string state_note() const { return ""; } // appended to the progress lines
 
-  // Hooks of the solver, no-ops here: quantities derived from a whole state (low-Mach: P from the
-  // mass of the box); before an assembly (may throw std::runtime_error for a state outside the
+  // Hooks of the solver, no-ops here: after the DoFs and constraints of a mesh (compressible:
+  // the anchor DoF of the particle count); quantities derived from a whole state (low-Mach: P from
+  // the mass of the box); before an assembly (may throw std::runtime_error for a state outside the
   // model's range: Newton's line search then tries a shorter step); after it, with the summed
   // rank-one row; at the start of a step in time; model-specific results.
+  void setup(const dealii::DoFHandler<dim>&, const dealii::AffineConstraints<double>&) {}
   template <class VectorType>
   void update_derived_state(const dealii::DoFHandler<dim>&, const VectorType&) {}
   template <class VectorType>

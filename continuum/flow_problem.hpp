@@ -41,8 +41,12 @@ public:
 
   // For tests (serial backend): components u_0..u_{dim-1}, s, T at a point.
   dealii::Vector<double> value_at(const dealii::Point<dim>& point) const;
+  // For tests (serial backend): L2 norms over the box of u - u_exact, s - s_exact, T - T_exact,
+  // `exact` with the dim + 2 components.
+  std::array<double, 3> l2_errors(const dealii::Function<dim>& exact) const;
   unsigned long n_dofs() const { return dof_handler_.n_dofs(); }
   const Model& model() const { return model_; }
+  Model& model() { return model_; } // for tests: a manufactured solution's forcing
 
 private:
   using Vector = typename Backend::Vector;

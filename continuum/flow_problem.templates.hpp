@@ -202,6 +202,7 @@ template <int dim, class Model, class Backend> void FlowProblem<dim, Model, Back
   detail::ScopedTimer timer(times_.setup);
   backend_.distribute_dofs(dof_handler_, fe_);
   make_constraints();
+  model_.setup(dof_handler_, zero_constraints_);
   backend_.setup_matrix(dof_handler_, model_.coupling(), zero_constraints_);
   for (auto* v : {&solution_, &newton_update_, &residual_}) backend_.reinit(*v);
   backend_.reinit_ghosted(evaluation_point_);
@@ -501,6 +502,28 @@ FlowProblem<dim, Model, Backend>::value_at(const dealii::Point<dim>& point) cons
   else
     dealii::VectorTools::point_value(dof_handler_, solution_, point, value);
   return value;
+}
+
+template <int dim, class Model, class Backend>
+std::array<double, 3>
+FlowProblem<dim, Model, Backend>::l2_errors(const dealii::Function<dim>& exact) const {
+  std::array<double, 3> errors{{0, 0, 0}};
+  if constexpr (Backend::distributed) {
+    throw std::logic_error("l2_errors: serial backend only");
+  } else {
+    const dealii::QGauss<dim> quadrature(4);
+    const std::array<std::pair<unsigned, unsigned>, 3> ranges{
+        {{0, dim}, {dim, dim + 1}, {dim + 1, dim + 2}}}; // u, s, T
+    for (int k = 0; k < 3; ++k) {
+      const dealii::ComponentSelectFunction<dim> select(ranges[k], dim + 2);
+      dealii::Vector<float> per_cell(dof_handler_.get_triangulation().n_active_cells());
+      dealii::VectorTools::integrate_difference(dof_handler_, solution_, exact, per_cell,
+                                                quadrature, dealii::VectorTools::L2_norm, &select);
+      errors[k] = dealii::VectorTools::compute_global_error(dof_handler_.get_triangulation(),
+                                                            per_cell, dealii::VectorTools::L2_norm);
+    }
+  }
+  return errors;
 }
 
 } // namespace twinflow::continuum

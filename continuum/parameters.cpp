@@ -28,7 +28,9 @@ DimensionlessNumbers dimensionless_numbers(const ContinuumParameters& p) {
   const double H = n.height;
   // Ra = g alpha dT H^3 / (nu chi) (de Vahl Davis 1983, eq. 5); the low-Mach ideal gas has
   // alpha = 1/T_ref (physics.md), which makes this Le Quere et al. 2005's Ra at T0 = T_ref.
-  const double alpha = p.model == Model::LowMach ? 1.0 / T_ref : p.thermal_expansion;
+  const double alpha = p.model == Model::LowMach || p.model == Model::Compressible
+                           ? 1.0 / T_ref
+                           : p.thermal_expansion;
   n.rayleigh = g * alpha * std::abs(n.temperature_difference) * H * H * H /
                (n.kinematic_viscosity * n.thermal_diffusivity);
   n.velocity_scale = n.thermal_diffusivity / H; // chi / H (de Vahl Davis 1983)
@@ -108,8 +110,32 @@ void check(const ContinuumParameters& p) {
               "wall temperatures must be > 0");
     for (int side = 0; side < 2; ++side)
       require(p.boundary[d].kapitza_conductance[side] >= 0 &&
-                  (p.model == Model::Boussinesq || p.boundary[d].kapitza_conductance[side] == 0),
-              "Kapitza conductances must be >= 0, and > 0 only in the Boussinesq model");
+                  (p.model == Model::Boussinesq || p.model == Model::Compressible ||
+                   p.boundary[d].kapitza_conductance[side] == 0),
+              "Kapitza conductances must be >= 0, and > 0 only in the Boussinesq and "
+              "compressible models");
+  }
+  if (p.model == Model::Compressible) {
+    require(p.bulk_viscosity >= 0, "bulk viscosity must be >= 0");
+    // The barometric scale height k T_min / (m g_d) (T_min: the coldest thermal wall, else T_ref)
+    // must span 4 cells of the finest mesh: Q1 then interpolates exp(-z / H_s) to < 1%.
+    double T_min = p.reference_temperature;
+    bool walls = false;
+    for (int d = 0; d < p.dim; ++d)
+      for (int side = 0; side < 2; ++side)
+        if (!p.boundary[d].periodic && p.boundary[d].fixed_temperature[side])
+          T_min = walls ? std::min(T_min, p.boundary[d].temperature[side])
+                        : p.boundary[d].temperature[side],
+          walls = true;
+    for (int d = 0; d < p.dim; ++d) {
+      if (p.gravity[d] == 0 || p.uniform_along(d)) continue;
+      const double h = p.box[d] / (p.cells[d] * std::pow(2.0, p.refinements));
+      const double scale_height = T_min / (p.particle_mass * std::abs(p.gravity[d]));
+      require(h <= 0.25 * scale_height,
+              "mesh too coarse for the stratification: the finest cell along gravity (" +
+                  std::to_string(h) + ") must be <= 1/4 of the scale height k T_min / (m g) = " +
+                  std::to_string(scale_height) + " (more Mesh/Cells or Refinements)");
+    }
   }
   require(p.number_density > 0 && p.particle_mass > 0 && p.heat_capacity > 0,
           "n, m and c_p must be > 0");

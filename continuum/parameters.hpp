@@ -10,12 +10,13 @@
 
 namespace twinflow::continuum {
 
-enum class Model { Boussinesq, HeatConduction, LowMach };
+enum class Model { Boussinesq, HeatConduction, LowMach, Compressible };
 // Steady: the stationary equations (Newton). Transient: march in time from the initial state to
 // end_time (Boussinesq: BDF2, low-Mach: implicit Euler, heat conduction: theta scheme).
 enum class Mode { Steady, Transient };
-// Equation of state of the low-Mach model (continuum/low_mach_eos.hpp): the ideal gas
-// p = n k T; the measured p(n, T) of the particle fluid plugs in there.
+// Equation of state of the low-Mach and compressible models (continuum/low_mach_eos.hpp,
+// compressible_eos.hpp): the ideal gas p = n k T; the measured p(n, T) of the particle fluid
+// plugs in there.
 enum class EquationOfState { IdealGas };
 // Boussinesq linear solver: direct (serial UMFPACK) or iterative (p4est + Trilinos FGMRES, 3D);
 // automatic: direct in 2D, iterative in 3D.
@@ -56,7 +57,7 @@ struct DirectionBoundary {
   bool no_slip = true;                                 // else free slip (no normal flux)
   // Kapitza (Robin) condition of a fixed-temperature wall: with h > 0 the heat flux into the
   // domain is h (T_wall - T) instead of T = T_wall (the particle walls' temperature jump).
-  // Boussinesq only. (Last: aggregate initialisers of the fields above stay valid.)
+  // Boussinesq and compressible. (Last: aggregate initialisers of the fields above stay valid.)
   std::array<double, 2> kapitza_conductance{{0.0, 0.0}};
   bool robin(int side) const { return fixed_temperature[side] && kapitza_conductance[side] > 0; }
   // Inverse law (the particle wall's own, physics.md): q = h T_wall^2 (1/T - 1/T_wall), the
@@ -66,7 +67,8 @@ struct DirectionBoundary {
   // h_K by its error in an extra solve, for the twin's heat-flux error).
   std::array<double, 2> kapitza_conductance_stderr{{0.0, 0.0}};
   // Navier slip of a no-slip wall: with b > 0 no normal flow and the tangential traction
-  // eta(T) u_t / b (Navier 1823; the particle wall's friction over its layer). Boussinesq only.
+  // eta(T) u_t / b (Navier 1823; the particle wall's friction over its layer). Boussinesq and
+  // compressible.
   std::array<double, 2> slip_length{{0.0, 0.0}};
   bool navier(int side) const { return no_slip && slip_length[side] > 0; }
   double kapitza_flux(int side, double T) const { // heat flux into the domain at fluid T
@@ -104,8 +106,14 @@ struct ContinuumParameters {
   PowerLaw viscosity{1.0, 0.0};       // eta(T)
   PowerLaw conductivity{1.0, 0.0};    // kappa(T)
   std::vector<HeatSlab> heat_slabs;
-  // Low-Mach model only: n(P, T) (continuum/low_mach_eos.hpp).
+  // Low-Mach and compressible models: n(P, T) or p(n, T) (continuum/low_mach_eos.hpp,
+  // compressible_eos.hpp).
   EquationOfState equation_of_state = EquationOfState::IdealGas;
+  // Compressible model: bulk viscosity zeta (units of eta), constant; the stress is
+  // 2 eta S + (zeta - (2/d) eta) div u I. 0: the ideal gas's kinetic part (none for particles
+  // without internal degrees of freedom in their kinetic stress); the DPD friction adds
+  // zeta_D = (1 + 2/d) eta_D (Marsh, Backx & Ernst 1997) where eta_D is eta's dissipative part.
+  double bulk_viscosity = 0.0;
 
   // Mesh: `cells` coarse cells per direction, then `refinements` global refinements.
   std::array<unsigned, 3> cells{{8, 8, 8}};

@@ -64,9 +64,10 @@ io::Json heat_slabs_json(const std::vector<HeatSlab>& heat_slabs) {
 
 io::Json to_json(const ContinuumParameters& p) {
   io::Json j = io::Json::object();
-  j["model"] = p.model == Model::Boussinesq ? "boussinesq"
-               : p.model == Model::LowMach  ? "low-mach"
-                                            : "heat-conduction";
+  j["model"] = p.model == Model::Boussinesq     ? "boussinesq"
+               : p.model == Model::LowMach      ? "low-mach"
+               : p.model == Model::Compressible ? "compressible"
+                                                : "heat-conduction";
   j["dim"] = p.dim;
   j["box"] = triple(p.box, p.dim);
   if (p.bin_box[0] > 0) { // the scene's box in this twin's coordinates (walls moved in)
@@ -81,7 +82,9 @@ io::Json to_json(const ContinuumParameters& p) {
   j["thermal_expansion"] = p.thermal_expansion;
   j["reference_temperature"] = p.reference_temperature;
   j["viscosity"] = power_law(p.viscosity);
-  if (p.model == Model::LowMach) j["equation_of_state"] = "ideal-gas";
+  if (p.model == Model::LowMach || p.model == Model::Compressible)
+    j["equation_of_state"] = "ideal-gas";
+  if (p.model == Model::Compressible) j["bulk_viscosity"] = p.bulk_viscosity;
   j["conductivity"] = power_law(p.conductivity);
   j["heat_slabs"] = heat_slabs_json(p.heat_slabs);
   j["coarse_cells"] = cells_json(p.cells, p.dim);
@@ -127,8 +130,13 @@ io::Json to_json(const ContinuumResult& r) {
   j["mesh"] = mesh;
 
   io::Json results = io::Json::object();
-  if (r.model == "boussinesq" || r.model == "low-mach") {
+  if (r.model == "boussinesq" || r.model == "low-mach" || r.model == "compressible") {
     results["nusselt_volume_average"] = r.nusselt;
+    if (r.model == "compressible") {
+      results["relative_mass_error"] = r.mass_error;
+      results["number_density_min"] = r.density_min;
+      results["number_density_max"] = r.density_max;
+    }
     if (r.model == "low-mach") {
       results["thermodynamic_pressure"] = r.thermodynamic_pressure;
       results["pressure_ratio_P_over_p0"] = r.pressure_ratio;

@@ -4,6 +4,7 @@
 
 #include "continuum/boussinesq.hpp"
 #include "continuum/boussinesq_distributed.hpp"
+#include "continuum/compressible.hpp"
 #include "continuum/heat_conduction.hpp"
 #include "continuum/low_mach.hpp"
 
@@ -24,6 +25,14 @@ ContinuumResult run(const ContinuumParameters& p, const std::filesystem::path& o
   if (p.model == Model::LowMach) {
     if (p.dim == 2) return LowMachProblem<2>(p).run(output_dir);
     return LowMachProblem<3>(p).run(output_dir);
+  }
+  if (p.model == Model::Compressible) {
+    // Here, not in check(): c_p may come from the transport stage after the case is read.
+    if (!(p.heat_capacity > 1.0))
+      throw std::invalid_argument(
+          "continuum parameters: the compressible model needs c_p > k (c_V = c_p - k > 0)");
+    if (p.dim == 2) return CompressibleProblem<2>(p).run(output_dir);
+    return CompressibleProblem<3>(p).run(output_dir);
   }
   if (p.uses_iterative_solver()) return DistributedBoussinesqProblem<3>(p).run(output_dir);
   if (p.dim == 2) return BoussinesqProblem<2>(p).run(output_dir);

@@ -41,6 +41,16 @@ double SceneParameters::thermal_wall_mean() const {
   return walls > 0 ? sum / walls : 0;
 }
 
+double SceneParameters::stratification(double particle_mass) const {
+  double g = 0;
+  int up = -1;
+  for (int d = 0; d < dim; ++d)
+    if (std::fabs(gravity[d]) > g) g = std::fabs(gravity[d]), up = d;
+  if (up < 0) return 0;
+  const double T = thermal_wall_mean() > 0 ? thermal_wall_mean() : temperature;
+  return g * box[up] * particle_mass / T; // g H / c^2, c^2 = k T / m, k = 1 (physics.md)
+}
+
 std::string wall_name(int direction, int side) {
   return std::string(1, "xyz"[direction]) + (side ? "_upper" : "_lower");
 }

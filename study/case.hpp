@@ -28,7 +28,19 @@ struct TwinChoice {
   bool coefficients_from_transport = false; // RUNDIR/transport/summary.json, else the case's
   bool model_chosen_automatically = false;  // Continuum/Model = auto
   double low_mach_threshold = 0.2;          // its threshold on the walls' epsilon
+  double compressible_threshold = 0.1;      // its threshold on the stratification g H / c^2
 };
+
+// Continuum/Model = auto: compressible where the scene's stratification g H / c^2 exceeds its
+// threshold (the low-Mach and Boussinesq twins have no hydrostatic density gradient), else
+// low-Mach where the thermal walls' epsilon exceeds its threshold, else Boussinesq.
+inline continuum::Model automatic_model(const scene::SceneParameters& scene, double particle_mass,
+                                        double low_mach_threshold, double compressible_threshold) {
+  if (scene.stratification(particle_mass) > compressible_threshold)
+    return continuum::Model::Compressible;
+  if (scene.thermal_wall_epsilon() > low_mach_threshold) return continuum::Model::LowMach;
+  return continuum::Model::Boussinesq;
+}
 
 struct CaseParameters {
   std::string name;

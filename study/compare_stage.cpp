@@ -67,9 +67,8 @@ Case calibrated_case(const Case& nominal, const fs::path& run_dir) {
       p.continuum.boundary[d].temperature[side] = std::stod(text);
     }
   if (p.twin.model_chosen_automatically) // the walls' epsilon may have moved past the threshold
-    p.continuum.model = p.scene.thermal_wall_epsilon() > p.twin.low_mach_threshold
-                            ? continuum::Model::LowMach
-                            : continuum::Model::Boussinesq;
+    p.continuum.model = automatic_model(p.scene, p.continuum.particle_mass,
+                                        p.twin.low_mach_threshold, p.twin.compressible_threshold);
   if (walls.effective_positions) {
     const auto [text, distance] = list([](const auto& w) { return w.position; }, 6);
     set("Continuum/Wall positions", text);

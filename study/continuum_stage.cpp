@@ -122,9 +122,10 @@ bool has_kapitza_errors(const continuum::ContinuumParameters& p) {
 }
 
 const char* model_name(continuum::Model m) {
-  return m == continuum::Model::Boussinesq ? "Boussinesq"
-         : m == continuum::Model::LowMach  ? "low-Mach"
-                                           : "heat conduction";
+  return m == continuum::Model::Boussinesq     ? "Boussinesq"
+         : m == continuum::Model::LowMach      ? "low-Mach"
+         : m == continuum::Model::Compressible ? "compressible"
+                                               : "heat conduction";
 }
 } // namespace
 
@@ -146,16 +147,24 @@ int continuum_stage(const Case& c, const RunOptions& options, const std::string&
                          " MPI processes: only the iterative 3D Boussinesq path runs in parallel "
                          "(Continuum/Solver/Linear solver = iterative); run it on one process");
   const auto numbers = continuum::dimensionless_numbers(p);
-  if (root && parameters.twin.model_chosen_automatically && parameters.scene.has_walls())
-    std::cout << "continuum: Model = auto: "
-              << (p.model == continuum::Model::LowMach ? "low-Mach" : "Boussinesq")
-              << " (the thermal walls' epsilon " << parameters.scene.thermal_wall_epsilon()
-              << (p.model == continuum::Model::LowMach ? " > " : " <= ")
-              << parameters.twin.low_mach_threshold << ")\n";
+  if (root && parameters.twin.model_chosen_automatically && parameters.scene.has_walls()) {
+    // Why auto chose this model (study::automatic_model's order: stratification, epsilon).
+    const double stratification = parameters.scene.stratification(p.particle_mass);
+    const double epsilon = parameters.scene.thermal_wall_epsilon();
+    std::cout << "continuum: Model = auto: " << model_name(p.model) << " (stratification g H / c^2 "
+              << stratification << (p.model == continuum::Model::Compressible ? " > " : " <= ")
+              << parameters.twin.compressible_threshold;
+    if (p.model != continuum::Model::Compressible)
+      std::cout << ", the thermal walls' epsilon " << epsilon
+                << (p.model == continuum::Model::LowMach ? " > " : " <= ")
+                << parameters.twin.low_mach_threshold;
+    std::cout << ")\n";
+  }
   if (root)
     std::cout << "continuum: " << model_name(p.model) << (p.transient() ? " in time" : ", steady")
               << ", " << p.dim << "D, Ra = " << numbers.rayleigh << ", Pr = " << numbers.prandtl
-              << ", epsilon = " << numbers.epsilon << std::endl;
+              << ", epsilon = " << numbers.epsilon
+              << ", g H / c^2 = " << parameters.scene.stratification(p.particle_mass) << std::endl;
 
   if (root) stage.create();
   MPI_Barrier(MPI_COMM_WORLD);

@@ -58,6 +58,7 @@ study::Case CaseFile::resolve(const std::string& filename) const {
       registry_.get("Continuum/Coefficients/Source") == "transport";
   c.twin.model_chosen_automatically = registry_.get("Continuum/Model") == "auto";
   c.twin.low_mach_threshold = registry_.get_double("Continuum/Low-Mach threshold");
+  c.twin.compressible_threshold = registry_.get_double("Continuum/Compressible threshold");
   out.record = registry_.resolved_json();
   for (const auto& [path, value] : out.record.items())
     out.defaults[path] = registry_.default_value(path);

@@ -59,19 +59,29 @@ std::vector<std::array<double, 3>> points(const Registry& r, const std::string& 
 
 void declare_continuum(Registry& r) {
   using namespace dealii::Patterns;
-  r.declare(s + "Model", "auto", Selection("auto|boussinesq|low-mach|heat-conduction"),
+  r.declare(s + "Model", "auto", Selection("auto|boussinesq|low-mach|compressible|heat-conduction"),
             "Equations of the continuum twin: Boussinesq natural convection (Taylor-Hood Q2/Q1 + "
             "Q2 temperature, Newton); low-Mach-number convection of a variable-density ideal gas "
             "in the closed box (n = P/(k T), P from the box's mass N = Scene density x volume, "
             "for large temperature differences; Thermal expansion is then 1/T_ref and the key is "
-            "ignored); or heat conduction without flow. auto: low-mach when the thermal walls' "
-            "epsilon = (T_max - T_min) / (T_max + T_min) exceeds Low-Mach threshold (the "
-            "Boussinesq approximation is wrong to first order in epsilon), else boussinesq.");
+            "ignored); compressible Navier-Stokes of the ideal DPDE fluid (unknowns n, u, T; "
+            "p = n k T, c_V = c_p - k; the particle count N fixed; stratified by gravity; "
+            "Thermal expansion ignored as for low-mach); or heat conduction without flow. auto: "
+            "compressible when the scene's stratification g H / c^2 (c^2 = k T / m at the "
+            "thermal walls' mean temperature) exceeds Compressible threshold, else low-mach "
+            "when the thermal walls' epsilon = (T_max - T_min) / (T_max + T_min) exceeds "
+            "Low-Mach threshold (the Boussinesq approximation is wrong to first order in "
+            "epsilon), else boussinesq.");
   r.declare(s + "Low-Mach threshold", "0.2", Double(0, 1),
             "Model = auto: the thermal walls' epsilon above which the twin is low-Mach (0.2: "
             "walls at T0 (1 -+ 0.2), a temperature ratio of 1.5).");
+  r.declare(s + "Compressible threshold", "0.1", Double(0),
+            "Model = auto: the stratification g H / c^2 above which the twin is compressible "
+            "(0.1: the density falls by ~10% from bottom to top, which the low-Mach and "
+            "Boussinesq twins do not have).");
   r.declare(s + "Kapitza conductances", "", List(Double(0), 0, 6),
-            "Kapitza (Robin) walls of the Boussinesq twin: h_K per wall in the order x lower, "
+            "Kapitza (Robin) walls of the Boussinesq and compressible twins: h_K per wall in the "
+            "order x lower, "
             "x upper, y lower, y upper, z lower, z upper (k T0 / (rc^(d-1) tau T0)); a thermal "
             "wall with h_K > 0 takes the heat flux h_K (T_wall - T) instead of T = T_wall; 0 or "
             "absent: T = T_wall. `run`'s calibrated twin sets them from the particle walls' "
@@ -90,7 +100,8 @@ void declare_continuum(Registry& r) {
   r.declare(s + "Slip lengths", "", List(Double(0), 0, 6),
             "Navier slip b (rc) per wall, in the order x lower, x upper, y lower, ...: a no-slip "
             "wall with b > 0 lets the fluid slip with the tangential traction eta u_t / b "
-            "(Boussinesq only; all of the twin's no-slip walls or none). `run`'s calibrated twin "
+            "(Boussinesq and compressible; all of the twin's no-slip walls or none). `run`'s "
+            "calibrated twin "
             "sets them from the particle walls' measured friction (Compare/Wall slip); 0 or "
             "absent: no slip.");
   r.declare(s + "Kapitza law", "linear", Selection("linear|inverse"),
@@ -104,7 +115,9 @@ void declare_continuum(Registry& r) {
             "over the refinement levels); transient: march in time from the initial state to "
             "Time/End time on the finest mesh (Boussinesq: BDF2 with a BDF1 first step, inertia "
             "included, one Newton solve per step; low-Mach: implicit Euler from rest at the "
-            "reference temperature; heat conduction: the theta scheme). Boussinesq in time "
+            "reference temperature; compressible: BDF2 from rest, the conduction profile and the "
+            "isothermal column at the reference temperature; heat conduction: the theta "
+            "scheme). Boussinesq in time "
             "writes time_series.csv (Nu, kinetic energy, max speed) and field snapshots "
             "(fields.xdmf, a ParaView time series).");
 
@@ -145,6 +158,11 @@ void declare_continuum(Registry& r) {
       "> 0.");
   r.declare(c + "Thermal expansion", "0", Double(0),
             "Thermal expansion coefficient alpha (1/T0) of the Boussinesq buoyancy.");
+  r.declare(c + "Bulk viscosity", "0", Double(0),
+            "Compressible model: bulk viscosity zeta (units of eta), constant; the stress is "
+            "2 eta S + (zeta - (2/d) eta) div u I. 0: none, the ideal gas's kinetic part; the "
+            "DPD friction adds zeta_D = (1 + 2/d) eta_D where eta_D is the dissipative part of "
+            "eta (central pair friction; Marsh, Backx & Ernst 1997).");
   r.declare_positive(c + "Reference temperature", "1",
                      "T_ref of the buoyancy and of the power laws (units of T0), > 0.");
 
@@ -211,9 +229,12 @@ continuum::ContinuumParameters resolve_continuum(const Registry& r,
   const std::string model = r.get(s + "Model");
   c.model = model == "heat-conduction" ? continuum::Model::HeatConduction
             : model == "low-mach"      ? continuum::Model::LowMach
+            : model == "compressible"  ? continuum::Model::Compressible
                                        : continuum::Model::Boussinesq;
-  if (model == "auto" && scene.thermal_wall_epsilon() > r.get_double(s + "Low-Mach threshold"))
-    c.model = continuum::Model::LowMach;
+  if (model == "auto")
+    c.model = study::automatic_model(scene, r.get_double("Particle/Mass"),
+                                     r.get_double(s + "Low-Mach threshold"),
+                                     r.get_double(s + "Compressible threshold"));
   c.gravity = scene.gravity;
   for (int d = 0; d < 3; ++d) {
     const auto& from = scene.boundary[d];
@@ -232,8 +253,8 @@ continuum::ContinuumParameters resolve_continuum(const Registry& r,
     r.require(!c.boundary[d].periodic && c.boundary[d].fixed_temperature[side],
               s + "Kapitza conductances",
               "0 for periodic directions and adiabatic walls (h_K > 0 only at thermal walls)");
-    r.require(c.model == continuum::Model::Boussinesq, s + "Kapitza conductances",
-              "0 unless Continuum/Model = boussinesq");
+    r.require(c.model == continuum::Model::Boussinesq || c.model == continuum::Model::Compressible,
+              s + "Kapitza conductances", "0 unless Continuum/Model = boussinesq or compressible");
     c.boundary[d].kapitza_conductance[side] = kapitza[w];
   }
   const std::vector<double> kapitza_errors = r.get_doubles(s + "Kapitza conductance errors");
@@ -252,8 +273,9 @@ continuum::ContinuumParameters resolve_continuum(const Registry& r,
     r.require(d < scene.dim &&
                   (slips[w] == 0 || (!c.boundary[d].periodic && c.boundary[d].no_slip)),
               s + "Slip lengths", "at most 2 x dimension values, > 0 only at no-slip walls");
-    r.require(slips[w] == 0 || c.model == continuum::Model::Boussinesq, s + "Slip lengths",
-              "0 unless Continuum/Model = boussinesq");
+    r.require(slips[w] == 0 || c.model == continuum::Model::Boussinesq ||
+                  c.model == continuum::Model::Compressible,
+              s + "Slip lengths", "0 unless Continuum/Model = boussinesq or compressible");
     c.boundary[d].slip_length[side] = slips[w];
   }
   for (int d = 0; d < scene.dim; ++d)
@@ -285,8 +307,13 @@ continuum::ContinuumParameters resolve_continuum(const Registry& r,
   c.viscosity = law("Viscosity");
   c.conductivity = law("Conductivity");
   c.heat_capacity = r.get_positive(k + "Heat capacity");
+  r.require(c.model != continuum::Model::Compressible || c.heat_capacity > 1 ||
+                r.get(k + "Source") == "transport",
+            k + "Heat capacity",
+            "> 1 (c_p > k: c_V = c_p - k > 0) with Continuum/Model = compressible");
   c.thermal_expansion = r.get_double(k + "Thermal expansion");
   c.reference_temperature = r.get_positive(k + "Reference temperature");
+  c.bulk_viscosity = r.get_double(k + "Bulk viscosity");
 
   c.cells = cells_per_direction(r, s + "Mesh/Cells", scene);
   c.refinements = static_cast<int>(r.get_integer(s + "Mesh/Refinements"));

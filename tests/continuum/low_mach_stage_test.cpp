@@ -2,6 +2,7 @@
 // printed Ra, Pr, epsilon, summary.json with P/p0, fields (including the density n).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <sstream>
 #include <string>
@@ -99,4 +100,36 @@ TEST(LowMachStage, FreeSlipThinSliceIsTheTwoDimensionalCavity) {
   const double nu_2d = nusselt(source + "/cases/continuum_low_mach_cavity_2d.prm", "y", "slip_2d");
   const double nu_thin = nusselt(source + "/tests/continuum/thin_low_mach.prm", "z", "slip_thin");
   EXPECT_NEAR(nu_thin, nu_2d, 1e-6 * nu_2d);
+}
+
+// Continuum/Model = auto picks the compressible twin for the default cavity (g H / c^2 = 0.4 >
+// 0.1) and says why; its bins carry n; bad input exits 2 with one line and writes nothing.
+TEST(CompressibleStage, AutoPicksCompressibleAndBadInputExits2) {
+  const fs::path out = twinflow::testing::fresh_dir("compressible_stage_test", "cavity");
+  const std::string case_file = std::string(TWINFLOW_SOURCE_DIR) + "/cases/heated_cavity_2d.prm";
+  const std::string base = "continuum " + case_file + " --set Continuum/Model=auto" +
+                           " --set 'Continuum/Coefficients/Heat capacity=13'";
+  const Result r = run_twinflow(base + " --out " + out.string() +
+                                " --set 'Continuum/Mesh/Refinements=0' --set 'Scene/Field bins=8'");
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("Model = auto: compressible (stratification g H / c^2 0.4 > 0.1)"),
+            std::string::npos)
+      << r.output;
+  const Json summary = twinflow::io::read_json(out / "continuum" / "summary.json");
+  EXPECT_EQ(twinflow::io::find(summary, {"continuum_parameters", "model"})->get<std::string>(),
+            "compressible");
+  EXPECT_LT(
+      std::abs(twinflow::io::find(summary, {"results", "relative_mass_error"})->get<double>()),
+      1e-12);
+  const std::string bins = twinflow::io::read_file(out / "continuum" / "bins.csv");
+  EXPECT_NE(bins.substr(0, bins.find('\n')).find(",n,"), std::string::npos) << bins;
+  for (const std::string bad :
+       {std::string("--set 'Continuum/Coefficients/Bulk viscosity=-1'"),
+        std::string("--set 'Continuum/Mesh/Refinements=0' --set 'Scene/Gravity=0, -0.2'")}) {
+    const fs::path none = twinflow::testing::fresh_dir("compressible_stage_test", "bad");
+    const Result e = run_twinflow(base + " --out " + none.string() + " " + bad);
+    EXPECT_EQ(e.code, 2) << e.output;
+    EXPECT_EQ(std::count(e.output.begin(), e.output.end(), '\n'), 1) << e.output;
+    EXPECT_FALSE(fs::exists(none / "continuum")) << bad;
+  }
 }

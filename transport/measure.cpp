@@ -4,6 +4,7 @@
 #include <sstream>
 #include <vector>
 
+#include "statistics/blocking.hpp"
 #include "statistics/line_fit.hpp"
 
 namespace twinflow::transport {
@@ -11,32 +12,49 @@ namespace twinflow::transport {
 using particle::Estimate;
 
 particle::Estimate diffusion_from_msd(const std::string& csv, int dim) {
-  std::vector<double> t, msd;
+  std::vector<double> t;
+  std::vector<std::vector<double>> msd; // [column][row]: the whole MSD, then each group's
   std::istringstream in(csv);
   std::string line;
   while (std::getline(in, line)) {
     if (line.empty() || !std::isdigit(static_cast<unsigned char>(line[0]))) continue;
     std::istringstream row(line);
-    std::string a, b, c;
-    std::getline(row, a, ','), std::getline(row, b, ','), std::getline(row, c, ',');
-    t.push_back(std::stod(a)), msd.push_back(std::stod(c));
+    std::string field;
+    std::vector<double> values;
+    while (std::getline(row, field, ',')) values.push_back(std::stod(field));
+    if (values.size() < 3) continue;
+    if (msd.empty()) msd.resize(values.size() - 2);
+    t.push_back(values[0]);
+    for (std::size_t c = 0; c < msd.size() && c + 2 < values.size(); ++c)
+      msd[c].push_back(values[c + 2]);
   }
   Estimate e;
   const std::size_t n = t.size(), first = n / 2;
   if (n - first < 6) return e;
   // Least-squares slope of msd(t) over [from, to)
-  auto fit = [&](std::size_t from, std::size_t to) {
+  auto fit = [&](const std::vector<double>& m, std::size_t from, std::size_t to) {
     double st = 0, sm = 0, stt = 0, stm = 0;
     const double k = static_cast<double>(to - from);
     for (std::size_t i = from; i < to; ++i)
-      st += t[i], sm += msd[i], stt += t[i] * t[i], stm += t[i] * msd[i];
+      st += t[i], sm += m[i], stt += t[i] * t[i], stm += t[i] * m[i];
     return (k * stm - st * sm) / (k * stt - st * st);
   };
+  e.mean = fit(msd[0], first, n) / (2 * dim); // Einstein relation: MSD = 2 d D t
+  // The error from the groups of tracked particles: each group's D by the same fit, and the
+  // standard error of their mean. The groups share no particle and each sees all the run's
+  // time origins, so their scatter holds the few independent windows a run has (the MSD points
+  // of one run are strongly correlated, and a window is one sample in time).
+  std::vector<double> per_group;
+  for (std::size_t c = 1; c < msd.size(); ++c)
+    if (msd[c].size() == n) per_group.push_back(fit(msd[c], first, n) / (2 * dim));
+  if (per_group.size() >= 2) {
+    e.stderr_ = statistics::block_estimate(per_group).stderr_;
+    return e;
+  }
+  // A table without groups: the difference between the slopes of the window's two halves (too
+  // small, by up to 20x over seeds: docs/notebook/2026-11-25-seed-errors.md).
   const std::size_t mid = (first + n) / 2;
-  e.mean = fit(first, n) / (2 * dim); // Einstein relation: MSD = 2 d D t
-  // MSD points are strongly correlated, so a fit residual would understate the error: take the
-  // difference between the slopes of the two halves of the window instead.
-  e.stderr_ = std::fabs(fit(first, mid) - fit(mid, n)) / (2 * dim) / 2;
+  e.stderr_ = std::fabs(fit(msd[0], first, mid) - fit(msd[0], mid, n)) / (2 * dim) / 2;
   return e;
 }
 
@@ -61,14 +79,35 @@ Point run_at(particle::ParticleParameters p, double density, double temperature,
 }
 } // namespace
 
-Measured measure(const particle::ParticleParameters& p, long steps, double h) {
+Repeated measure_diffusion(const particle::ParticleParameters& p, long steps, int repeats,
+                           const std::string& first_correlations) {
+  std::vector<Estimate> d;
+  for (int r = 0; r < repeats; ++r) {
+    if (r == 0 && !first_correlations.empty()) {
+      d.push_back(diffusion_from_msd(first_correlations, p.dim));
+      continue;
+    }
+    particle::ParticleParameters q = p;
+    q.seed = p.seed + 7727 * static_cast<std::uint64_t>(r);
+    d.push_back(diffusion_from_msd(run_at(q, p.density, p.temperature, steps).corr, p.dim));
+  }
+  return summarise_repeats(d);
+}
+
+Measured measure(const particle::ParticleParameters& p, long steps, int diffusion_repeats,
+                 double h) {
   Measured m;
   const double rho = p.density, T = p.temperature;
   const Point c = run_at(p, rho, T, steps);
   m.pressure = c.p;
   m.temperature = c.t;
   m.rdf_csv = c.rdf;
-  m.diffusion = diffusion_from_msd(c.corr, p.dim);
+  // D's error from independent runs: within one run the groups of tracked particles share the
+  // box's collective flows (in 2D they scattered 1.3x wider over seeds than the groups said,
+  // docs/notebook/2026-11-25-seed-errors.md).
+  const Repeated d = measure_diffusion(p, steps, diffusion_repeats, c.corr);
+  m.diffusion = d.value;
+  m.diffusion_repeats = d.repeats;
   const Point tp = run_at(p, rho, T * (1 + h), steps), tm = run_at(p, rho, T * (1 - h), steps);
   const Point rp = run_at(p, rho * (1 + h), T, steps), rm = run_at(p, rho * (1 - h), T, steps);
   // Central differences against the measured temperatures (an NVE run's T is an outcome).
@@ -98,6 +137,12 @@ io::Json Measured::json() const {
   put("pressure", pressure);
   put("temperature_kinetic", temperature);
   put("self_diffusion", diffusion);
+  j["self_diffusion_repeats"] = io::Json::array();
+  for (const auto& e : diffusion_repeats) {
+    io::Json r = io::Json::object();
+    r["value"] = e.mean, r["groups_stderr"] = e.stderr_;
+    j["self_diffusion_repeats"].push_back(r);
+  }
   put("thermal_expansion", expansion);
   put("dp_dT", dp_dt);
   put("dp_drho", dp_drho);

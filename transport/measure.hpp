@@ -13,17 +13,20 @@ namespace twinflow::transport {
 
 struct Measured {
   particle::Estimate pressure, temperature;
-  particle::Estimate diffusion;      // from the MSD slope, 2 d D
+  particle::Estimate diffusion;      // from the MSD slope, 2 d D, over independent repeats
   particle::Estimate expansion;      // alpha = (dp/dT)_rho / (rho (dp/drho)_T)
   particle::Estimate dp_dt, dp_drho; // equation-of-state derivatives
   particle::Estimate cp_minus_cv;    // per particle, k = 1: 1 for the ideal gas
   std::string rdf_csv;
+  std::vector<particle::Estimate> diffusion_repeats; // each run's D and its groups' error
   io::Json json() const;
 };
 
 // Periodic box at the state point of `p` (its density and temperature); `steps` sampled steps per
-// run. Five runs: the state point, T (1 +- h), rho (1 +- h).
-Measured measure(const particle::ParticleParameters& p, long steps, double h = 0.05);
+// run. Five runs: the state point, T (1 +- h), rho (1 +- h); and D from `diffusion_repeats`
+// independent runs at the state point (the first of them the state point's run).
+Measured measure(const particle::ParticleParameters& p, long steps, int diffusion_repeats,
+                 double h = 0.05);
 
 // A coefficient measured by independent repeats (different seeds): the mean, and the standard
 // error of that mean from their spread, or from the fits' own errors when those are larger (a
@@ -37,6 +40,13 @@ struct Repeated {
 };
 
 Repeated summarise_repeats(const std::vector<particle::Estimate>& runs);
+
+// D by `repeats` independent runs (seeds p.seed + 7727 r) at p's state point, each `steps`
+// sampled steps after steps / 2 to settle; `first_correlations`, when given, is repeat 0's
+// correlations.csv (a run already made with p.seed). Why repeats: one run's MSD window is one
+// sample of the box's slow collective flows, which move the tracked particles together.
+Repeated measure_diffusion(const particle::ParticleParameters& p, long steps, int repeats,
+                           const std::string& first_correlations = "");
 
 struct RelaxationCoefficients {
   Repeated conductivity, viscosity;
@@ -62,7 +72,8 @@ struct PowerLawFit {
 PowerLawFit fit_power_law(const std::vector<double>& temperatures,
                           const std::vector<particle::Estimate>& values, double reference);
 
-// D and its error from an MSD table (correlations.csv): least squares over the second half.
+// D from an MSD table (correlations.csv): least squares over the second half of the window; its
+// error from the same fit to each group of tracked particles (msd_group_g columns).
 particle::Estimate diffusion_from_msd(const std::string& correlations_csv, int dim);
 
 } // namespace twinflow::transport

@@ -42,7 +42,7 @@ TransportMeasurement measure_transport(const scene::SceneParameters& scene,
   const double nan = std::nan("");
   const Estimates ideal = estimate(p, p.temperature, PairDistribution::ideal());
   const long steps = 2000;
-  const Measured m = measure(p, steps);
+  const Measured m = measure(p, steps, t.diffusion_repeats);
   const auto measured_g = PairDistribution::from_csv(m.rdf_csv);
   const Estimates with_g = estimate(p, p.temperature, measured_g);
   particle::Estimate kappa{nan, nan}, eta{nan, nan};

@@ -11,6 +11,7 @@ struct TransportParameters {
   double temperature = 0;           // state point; 0: the walls' mean, else Scene/Temperature
   double flow_particles = 4000;     // particles of the square/cubic base box of the flow runs
   int flow_repeats = 4;             // independent relaxation runs (their spread is the error)
+  int diffusion_repeats = 4;        // independent bulk runs for D (their spread is the error)
   double temperature_spread = 0;    // > 0: also at T (1 -+ spread), power laws kappa(T), eta(T)
   bool kappa_from_walls = false;    // kappa by conduction between the scene's thermal walls
   long wall_steps = 100000;         // its sampled steps (after as many / 5 to settle)
@@ -18,7 +19,8 @@ struct TransportParameters {
 
 // The version of the measurement: part of its cache key and of its stage inputs in `run`, bumped
 // when a measurement changes (results of an older method are not reused).
-constexpr int kMeasurementMethod = 4; // 3: relaxation fit window from the noise (decay_fit.hpp);
-                                      // 4: the wall run's slope and flux errors from the blockings
+constexpr int kMeasurementMethod = 5; // 3: relaxation fit window from the noise (decay_fit.hpp);
+                                      // 4: the wall run's slope and flux errors from the blockings;
+                                      // 5: D over independent repeats
 
 } // namespace twinflow::transport

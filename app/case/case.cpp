@@ -71,6 +71,7 @@ void resolve_transport_and_compare(const Registry& r, study::CaseParameters& c) 
   c.transport.temperature = r.get_double("Transport/Temperature");
   c.transport.flow_particles = r.get_double("Transport/Flow particles");
   c.transport.flow_repeats = static_cast<int>(r.get_integer("Transport/Flow repeats"));
+  c.transport.diffusion_repeats = static_cast<int>(r.get_integer("Transport/Diffusion repeats"));
   c.transport.temperature_spread = r.get_double("Transport/Temperature spread");
   c.transport.kappa_from_walls = r.get_bool("Transport/Kappa from walls");
   c.transport.wall_steps = r.get_integer("Transport/Wall steps");
@@ -100,6 +101,11 @@ void declare_transport_and_compare(Registry& r) {
   r.declare("Transport/Flow repeats", "4", Integer(1, 100),
             "Independent relaxation runs (different seeds) for kappa and eta, 1-100; the error "
             "stated is the larger of their spread and their fits' errors, over sqrt(repeats).");
+  r.declare("Transport/Diffusion repeats", "4", Integer(1, 100),
+            "Independent bulk runs (different seeds) at the state point for the self-diffusion "
+            "D, 1-100: the error stated is the larger of their spread and their particle groups' "
+            "error, over sqrt(repeats). One run's MSD window is one sample of the box's "
+            "collective flows, so one run cannot state D's error.");
   r.declare("Transport/Temperature spread", "0", Double(0, 0.9),
             "0: kappa and eta at the state point only, constant in the continuum twin. s > 0: "
             "also measured at T (1 - s) and T (1 + s) (three times the cost) and handed to the "

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "statistics/blocking.hpp"
 #include "statistics/line_fit.hpp"
 
 namespace twinflow::particle {
@@ -33,31 +34,77 @@ io::Json slab_fit(const ParticleParameters& p, const BinnedFields& f) {
   const double j0 = std::fabs(hot.power) / (2 * area);
   io::Json out = io::Json::object();
   out["J0"] = j0;
-  double wsum = 0, ksum = 0;
   const char* names[2] = {"hot_to_cold", "cold_to_hot"};
   const double starts[2] = {hot.upper, cold.upper}, ends[2] = {cold.lower, hot.lower};
+  double kappa[2], kappa_fit_se[2], slope[2];
+  std::vector<double> block_slopes[2];
   for (int half = 0; half < 2; ++half) {
     double a = starts[half], b = ends[half];
     if (b <= a) b += length; // the half wraps around the periodic box
     const double lo = a + 0.2 * (b - a), hi = b - 0.2 * (b - a);
-    statistics::LineFit fit;
-    for (int bin = 0; bin < f.bin_count(); ++bin) {
-      double x = f.centre(bin, dir);
-      if (x < a) x += length;
-      if (x >= lo && x <= hi)
-        fit.add(x, f.temperature_internal.mean[bin], f.temperature_internal.stderr_[bin]);
-    }
-    const double slope = fit.slope(), intercept = fit.intercept(), slope_se = fit.slope_stderr();
-    const double kappa = j0 / std::fabs(slope), kappa_se = kappa * slope_se / std::fabs(slope);
+    // The same weights for the mean profile and each block's, so that the blocks' slopes
+    // average to the mean profile's (the fit is linear in the temperatures).
+    const auto line = [&](const std::vector<double>& temperature) {
+      statistics::LineFit fit;
+      for (int bin = 0; bin < f.bin_count(); ++bin) {
+        double x = f.centre(bin, dir);
+        if (x < a) x += length;
+        if (x >= lo && x <= hi) fit.add(x, temperature[bin], f.temperature_internal.stderr_[bin]);
+      }
+      return fit;
+    };
+    const statistics::LineFit fit = line(f.temperature_internal.mean);
+    for (const auto& block : f.temperature_internal_blocks)
+      block_slopes[half].push_back(line(block).slope());
+    slope[half] = fit.slope();
+    const double slope_fit_se = fit.slope_stderr();
+    kappa[half] = j0 / std::fabs(slope[half]);
+    kappa_fit_se[half] = kappa[half] * slope_fit_se / std::fabs(slope[half]);
+    // Each half's own error, from its blocks' slopes (1, 2, 4 blocks merged, the largest): the
+    // bins share the profile's slow modes, which the fit over independent bins leaves out.
+    double slope_se = slope_fit_se;
+    const auto levels = statistics::merged_blocking_errors(block_slopes[half]);
+    for (const double se : levels) slope_se = std::max(slope_se, se);
     io::Json h = io::Json::object();
     h["fit_from"] = lo, h["fit_to"] = hi;
-    h["slope"] = slope, h["slope_stderr"] = slope_se, h["intercept"] = intercept;
-    h["kappa"] = kappa, h["kappa_stderr"] = kappa_se;
+    h["slope"] = slope[half], h["slope_stderr"] = slope_se, h["intercept"] = fit.intercept();
+    h["slope_stderr_fit"] = slope_fit_se, h["slope_stderr_blocking"] = levels;
+    h["kappa"] = kappa[half], h["kappa_stderr"] = kappa[half] * slope_se / std::fabs(slope[half]);
     out[names[half]] = h;
-    wsum += 1 / (kappa_se * kappa_se), ksum += kappa / (kappa_se * kappa_se);
   }
+  // kappa from both halves, weighted by their fit errors (fixed weights: the combination is then
+  // a fixed function of the two slopes). Its error from the same combination block by block,
+  // linearised about the means (kappa_b = kappa (2 - |s_b| / |s|) per half, the delta method):
+  // the slowest profile mode steepens one half and flattens the other, so the halves'
+  // fluctuations partly cancel, which their errors taken as independent would miss.
+  double wsum = 0, ksum = 0;
+  double weight[2];
+  for (int half = 0; half < 2; ++half) {
+    weight[half] = 1 / (kappa_fit_se[half] * kappa_fit_se[half]);
+    wsum += weight[half], ksum += weight[half] * kappa[half];
+  }
+  std::vector<double> block_kappa(block_slopes[0].size(), 0.0);
+  for (std::size_t b = 0; b < block_kappa.size(); ++b)
+    for (int half = 0; half < 2; ++half)
+      block_kappa[b] += weight[half] / wsum * kappa[half] *
+                        (2 - std::fabs(block_slopes[half][b]) / std::fabs(slope[half]));
+  const auto levels = statistics::merged_blocking_errors(block_kappa);
+  double kappa_se = 1 / std::sqrt(wsum);
+  out["kappa_stderr_fit"] = kappa_se;
+  for (const double se : levels) kappa_se = std::max(kappa_se, se);
   out["kappa"] = ksum / wsum;
-  out["kappa_stderr"] = 1 / std::sqrt(wsum);
+  out["kappa_stderr"] = kappa_se;
+  out["kappa_stderr_blocking"] = levels;
+  // Blocks must outlast the slowest profile mode that moves kappa: the fundamental of the
+  // periodic profile, k = 2 pi / L, decays in 1 / (chi k^2), chi = kappa / (rho c), c = c_v + 1
+  // + d/2 per particle (000:(3.21), kinetic part d/2). The stated error holds when the longest
+  // merged block (4 blocks) is a few decay times (docs/validation.md, "Error bars over seeds").
+  const double k = 2 * M_PI / length;
+  const double chi = out["kappa"].get<double>() / (p.density * (p.cv + 1 + 0.5 * p.dim));
+  const double block_time = p.steps * p.dt / p.blocks;
+  out["slowest_mode_decay_time"] = 1 / (chi * k * k);
+  out["block_time"] = block_time;
+  out["longest_merged_block_over_decay_time"] = 4 * block_time * chi * k * k;
   return out;
 }
 

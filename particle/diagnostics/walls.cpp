@@ -142,9 +142,12 @@ io::Json wall_profile_fit(const ParticleParameters& p, int direction, const Binn
   // The slope's error from the blocks' own slopes (the same weights, so their mean is the
   // slope): the bins share the profile's slow fluctuations, which the fit's error, over
   // independent bins, leaves out. With 2 and 4 blocks merged too; the largest is stated.
-  std::vector<double> block_slopes;
-  for (const auto& block : f.temperature_internal_blocks)
-    block_slopes.push_back(line(block).slope());
+  std::vector<double> block_slopes, block_lower, block_upper; // the line and its wall values
+  for (const auto& block : f.temperature_internal_blocks) {
+    const statistics::LineFit b = line(block);
+    block_slopes.push_back(b.slope());
+    block_lower.push_back(b.intercept()), block_upper.push_back(b.intercept() + b.slope() * length);
+  }
   const std::vector<double> blocking =
       statistics::blocking_errors(block_slopes, static_cast<int>(block_slopes.size()));
   double slope_stderr = fit.slope_stderr();
@@ -157,8 +160,16 @@ io::Json wall_profile_fit(const ParticleParameters& p, int direction, const Binn
   j["intercept"] = fit.intercept();
   j["jump_lower"] = w.temperature[0] - fit.intercept();
   j["jump_upper"] = w.temperature[1] - (fit.intercept() + fit.slope() * length);
-  j["jump_lower_stderr"] = fit.value_stderr(0);
-  j["jump_upper_stderr"] = fit.value_stderr(length);
+  // The jumps' errors the same way: the line's value at each wall, block by block.
+  const auto blocked = [](double fit_se, const std::vector<double>& per_block) {
+    for (const double se : statistics::merged_blocking_errors(per_block))
+      fit_se = std::max(fit_se, se);
+    return fit_se;
+  };
+  j["jump_lower_stderr"] = blocked(fit.value_stderr(0), block_lower);
+  j["jump_upper_stderr"] = blocked(fit.value_stderr(length), block_upper);
+  j["jump_lower_stderr_fit"] = fit.value_stderr(0);
+  j["jump_upper_stderr_fit"] = fit.value_stderr(length);
   return j;
 }
 

@@ -70,10 +70,10 @@ struct Slabs {
     s.planes = planes;
     const int pairs = (planes + 1) / 2;
     if (s.ranks > 1 && pairs < s.ranks)
-      throw io::InputError(
-          "the particle box has " + std::to_string(planes) + " cell planes along " + axis +
-          ": at most " + std::to_string(pairs) + " MPI ranks (two planes each), not " +
-          std::to_string(s.ranks) + "; run on fewer ranks or a longer box");
+      throw io::InputError("the particle box has " + std::to_string(planes) +
+                           " cell planes along " + axis + ": at most " + std::to_string(pairs) +
+                           " MPI ranks (two planes each), not " + std::to_string(s.ranks) +
+                           "; run on fewer ranks or a longer box");
     s.first.resize(static_cast<std::size_t>(s.ranks) + 1);
     for (int r = 0; r <= s.ranks; ++r)
       s.first[r] = std::min(planes, 2 * static_cast<int>(static_cast<long>(pairs) * r / s.ranks));
@@ -86,10 +86,18 @@ struct Slabs {
 };
 
 template <class T> MPI_Datatype mpi_type();
-template <> inline MPI_Datatype mpi_type<double>() { return MPI_DOUBLE; }
-template <> inline MPI_Datatype mpi_type<float>() { return MPI_FLOAT; }
-template <> inline MPI_Datatype mpi_type<std::uint32_t>() { return MPI_UINT32_T; }
-template <> inline MPI_Datatype mpi_type<long>() { return MPI_LONG; }
+template <> inline MPI_Datatype mpi_type<double>() {
+  return MPI_DOUBLE;
+}
+template <> inline MPI_Datatype mpi_type<float>() {
+  return MPI_FLOAT;
+}
+template <> inline MPI_Datatype mpi_type<std::uint32_t>() {
+  return MPI_UINT32_T;
+}
+template <> inline MPI_Datatype mpi_type<long>() {
+  return MPI_LONG;
+}
 
 // The ranks' arrays concatenated in rank order on rank 0 (elsewhere `out` is left empty).
 template <class T>

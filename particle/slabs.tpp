@@ -7,8 +7,8 @@
 namespace twinflow::particle {
 
 template <class M> int Simulation<M>::owner_of(std::size_t i) const {
-  const double key = x_listed_[D - 1].empty() ? state_.x[D - 1][i]
-                                              : static_cast<double>(x_listed_[D - 1][i]);
+  const double key =
+      x_listed_[D - 1].empty() ? state_.x[D - 1][i] : static_cast<double>(x_listed_[D - 1][i]);
   return slabs_.owner(grid_.global_plane(key));
 }
 
@@ -52,7 +52,8 @@ template <class M> void Simulation<M>::migrate() {
   for (std::size_t i = 0; i < owned_; ++i) {
     const int r = owner_of(i);
     if (r == slabs_.rank) {
-      for (int d = 0; d < D; ++d) state_.x[d][kept] = state_.x[d][i], state_.v[d][kept] = state_.v[d][i];
+      for (int d = 0; d < D; ++d)
+        state_.x[d][kept] = state_.x[d][i], state_.v[d][kept] = state_.v[d][i];
       if (!state_.u.empty()) state_.u[kept] = state_.u[i];
       state_.id[kept] = state_.id[i];
       ++kept;
@@ -117,10 +118,12 @@ template <class M> void Simulation<M>::build_ghosts() {
   const double* p = receive.data();
   for (auto* f : fields)
     for (std::size_t k = 0; k < ghost_count_; ++k) (*f)[owned_ + k] = *p++;
-  for (std::size_t k = 0; k < ghost_count_; ++k) state_.id[owned_ + k] = static_cast<std::uint32_t>(*p++);
+  for (std::size_t k = 0; k < ghost_count_; ++k)
+    state_.id[owned_ + k] = static_cast<std::uint32_t>(*p++);
   if (listed) {
     for (int d = 0; d < D; ++d)
-      for (std::size_t k = 0; k < ghost_count_; ++k) x_listed_[d][owned_ + k] = static_cast<float>(*p++);
+      for (std::size_t k = 0; k < ghost_count_; ++k)
+        x_listed_[d][owned_ + k] = static_cast<float>(*p++);
     grid_.set_ghost_cells(x_listed_, owned_, ghost_count_);
   } else {
     grid_.set_ghost_cells(state_.x, owned_, ghost_count_);
@@ -151,8 +154,7 @@ template <class M> void Simulation<M>::rebuild_slab() {
 // list_still_complete on a slab: every rank's far movers go to every rank, and each checks them
 // against the particles it owns. A pair is checked by the owner of its partner: the same pairs
 // as one process checks, so the same answer.
-template <class M>
-bool Simulation<M>::slab_list_still_complete(double largest, std::size_t moved) {
+template <class M> bool Simulation<M>::slab_list_still_complete(double largest, std::size_t moved) {
   const std::size_t n = static_cast<std::size_t>(p_.particle_count());
   if (moved > 8 + n / 256 || model_.rc + 2 * std::sqrt(largest) >= 2 * grid_.smallest_side())
     return false;
@@ -216,8 +218,8 @@ template <class M> void Simulation<M>::Halo::forward() {
   for (auto* f : forward_fields) send.insert(send.end(), f->begin(), f->begin() + m);
   receive.resize(forward_fields.size() * g);
   MPI_Sendrecv(send.data(), static_cast<int>(send.size()), MPI_DOUBLE, sim->slabs_.lower, 20,
-               receive.data(), static_cast<int>(receive.size()), MPI_DOUBLE, sim->slabs_.upper,
-               20, sim->slabs_.comm, MPI_STATUS_IGNORE);
+               receive.data(), static_cast<int>(receive.size()), MPI_DOUBLE, sim->slabs_.upper, 20,
+               sim->slabs_.comm, MPI_STATUS_IGNORE);
   const double* p = receive.data();
   for (auto* f : forward_fields)
     for (std::size_t k = 0; k < g; ++k) (*f)[o + k] = *p++;
@@ -230,8 +232,8 @@ template <class M> void Simulation<M>::Halo::back() {
   for (auto* f : back_fields) send.insert(send.end(), f->begin() + o, f->begin() + o + g);
   receive.resize(back_fields.size() * m);
   MPI_Sendrecv(send.data(), static_cast<int>(send.size()), MPI_DOUBLE, sim->slabs_.upper, 21,
-               receive.data(), static_cast<int>(receive.size()), MPI_DOUBLE, sim->slabs_.lower,
-               21, sim->slabs_.comm, MPI_STATUS_IGNORE);
+               receive.data(), static_cast<int>(receive.size()), MPI_DOUBLE, sim->slabs_.lower, 21,
+               sim->slabs_.comm, MPI_STATUS_IGNORE);
   if (sim->slabs_.lower == MPI_PROC_NULL) return; // a wall below: no rank holds these as ghosts
   const double* p = receive.data();
   for (auto* f : back_fields)
@@ -240,7 +242,8 @@ template <class M> void Simulation<M>::Halo::back() {
 
 template <class M> void Simulation<M>::share_emissions() {
   std::vector<std::uint32_t> mine, all;
-  for (const Emission& e : emissions_) mine.push_back(e.id), mine.push_back(static_cast<std::uint32_t>(e.wall));
+  for (const Emission& e : emissions_)
+    mine.push_back(e.id), mine.push_back(static_cast<std::uint32_t>(e.wall));
   int count = static_cast<int>(mine.size());
   std::vector<int> counts(static_cast<std::size_t>(slabs_.ranks)), offsets(counts.size() + 1, 0);
   MPI_Allgather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, slabs_.comm);

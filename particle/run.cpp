@@ -23,8 +23,10 @@ public:
   using clock = std::chrono::steady_clock;
 
   ParticleRun(const M& model, const ParticleParameters& p)
-      : model_(model), p_(p), sim_(model, p), n_(sim_.state().size()),
-        total_steps_(p.equilibration_steps + p.steps), e0_(sim_.total_energy()),
+      : model_(model), p_(p), sim_(model, p),
+        view_grid_(box_of(p), model.rc + list_skin(p), periodic_of(p)),
+        n_(static_cast<std::size_t>(p.particle_count())),
+        total_steps_(p.equilibration_steps + p.steps), e0_(initial_energy()),
         diagnostics_(make_diagnostics<D>(p, facts())), pair_counts_(p.rdf_bins, 0.0) {
     for (int d = 0; d < D; ++d) volume_ *= p.box[d];
     for (const auto& d : diagnostics_) {
@@ -54,6 +56,7 @@ public:
       LoadArchive a(*control.resume, "");
       archive(a);
     }
+    const bool root = sim_.slabs().root();
     t0_ = clock::now() -
           std::chrono::duration_cast<clock::duration>(std::chrono::duration<double>(wall_before_));
     auto last_progress = clock::now(), last_checkpoint = clock::now();
@@ -61,36 +64,74 @@ public:
       sim_.step();
       ++step_;
       if (step_ % p_.sample_interval == 0 || step_ == total_steps_) sample();
-      if (control.progress && clock::now() - last_progress > std::chrono::seconds(2)) {
+      if (root && control.progress && clock::now() - last_progress > std::chrono::seconds(2)) {
         last_progress = clock::now();
         progress_line();
       }
-      const bool stop = control.stop_requested && control.stop_requested();
+      int stop = control.stop_requested && control.stop_requested();
       const bool periodic = control.checkpoint_every_seconds > 0 &&
                             clock::now() - last_checkpoint >
                                 std::chrono::duration<double>(control.checkpoint_every_seconds);
-      if ((stop || periodic) && control.write_checkpoint && step_ < total_steps_) {
+      int checkpoint = (stop || periodic) && control.write_checkpoint && step_ < total_steps_;
+      if (distributed()) { // every rank stops and writes its part, or none does
+        int flags[2] = {stop, checkpoint};
+        MPI_Allreduce(MPI_IN_PLACE, flags, 2, MPI_INT, MPI_LOR, sim_.slabs().comm);
+        stop = flags[0], checkpoint = flags[1];
+      }
+      if (checkpoint) {
         wall_before_ = elapsed();
         io::Checkpoint c;
         SaveArchive a(c, "");
         archive(a);
-        control.write_checkpoint(c);
+        if (root) control.write_checkpoint(c);
         last_checkpoint = clock::now();
         if (stop) {
-          if (control.progress) std::fprintf(stderr, "\n");
+          if (root && control.progress) std::fprintf(stderr, "\n");
           out_.interrupted = true;
           out_.steps_done = step_;
           return std::move(out_);
         }
       }
     }
-    if (control.progress) std::fprintf(stderr, "\n");
-    finish();
+    if (root && control.progress) std::fprintf(stderr, "\n");
+    if (root) finish(); // on several ranks rank 0 holds the gathered samples
     out_.steps_done = step_;
     return std::move(out_);
   }
 
 private:
+  bool distributed() const { return sim_.slabs().active(); }
+  static std::array<double, D> box_of(const ParticleParameters& p) {
+    std::array<double, D> b;
+    for (int d = 0; d < D; ++d) b[d] = p.box[d];
+    return b;
+  }
+  static std::array<bool, D> periodic_of(const ParticleParameters& p) {
+    std::array<bool, D> b;
+    for (int d = 0; d < D; ++d) b[d] = !p.walls[d].present;
+    return b;
+  }
+  // The particles the diagnostics read: the simulation's, or on several ranks the gathered
+  // copy on rank 0 (the one-process state, bit for bit, and the one-process grid's cells).
+  const State<D>& state() const { return distributed() ? view_.state : sim_.state(); }
+  const CellGrid<D>& grid() const { return distributed() ? view_grid_ : sim_.grid(); }
+  const std::vector<double>& potentials() const {
+    return distributed() ? view_.carried.potential : sim_.carried().potential;
+  }
+  // Collective on several ranks: the gathered copy up to date on rank 0.
+  void refresh_view() {
+    sim_.gather(view_);
+    if (!sim_.slabs().root()) return;
+    view_.state.box = sim_.state().box;
+    const bool listed = !view_.x_listed[0].empty();
+    view_grid_.sort(view_.state, view_.carried, listed ? &view_.x_listed : nullptr, true);
+  }
+  double initial_energy() {
+    if (distributed()) refresh_view();
+    return kinetic_energy_of(state(), state().size(), model_.mass) +
+           sum_of(state().u, state().size()) + sum_of(potentials(), state().size());
+  }
+
   RunFacts facts() const {
     RunFacts m;
     m.particles = n_;
@@ -125,11 +166,16 @@ private:
   }
 
   void sample() {
-    const double k = sim_.kinetic_energy(), u = sim_.internal_energy(),
-                 pot = sim_.potential_energy();
+    if (distributed()) {
+      refresh_view();
+      if (!sim_.slabs().root()) return;
+    }
+    wall_energy_in_ = sim_.wall_energy_in(), wall_momentum_in_ = sim_.wall_momentum_in();
+    const double k = kinetic_energy_of(state(), n_, model_.mass), u = sum_of(state().u, n_),
+                 pot = sum_of(potentials(), n_);
     const double e = k + u + pot;
     double inflow = 0; // energy in through thermal walls: E(t) - E(0) - inflow is the error
-    for (const double q : sim_.wall_energy_in()) inflow += q;
+    for (const double q : wall_energy_in_) inflow += q;
     drift_max_ = std::max(drift_max_, std::fabs(e - e0_ - inflow) / std::fabs(e0_));
     const double t_kin = 2 * k / (D * (n_ - 1.0)); // total momentum is conserved: d(N-1) dof
     last_t_kinetic_ = t_kin;
@@ -139,9 +185,9 @@ private:
     const Sample<D> s{step_,
                       step_ * p_.dt,
                       sampled,
-                      sim_.state(),
-                      sim_.grid(),
-                      sim_.carried().potential,
+                      state(),
+                      grid(),
+                      potentials(),
                       k,
                       u,
                       pot,
@@ -150,8 +196,8 @@ private:
                       pressure,
                       conduction_,
                       pair_counts_,
-                      sim_.wall_momentum_in(),
-                      sim_.wall_energy_in(),
+                      wall_momentum_in_,
+                      wall_energy_in_,
                       sim_.wall_crossings(),
                       elapsed()};
     for (const auto& d : diagnostics_) d->sample(s);
@@ -161,7 +207,7 @@ private:
   // (returned) and, on sampled steps, what they asked for (PairNeeds): this sample's pairs per
   // g(r) bin, each particle's share of the conductive flux.
   double pair_pass(bool sampled) {
-    const auto& s = sim_.state();
+    const auto& s = state();
     const bool distances = sampled && needs_.distances;
     const bool conduction = sampled && needs_.conduction;
     if (distances) std::fill(pair_counts_.begin(), pair_counts_.end(), 0.0);
@@ -169,7 +215,7 @@ private:
       if (conduction)
         for (auto& c : conduction_) std::fill(c.begin(), c.end(), 0.0);
     double virial = 0;
-    sim_.grid().for_each_pair_serial(
+    grid().for_each_pair_serial(
         s, model_.rc, [&](std::size_t i, std::size_t j, const double* dx, double r2) {
           const double r = std::sqrt(r2);
           double th_i = 1, th_j = 1;
@@ -223,6 +269,9 @@ private:
   M model_;
   ParticleParameters p_;
   Simulation<M> sim_;
+  GatheredParticles<D> view_; // several ranks: the particles gathered on rank 0 at a sample
+  CellGrid<D> view_grid_;     // and the one-process grid's cells of them
+  std::array<double, 6> wall_energy_in_{}, wall_momentum_in_{}; // at the sample
   std::size_t n_;
   long step_ = 0, total_steps_;
   double e0_, volume_ = 1, drift_max_ = 0, last_t_kinetic_ = 0, wall_before_ = 0;
@@ -300,19 +349,29 @@ BenchResult bench_particles(const ParticleParameters& p, long steps) {
     Simulation<M> sim(model, p);
     sim.step(); // warm caches and thread pool
     const long builds = sim.pair_list_builds();
+    const Slabs& slabs = sim.slabs();
+    if (slabs.active()) MPI_Barrier(slabs.comm);
     const auto t0 = std::chrono::steady_clock::now();
     for (long s = 0; s < steps; ++s) sim.step();
-    const double secs =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const std::size_t owned = std::max<std::size_t>(sim.owned(), 1);
+    double ghosts = static_cast<double>(sim.state().size() - sim.owned()) / owned;
+    if (slabs.active()) {
+      MPI_Allreduce(MPI_IN_PLACE, &secs, 1, MPI_DOUBLE, MPI_MAX, slabs.comm);
+      MPI_Allreduce(MPI_IN_PLACE, &ghosts, 1, MPI_DOUBLE, MPI_MAX, slabs.comm);
+    }
     BenchResult r;
-    r.particles = static_cast<long>(sim.state().size());
+    r.particles = p.particle_count();
     r.seconds = secs;
+    r.ranks = slabs.ranks;
+    r.ghosts_per_owned = ghosts;
     r.particle_steps_per_second = r.particles * static_cast<double>(steps) / secs;
     r.steps_per_list = static_cast<double>(steps) / std::max(1L, sim.pair_list_builds() - builds);
     // Resident per-particle arrays: state (x, v, u, id), carried (f, q, potential), the sort's
-    // cell index and permutation, and the sort's temporary copy of the largest array.
+    // cell index and permutation, and the sort's temporary copy of the largest array; on a
+    // slab per owned particle, its ghost copies included.
     r.bytes_per_particle =
-        (2 * M::D + (M::has_energy ? 1 : 0)) * 8 + 4 + (M::D + 2) * 8 + 4 + 4 + 8;
+        (1 + ghosts) * ((2 * M::D + (M::has_energy ? 1 : 0)) * 8 + 4 + (M::D + 2) * 8 + 4 + 4 + 8);
     return r;
   });
 }

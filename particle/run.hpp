@@ -51,9 +51,11 @@ RunOutput run_particles(const ParticleParameters& p, const RunControl& control =
 struct BenchResult {
   long particles = 0;
   double seconds = 0, particle_steps_per_second = 0, bytes_per_particle = 0;
-  double steps_per_list = 0; // timed steps per pair-list build
+  double steps_per_list = 0;   // timed steps per pair-list build
+  int ranks = 1;               // MPI ranks (the slowest rank's time counts)
+  double ghosts_per_owned = 0; // ghost-plane copies per owned particle (the most on any rank)
 };
-// Times `steps` steps after set-up (set-up excluded).
+// Times `steps` steps after set-up (set-up excluded). Collective on several MPI ranks.
 BenchResult bench_particles(const ParticleParameters& p, long steps);
 
 } // namespace twinflow::particle

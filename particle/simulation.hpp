@@ -5,11 +5,13 @@
 #include <omp.h>
 
 #include <cmath>
+#include <initializer_list>
 #include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "particle/decomposition.hpp"
 #include "particle/pair_terms.hpp"
 #include "particle/parameters.hpp"
 #include "particle/system.hpp"
@@ -31,6 +33,28 @@ template <int D_, class Conservative_, class Friction_, class Heat_> struct Mode
 
 template <int D> struct PairScratch;
 
+// The energies of particles [0, n) of a state, summed in storage order (a run on several ranks
+// sums the gathered particles this way: the one-process sums).
+template <int D> double kinetic_energy_of(const State<D>& s, std::size_t n, double mass) {
+  double k = 0;
+  for (int d = 0; d < D; ++d)
+    for (std::size_t i = 0; i < n; ++i) k += s.v[d][i] * s.v[d][i];
+  return 0.5 * mass * k;
+}
+inline double sum_of(const std::vector<double>& a, std::size_t n) {
+  double s = 0;
+  for (std::size_t i = 0; i < n && i < a.size(); ++i) s += a[i];
+  return s;
+}
+
+// The particles of a run on several ranks gathered on rank 0 in the one-process storage order,
+// with the cell index of the one-process grid: what diagnostics and checkpoints read.
+template <int D> struct GatheredParticles {
+  State<D> state;
+  Carried<D> carried;
+  typename CellGrid<D>::ListedPositions x_listed; // empty where the run keeps no list
+};
+
 // A non-positive or non-finite internal energy, or a NaN: the run stops with this message.
 struct InstabilityError : std::runtime_error {
   using std::runtime_error::runtime_error;
@@ -46,6 +70,13 @@ public:
   long steps_done() const { return step_; }
 
   double kinetic_energy() const;
+  // On several ranks (decomposition.hpp): this rank's slab, the ranks, the particles it owns
+  // (state() holds them first, then the ghost plane's copies).
+  const Slabs& slabs() const { return slabs_; }
+  std::size_t owned() const { return owned_; }
+  // Collective: the owned particles of every rank on rank 0 (one-process order), the walls'
+  // sums brought up to date there.
+  void gather(GatheredParticles<D>& out);
   double internal_energy() const;
   double potential_energy() const;
   double total_energy() const { return kinetic_energy() + internal_energy() + potential_energy(); }
@@ -55,12 +86,13 @@ public:
   const CellGrid<D>& grid() const { return grid_; }
   const Carried<D>& carried() const { return carried_; }
   const M& model() const { return model_; }
-  // Energy that entered the fluid through each wall (index 2 d + side) since the start.
-  const std::array<double, 6>& wall_energy_in() const { return wall_energy_in_; }
-  long wall_crossings() const { return crossings_; } // particles reflected back into the box
+  // Energy that entered the fluid through each wall (index 2 d + side) since the start (on
+  // several ranks: on rank 0, as of the last gather).
+  std::array<double, 6> wall_energy_in() const { return wall_sums(0); }
+  long wall_crossings() const { return tally_.counted(); } // particles reflected into the box
   // Momentum along each wall's inward normal given to the fluid since the start (repulsion,
   // friction and noise, reflections): its rate per area is the pressure on the wall.
-  const std::array<double, 6>& wall_momentum_in() const { return wall_momentum_in_; }
+  std::array<double, 6> wall_momentum_in() const { return wall_sums(6); }
   // Re-sorts and lists the pairs anew after the state was changed from outside (tests permute
   // it).
   void resort() { update_neighbours(true); }
@@ -71,10 +103,15 @@ public:
   // Everything a restart needs, listed once (particle/archive.hpp). Scratch arrays are not in
   // it: each step rebuilds them before use.
   template <class A> void archive(A& a) {
-    a("x", state_.x), a("v", state_.v), a("u", state_.u), a("id", state_.id);
-    a("force", carried_.f), a("heat_rate", carried_.q), a("potential", carried_.potential);
-    a("step", step_), a("wall_energy_in", wall_energy_in_), a("wall_crossings", crossings_);
-    a("wall_momentum_in", wall_momentum_in_), a("x_listed", x_listed_);
+    if constexpr (!A::loading) {
+      if (slabs_.active()) { // one file: the particles gathered in one-process order
+        GatheredParticles<D> g;
+        gather(g);
+        archive_arrays(a, g.state, g.carried, g.x_listed);
+        return;
+      }
+    }
+    archive_arrays(a, state_, carried_, x_listed_);
     if constexpr (A::loading) {
       const bool heat_rates = p_.integrator != Integrator::Shardlow;
       if (carried_.q.size() != (heat_rates ? state_.id.size() : 0) ||
@@ -83,12 +120,58 @@ public:
       // Stored in (cell, id) order of the positions the pair list was built from: the sort
       // rebuilds the cell index only, and the list is the one the run had.
       const bool listed = !x_listed_[0].empty();
+      owned_ = state_.size();
+      if (slabs_.active()) keep_owned(true);
       grid_.sort(state_, carried_, listed ? &x_listed_ : nullptr);
+      if (slabs_.active()) build_ghosts();
       if (listed) grid_.build_pairs(x_listed_, state_.size(), list_cutoff_);
     }
   }
 
 private:
+  template <class A>
+  void archive_arrays(A& a, State<D>& s, Carried<D>& c, typename CellGrid<D>::ListedPositions& l) {
+    std::array<double, 6> energy_in = wall_energy_in(), momentum_in = wall_momentum_in();
+    long crossings = wall_crossings();
+    a("x", s.x), a("v", s.v), a("u", s.u), a("id", s.id);
+    a("force", c.f), a("heat_rate", c.q), a("potential", c.potential);
+    a("step", step_), a("wall_energy_in", energy_in), a("wall_crossings", crossings);
+    a("wall_momentum_in", momentum_in), a("x_listed", l);
+    if constexpr (A::loading) {
+      for (int k = 0; k < 6; ++k)
+        tally_.sums()[k] = energy_in[k], tally_.sums()[6 + k] = momentum_in[k];
+      tally_.set_counted(slabs_.root() ? crossings : 0);
+    }
+  }
+  std::array<double, 6> wall_sums(int first) const {
+    std::array<double, 6> s;
+    for (int k = 0; k < 6; ++k) s[k] = tally_.sums()[first + k];
+    return s;
+  }
+  // ---- several ranks (decomposition.hpp)
+  bool listed_key() const { return skin_ > 0 && p_.integrator != Integrator::Euler; }
+  int owner_of(std::size_t i) const;  // the rank whose slab holds particle i's sort cell
+  void keep_owned(bool with_carried); // drops the particles of other ranks' slabs
+  void migrate();                     // sends particles to the ranks of their sort cells
+  void build_ghosts();                // the upper rank's first plane into the ghost plane
+  void rebuild_slab();                // update_neighbours' rebuild on a slab
+  bool slab_list_still_complete(double largest, std::size_t moved);
+  void resize_local(std::size_t n); // every per-particle array to n (carried included)
+  // Every rank's emissions to every rank: a particle may have moved to another rank since it
+  // reached the wall (the rebuild comes between); its owner emits it.
+  void share_emissions();
+  // The arrays a pair pass reads from the ghost plane (forward) and those it updates in it
+  // (back); empty ones are skipped.
+  void halo(std::initializer_list<std::vector<double>*> forward,
+            std::initializer_list<std::vector<double>*> back);
+  struct Halo : CellGrid<D>::PhaseHook {
+    Simulation* sim = nullptr;
+    std::vector<std::vector<double>*> forward_fields, back_fields;
+    std::vector<double> send, receive;
+    void forward() override;
+    void back() override;
+  };
+
   struct PairForce {
     double conservative = 0, dissipative_random = 0, phi = 0, heat = 0;
   };
@@ -181,8 +264,13 @@ private:
   typename M::Friction wall_friction_;
   typename M::Heat wall_heat_;
   HalfSpaceWall half_space_; // the integrated wall weights, where a wall is of that model
-  std::array<double, 6> wall_energy_in_{}, wall_momentum_in_{};
-  long crossings_ = 0;
+  // The walls' energy in (slots 2 d + side) and momentum in (6 + 2 d + side), the crossings.
+  OrderedTally tally_;
+  Slabs slabs_;
+  std::size_t owned_ = 0;             // particles of this rank: state_ [0, owned_)
+  std::size_t first_plane_count_ = 0; // of them, in its first plane (the lower rank's ghosts)
+  std::size_t ghost_count_ = 0;       // the ghost plane: state_ [owned_, owned_ + ghost_count_)
+  Halo halo_;
   struct Emission { // a particle that reached a diffuse wall this step
     std::uint32_t id;
     int wall; // 2 d + side
@@ -197,4 +285,5 @@ std::string stability_hint(const ParticleParameters& p);
 
 #include "particle/pair_kernels.tpp"
 #include "particle/simulation.tpp"
+#include "particle/slabs.tpp"
 #include "particle/walls.tpp"

@@ -75,6 +75,19 @@ Simulation<M>::Simulation(const M& model, const ParticleParameters& p)
   }
   if (p_.integrator != Integrator::Shardlow) carried_.q.assign(n, 0.0); // heat rates
   carried_.potential.assign(n, 0.0);
+  owned_ = n;
+  // Several MPI ranks: every rank made all particles (the same numbers); each keeps its slab's.
+  slabs_ = Slabs::split(grid_.counts()[D - 1], !p.walls[D - 1].present, D == 2 ? "y" : "z");
+  if (slabs_.active()) {
+    tally_.start_logging();
+    grid_.restrict_to_slab(slabs_.begin(), slabs_.end() - slabs_.begin(),
+                           slabs_.upper != MPI_PROC_NULL);
+    halo_.sim = this;
+    grid_.set_phase_hook(&halo_);
+    grid_.wrap(state_);
+    if (listed_key()) list_positions();
+    keep_owned(false);
+  }
   update_neighbours(true);
   prepare();
 }
@@ -86,7 +99,7 @@ Simulation<M>::Simulation(const M& model, const ParticleParameters& p)
 // count, and a checkpoint holds the listed positions. Returns whether it re-sorted.
 template <class M> bool Simulation<M>::update_neighbours(bool force) {
   if (!force && skin_ > 0 && grid_.has_pairs()) {
-    const long n = static_cast<long>(state_.size());
+    const long n = static_cast<long>(owned_);
     const double half_skin2 = 0.25 * skin_ * skin_;
     double largest = 0;    // max |x_i - x_listed_i|^2, minimum image
     std::size_t moved = 0; // particles farther than skin/2
@@ -97,13 +110,24 @@ template <class M> bool Simulation<M>::update_neighbours(bool force) {
       largest = std::max(largest, r2);
       moved += r2 >= half_skin2;
     }
+    if (slabs_.active()) {
+      MPI_Allreduce(MPI_IN_PLACE, &largest, 1, MPI_DOUBLE, MPI_MAX, slabs_.comm);
+      unsigned long all = moved;
+      MPI_Allreduce(MPI_IN_PLACE, &all, 1, MPI_UNSIGNED_LONG, MPI_SUM, slabs_.comm);
+      moved = all;
+    }
     if (largest < half_skin2) return false;
-    if (list_still_complete(largest, moved)) {
+    if (slabs_.active() ? slab_list_still_complete(largest, moved)
+                        : list_still_complete(largest, moved)) {
       ++list_kept_past_bound_;
       return false;
     }
   }
   ++list_builds_;
+  if (slabs_.active()) {
+    rebuild_slab();
+    return true;
+  }
   if (skin_ == 0 || p_.integrator == Integrator::Euler) {
     grid_.sort(state_, carried_, nullptr, false);
     if (p_.integrator != Integrator::Euler) grid_.build_pairs(state_, list_cutoff_);
@@ -240,10 +264,27 @@ template <class M> void Simulation<M>::conservative_pass(bool with_velocity_term
     }
   }
   const PairNoise noise = pair_noise();
-  if (with_velocity_terms)
+  auto& c = carried_;
+  auto& x = state_.x;
+  if (with_velocity_terms) {
+    if constexpr (D == 2)
+      halo({&x[0], &x[1], &state_.v[0], &state_.v[1], &state_.u, &c.f[0], &c.f[1], &c.q,
+            &c.potential},
+           {&c.f[0], &c.f[1], &c.q, &c.potential});
+    else
+      halo({&x[0], &x[1], &x[2], &state_.v[0], &state_.v[1], &state_.v[2], &state_.u, &c.f[0],
+            &c.f[1], &c.f[2], &c.q, &c.potential},
+           {&c.f[0], &c.f[1], &c.f[2], &c.q, &c.potential});
     force_blocks(noise);
-  else
+  } else {
+    if constexpr (D == 2)
+      halo({&x[0], &x[1], &state_.u, &c.f[0], &c.f[1], &c.potential},
+           {&c.f[0], &c.f[1], &c.potential});
+    else
+      halo({&x[0], &x[1], &x[2], &state_.u, &c.f[0], &c.f[1], &c.f[2], &c.potential},
+           {&c.f[0], &c.f[1], &c.f[2], &c.potential});
     conservative_blocks();
+  }
   if (has_external_) external_forces();
   if (with_velocity_terms && p_.has_walls()) wall_forces(state_.v, carried_.f, 1);
 }
@@ -253,6 +294,11 @@ template <class M> void Simulation<M>::potential_pass() {
   if constexpr (M::Conservative::active) {
     const auto& c = model_.conservative;
     auto& pot = carried_.potential;
+    auto& x = state_.x;
+    if constexpr (D == 2)
+      halo({&x[0], &x[1], &state_.u, &pot}, {&pot});
+    else
+      halo({&x[0], &x[1], &x[2], &state_.u, &pot}, {&pot});
     grid_.for_each_pair(state_, c.rc, [&](std::size_t i, std::size_t j, const double*, double r2) {
       double th_i = 1, th_j = 1, fc, phi;
       if constexpr (M::has_energy) th_i = theta(i), th_j = theta(j);
@@ -279,7 +325,11 @@ template <class M> void Simulation<M>::step() {
     step_shardlow();
     break;
   }
-  if (!emissions_.empty()) emit_from_walls();
+  if (slabs_.active() && p_.wall_diffuse) share_emissions();
+  if (!emissions_.empty())
+    emit_from_walls();
+  else
+    tally_.end_pass(); // as emit_from_walls: every rank counts the same passes
   if (!p_.heat_slabs.empty()) apply_heat_slabs();
 }
 
@@ -290,13 +340,16 @@ template <class M> void Simulation<M>::apply_heat_slabs() {
     for (const auto& slab : p_.heat_slabs) {
       slab_members_.clear();
       const auto& x = state_.x[slab.direction];
-      for (std::size_t i = 0; i < state_.size(); ++i)
+      for (std::size_t i = 0; i < owned_; ++i)
         if (x[i] >= slab.lower && x[i] < slab.upper) slab_members_.push_back(i);
-      if (slab_members_.empty())
+      unsigned long members = slab_members_.size(); // on several ranks: all ranks' members
+      if (slabs_.active())
+        MPI_Allreduce(MPI_IN_PLACE, &members, 1, MPI_UNSIGNED_LONG, MPI_SUM, slabs_.comm);
+      if (members == 0)
         throw InstabilityError("heat slab [" + std::to_string(slab.lower) + ", " +
                                std::to_string(slab.upper) + ") is empty at step " +
                                std::to_string(step_) + ": widen it");
-      const double share = slab.power * dt_ / slab_members_.size();
+      const double share = slab.power * dt_ / members;
       for (const std::size_t i : slab_members_) {
         state_.u[i] += share;
         if (!(state_.u[i] > 0))
@@ -314,7 +367,7 @@ template <class M> void Simulation<M>::apply_heat_slabs() {
 // its own internal energy, so the total energy is conserved to round-off for every force.
 template <class M> void Simulation<M>::step_ec_verlet() {
   ++step_;
-  const std::size_t n = state_.size();
+  const std::size_t n = owned_;
   const double half = 0.5 * dt_ / model_.mass, m2 = 0.5 * model_.mass;
   auto& v = state_.v;
 #pragma omp parallel for schedule(static)
@@ -336,7 +389,7 @@ template <class M> void Simulation<M>::step_ec_verlet() {
   conservative_pass(true, !sorted); // F, q, P at t + dt from r(t+dt), v(t+dt/2), u(t+dt/2)
   bool bad = false;                 // a non-finite velocity or non-positive energy (check_energies)
 #pragma omp parallel for schedule(static) reduction(|| : bad)
-  for (std::size_t i = 0; i < n; ++i) {
+  for (std::size_t i = 0; i < owned_; ++i) {
     double k_half = 0, k_new = 0;
     for (int d = 0; d < D; ++d) {
       k_half += v[d][i] * v[d][i];
@@ -360,13 +413,19 @@ template <class M> void Simulation<M>::step_ec_verlet() {
 // - vbar_j).
 template <class M> void Simulation<M>::step_euler() {
   ++step_;
-  const std::size_t n = state_.size();
+  const std::size_t n = owned_;
   const PairNoise noise = pair_noise();
   auto& v = state_.v;
   auto& dp = carried_.f;
   auto& q = carried_.q;
   for (int d = 0; d < D; ++d) std::fill(dp[d].begin(), dp[d].end(), 0.0);
   std::fill(q.begin(), q.end(), 0.0);
+  auto& x = state_.x;
+  if constexpr (D == 2)
+    halo({&x[0], &x[1], &v[0], &v[1], &state_.u, &dp[0], &dp[1], &q}, {&dp[0], &dp[1], &q});
+  else
+    halo({&x[0], &x[1], &x[2], &v[0], &v[1], &v[2], &state_.u, &dp[0], &dp[1], &dp[2], &q},
+         {&dp[0], &dp[1], &dp[2], &q});
   grid_.for_each_pair(
       state_, model_.rc, [&](std::size_t i, std::size_t j, const double* dx, double r2) {
         const PairForce pf = pair_force(noise, i, j, dx, r2, v);
@@ -388,6 +447,12 @@ template <class M> void Simulation<M>::step_euler() {
     for (std::size_t i = 0; i < n; ++i) du[i] *= dt_;
     if (!p_.energy_offset) {
       // Second pass over the same pairs and noise (counter-based: recomputed, not stored).
+      if constexpr (D == 2)
+        halo({&x[0], &x[1], &v[0], &v[1], &v_old_[0], &v_old_[1], &state_.u, &du}, {&du});
+      else
+        halo({&x[0], &x[1], &x[2], &v[0], &v[1], &v[2], &v_old_[0], &v_old_[1], &v_old_[2],
+              &state_.u, &du},
+             {&du});
       grid_.for_each_pair(
           state_, model_.rc, [&](std::size_t i, std::size_t j, const double* dx, double r2) {
             const PairForce pf = pair_force(noise, i, j, dx, r2, v_old_);
@@ -421,7 +486,7 @@ template <class M> void Simulation<M>::step_euler() {
   potential_pass();
   if constexpr (M::has_energy)
     if (p_.energy_offset)
-      for (std::size_t i = 0; i < n; ++i) state_.u[i] -= carried_.potential[i];
+      for (std::size_t i = 0; i < owned_; ++i) state_.u[i] -= carried_.potential[i];
   check_energies("euler step");
 }
 
@@ -429,9 +494,16 @@ template <class M> void Simulation<M>::step_euler() {
 // (Lisal et al. 2011; LAMMPS fix shardlow + fix nve).
 template <class M> void Simulation<M>::step_shardlow() {
   ++step_;
-  const std::size_t n = state_.size();
   const PairNoise noise = pair_noise();
+  if constexpr (D == 2)
+    halo({&state_.x[0], &state_.x[1], &state_.v[0], &state_.v[1], &state_.u},
+         {&state_.v[0], &state_.v[1], &state_.u});
+  else
+    halo({&state_.x[0], &state_.x[1], &state_.x[2], &state_.v[0], &state_.v[1], &state_.v[2],
+          &state_.u},
+         {&state_.v[0], &state_.v[1], &state_.v[2], &state_.u});
   shardlow_sweep(noise); // pair_kernels.tpp
+  const std::size_t n = owned_;
   if (p_.has_walls())
     wall_sweep(PairNoise(p_.seed, static_cast<std::uint64_t>(step_), PairNoise::Wall));
   auto& v = state_.v;
@@ -457,7 +529,7 @@ template <class M> void Simulation<M>::step_shardlow() {
   if (kicks) {
     conservative_pass(false, !sorted);
 #pragma omp parallel for schedule(static)
-    for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t i = 0; i < owned_; ++i) {
       double k_half = 0, k_new = 0;
       for (int d = 0; d < D; ++d) {
         k_half += v[d][i] * v[d][i];
@@ -471,27 +543,21 @@ template <class M> void Simulation<M>::step_shardlow() {
   check_energies("shardlow step");
 }
 
+// This rank's particles (all of them on one process).
 template <class M> double Simulation<M>::kinetic_energy() const {
-  double k = 0;
-  for (int d = 0; d < D; ++d)
-    for (const double v : state_.v[d]) k += v * v;
-  return 0.5 * model_.mass * k;
+  return kinetic_energy_of(state_, owned_, model_.mass);
 }
 
 template <class M> double Simulation<M>::internal_energy() const {
-  double s = 0;
-  for (const double u : state_.u) s += u;
-  return s;
+  return sum_of(state_.u, owned_);
 }
 
 template <class M> double Simulation<M>::potential_energy() const {
-  double s = 0;
-  for (const double p : carried_.potential) s += p;
-  return s;
+  return sum_of(carried_.potential, owned_);
 }
 
 template <class M> void Simulation<M>::check_energies(const char* where) const {
-  const long n = static_cast<long>(state_.size());
+  const long n = static_cast<long>(owned_);
   bool bad = false;
 #pragma omp parallel for schedule(static) reduction(|| : bad)
   for (long i = 0; i < n; ++i) {

@@ -97,7 +97,7 @@ template <int D> void CellGrid<D>::build_stencil() {
     if (first >= 0) stencil_.push_back(o);
   }
   // Pass order (constructor): units (3D: planes z; 2D: rows y), even ones, then odd ones.
-  const int units = n_[D - 1], rows_per_unit = D == 2 ? 1 : n_[1];
+  const int units = units_, rows_per_unit = D == 2 ? 1 : n_[1];
   phase_begin_.assign(1, 0);
   unit_begin_.assign(1, 0);
   for (int parity = 0; parity < 2; ++parity) {
@@ -209,7 +209,7 @@ void CellGrid<D>::build_cell(const Positions<T>& x, int c, double rc2, std::uint
     bool outside = false, zero = true;
     for (int d = D - 1; d >= 0; --d) {
       int k = idx[d] + offset[d];
-      outside |= !periodic_[d] && (k < 0 || k >= n_[d]);
+      outside |= !cell_wrap_[d] && (k < 0 || k >= n_[d]);
       zero &= offset[d] == 0;
       k = k < 0 ? k + n_[d] : k >= n_[d] ? k - n_[d] : k; // wrap without a division
       nb = nb * n_[d] + k;

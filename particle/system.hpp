@@ -71,13 +71,96 @@ public:
       else if (periodic[d])
         n = n >= 3 ? n : 1;
       n_[d] = std::max(n, 1);
+      global_n_[d] = n_[d];
+      cell_wrap_[d] = periodic[d];
       inv_side_[d] = n_[d] / box[d];
       inv_box_[d] = periodic[d] ? 1.0 / box[d] : 0.0; // 0: nearbyint(0) = 0, no image shift
     }
     total_ = 1;
     for (int d = 0; d < D; ++d) total_ *= n_[d];
     start_.assign(total_ + 1, 0);
+    units_ = n_[D - 1];
     build_stencil();
+  }
+  // Restricts the grid to a slab of planes along the last direction (decomposition.hpp):
+  // `owned` planes from global plane `first`, and with `ghost` the plane after them (the next
+  // rank's first) whose particles are only ever a pair's j. Positions stay global, and so do the
+  // cell sides and minimum images: the pairs, and their order, are those of the whole grid.
+  void restrict_to_slab(int first, int owned, bool ghost) {
+    z0_ = first;
+    units_ = owned;
+    n_[D - 1] = owned + (ghost ? 1 : 0);
+    cell_wrap_[D - 1] = false;
+    total_ = 1;
+    for (int d = 0; d < D; ++d) total_ *= n_[d];
+    start_.assign(total_ + 1, 0);
+    stencil_.clear(), slot_cell_.clear(), unit_begin_.clear(), phase_begin_.clear();
+    build_stencil();
+  }
+  // Called by the pair passes of a slab between their two phases of planes (forward: the upper
+  // rank's first plane into the ghost plane) and after them (back: the ghost plane's updates to
+  // its owner), on the calling thread, outside any parallel region.
+  struct PhaseHook {
+    virtual void forward() = 0;
+    virtual void back() = 0;
+  };
+  void set_phase_hook(PhaseHook* hook) { hook_ = hook; }
+  bool has_ghost_plane() const { return n_[D - 1] > units_; }
+  int cells_per_plane() const { return total_ / n_[D - 1]; }
+  // The ghost plane's particles, storage [first, first + count), already in (cell, id) order:
+  // their cells from `key` (positions in storage order).
+  template <class T>
+  void set_ghost_cells(const std::array<std::vector<T>, D>& key, std::size_t first,
+                       std::size_t count) {
+    const int per_plane = cells_per_plane(), c0 = units_ * per_plane;
+    for (int c = c0; c <= total_; ++c) start_[c] = first;
+    for (std::size_t i = first; i < first + count; ++i) {
+      double pos[D];
+      for (int d = 0; d < D; ++d) pos[d] = key[d][i];
+      ++start_[cell_of(pos) + 1];
+    }
+    for (int c = c0; c < total_; ++c) start_[c + 1] += start_[c] - first;
+  }
+  // The plane, in the whole box, of a position (as the sort's cells take it).
+  int global_plane(double pos) const {
+    const int k = static_cast<int>(pos * inv_side_[D - 1]);
+    return std::min(std::max(k, 0), global_n_[D - 1] - 1);
+  }
+  // Calls fn(j) for the particles of this slab's own planes in the cells within `reach` cells
+  // of pos's cell (pos anywhere in the box), each cell once: for_each_near on a slab.
+  template <class T, class Fn> void for_each_near_in_slab(const T* pos, int reach, Fn&& fn) const {
+    std::array<int, D> lo, hi, k;
+    for (int d = 0; d < D; ++d) {
+      const int g = global_n_[d];
+      int idx = static_cast<int>(pos[d] * inv_side_[d]);
+      idx = std::min(std::max(idx, 0), g - 1);
+      if (periodic_[d] && 2 * reach + 1 >= g)
+        lo[d] = 0, hi[d] = g - 1;
+      else if (periodic_[d])
+        lo[d] = idx - reach, hi[d] = idx + reach;
+      else
+        lo[d] = std::max(idx - reach, 0), hi[d] = std::min(idx + reach, g - 1);
+    }
+    k = lo;
+    while (true) {
+      int c = 0;
+      bool inside = true;
+      for (int d = D - 1; d >= 0; --d) {
+        int kk = (k[d] + global_n_[d]) % global_n_[d];
+        if (d == D - 1) {
+          kk -= z0_;
+          if (kk < 0) kk += global_n_[d];
+          inside = kk < units_;
+        }
+        c = c * n_[d] + kk;
+      }
+      if (inside)
+        for (std::size_t j = start_[c]; j < start_[c + 1]; ++j) fn(j);
+      int d = 0;
+      while (d < D && k[d] == hi[d]) k[d] = lo[d], ++d;
+      if (d == D) break;
+      ++k[d];
+    }
   }
   static std::array<bool, D> all_periodic() {
     std::array<bool, D> p;
@@ -89,7 +172,7 @@ public:
   const std::array<int, D>& counts() const { return n_; }
   std::size_t begin(int c) const { return start_[c]; }
   std::size_t end(int c) const { return start_[c + 1]; }
-  double side(int d) const { return box_[d] / n_[d]; }
+  double side(int d) const { return box_[d] / global_n_[d]; }
   double smallest_side() const {
     double s = side(0);
     for (int d = 1; d < D; ++d) s = std::min(s, side(d));
@@ -105,9 +188,9 @@ public:
     for (int d = 0; d < D; ++d) {
       const int idx = rem % n_[d];
       rem /= n_[d];
-      if (periodic_[d] && 2 * reach + 1 >= n_[d])
+      if (cell_wrap_[d] && 2 * reach + 1 >= n_[d])
         lo[d] = 0, hi[d] = n_[d] - 1;
-      else if (periodic_[d])
+      else if (cell_wrap_[d])
         lo[d] = idx - reach, hi[d] = idx + reach;
       else
         lo[d] = std::max(idx - reach, 0), hi[d] = std::min(idx + reach, n_[d] - 1);
@@ -128,7 +211,13 @@ public:
     int c = 0;
     for (int d = D - 1; d >= 0; --d) {
       int k = static_cast<int>(pos[d] * inv_side_[d]);
-      k = std::min(std::max(k, 0), n_[d] - 1);
+      k = std::min(std::max(k, 0), global_n_[d] - 1);
+      if (d == D - 1 &&
+          n_[d] != global_n_[d]) { // a slab: its planes from z0_, the ghost plane wrapped
+        k -= z0_;
+        if (k < 0) k += global_n_[d];
+        k = std::min(k, n_[d] - 1);
+      }
       c = c * n_[d] + k;
     }
     return c;
@@ -222,11 +311,14 @@ private:
   template <class RowFn> void for_each_row(RowFn&& fn) const {
     const long evens = phase_begin_.size() > 1 ? phase_begin_[1] : 0;
     const long odds = phase_begin_.size() > 2 ? phase_begin_[2] - evens : 0;
+    // On a slab with a ghost plane the last odd unit reaches into it: it runs after the
+    // exchange that brings the upper rank's first plane as its even phase left it.
+    const long late = hook_ && has_ghost_plane() && odds > 0 ? 1 : 0;
     auto unit = [&](long u) {
       for (long row = unit_begin_[u]; row < unit_begin_[u + 1]; ++row) fn(row);
     };
     auto odd = [&](long k) {
-      if (k < odds) unit(evens + k);
+      if (k < odds - late) unit(evens + k);
     };
 #pragma omp parallel
     {
@@ -238,6 +330,11 @@ private:
       }
 #pragma omp barrier
       if (last > first) odd(last - 1);
+    }
+    if (hook_) {
+      hook_->forward();
+      if (late) unit(evens + odds - 1);
+      hook_->back();
     }
   }
   template <class PairFn> void visit_cell(const State<D>& s, int c, double rc2, PairFn& fn) const {
@@ -253,7 +350,7 @@ private:
       bool outside = false;
       for (int d = D - 1; d >= 0; --d) {
         const int k = idx[d] + offset[d];
-        outside |= !periodic_[d] && (k < 0 || k >= n_[d]);
+        outside |= !cell_wrap_[d] && (k < 0 || k >= n_[d]);
         nb = nb * n_[d] + (k + n_[d]) % n_[d];
       }
       if (outside) continue;
@@ -299,8 +396,13 @@ private:
   void round_robin(PairBuffer& b, const std::size_t* bounds, std::size_t runs) const;
 
   std::array<double, D> box_, inv_side_, inv_box_;
-  std::array<bool, D> periodic_;
-  std::array<int, D> n_;
+  std::array<bool, D> periodic_;  // the box wraps (positions, minimum images)
+  std::array<bool, D> cell_wrap_; // the cells wrap (not a slab's last direction)
+  std::array<int, D> n_;          // cells of this grid (a slab: its planes, ghost included)
+  std::array<int, D> global_n_;   // cells of the whole box
+  int z0_ = 0;                    // a slab's first plane in the whole box
+  int units_ = 1;                 // planes whose pairs this grid lists (not a ghost plane)
+  PhaseHook* hook_ = nullptr;
   int total_ = 1;
   std::vector<std::size_t> start_;
   std::vector<std::array<int, D>> stencil_; // half shell: each neighbour pair of cells once

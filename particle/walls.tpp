@@ -58,7 +58,7 @@ double Simulation<M>::wall_gamma(const WallCoupling& c, double th_i, double th_w
 // -m g.x; the reverse Poiseuille force. Forces times `scale` into carried f (ec-verlet and
 // shardlow: forces; euler: impulses); potentials into carried potential if `potentials`.
 template <class M> void Simulation<M>::external_forces(double scale, bool potentials) {
-  const std::size_t n = state_.size();
+  const std::size_t n = owned_;
   const double inv_range = 1 / p_.wall_range;
   if (p_.poiseuille_force != 0) { // no potential: its work heats the fluid
     const double half = 0.5 * p_.box[1], force = scale * p_.poiseuille_force;
@@ -91,11 +91,12 @@ template <class M> void Simulation<M>::external_forces(double scale, bool potent
           continue; // an ideal fluid's wall material does not repel
         }
         f[i] += scale * (side ? -force : force);
-        wall_momentum_in_[2 * d + side] += force * dt_; // this force acts for one step
+        tally_.add(6 + 2 * d + side, force * dt_); // this force acts for one step
         if (potentials) carried_.potential[i] += potential;
       }
     }
   }
+  tally_.end_pass(); // on several ranks its terms replay in this place (OrderedTally)
 }
 
 // S1 against a wall for one velocity component v (along the wall's normal or, no-slip, a
@@ -116,7 +117,7 @@ double Simulation<M>::wall_s1(double& v, double w, double sqrt_w, double gamma, 
 // Shardlow: the walls' dissipative, random and heat terms, particle by particle (serial: the
 // energy that crosses each wall is summed in one fixed order).
 template <class M> void Simulation<M>::wall_sweep(const PairNoise& noise) {
-  const std::size_t n = state_.size();
+  const std::size_t n = owned_;
   for (int d = 0; d < D; ++d) {
     const WallPair& wall = p_.walls[d];
     if (!wall.present) continue;
@@ -134,14 +135,14 @@ template <class M> void Simulation<M>::wall_sweep(const PairNoise& noise) {
         if constexpr (M::has_energy) th_i = theta(i);
         const double th_wall = wall_temperature(d, side, th_i);
         if (thermal && c.heat > 0) {
-          wall_energy_in_[index] += exchange_wall_heat(noise, i, index, c, th_wall, g[3]);
+          tally_.add(index, exchange_wall_heat(noise, i, index, c, th_wall, g[3]));
           th_i = theta(i);
         }
         if (!(c.normal > 0)) continue;
         const double gamma = wall_gamma(c, th_i, th_wall);
         const double v_normal = state_.v[d][i];
         double dk = wall_s1(state_.v[d][i], c.normal, c.sqrt_normal, gamma, th_i, th_wall, g[0]);
-        wall_momentum_in_[index] += (side ? -1 : 1) * model_.mass * (state_.v[d][i] - v_normal);
+        tally_.add(6 + index, (side ? -1 : 1) * model_.mass * (state_.v[d][i] - v_normal));
         if (wall.no_slip) {
           int k = 1;
           for (int t = 0; t < D; ++t)
@@ -153,11 +154,12 @@ template <class M> void Simulation<M>::wall_sweep(const PairNoise& noise) {
           // Thermal wall: it keeps half the work (physics.md); adiabatic: the particle all of it.
           const double to_particle = thermal ? 0.5 * dk : dk;
           state_.u[i] -= to_particle;
-          wall_energy_in_[index] += dk - to_particle;
+          tally_.add(index, dk - to_particle);
         }
       }
     }
   }
+  tally_.end_pass(); // on several ranks its terms replay in this place (OrderedTally)
 }
 
 // The wall's heat into particle i over one step (index: the wall, 2 d + side; g: its Gaussian),
@@ -202,7 +204,7 @@ template <class M> void Simulation<M>::wall_heat_pass() {
     for (int d = 0; d < D; ++d) {
       const WallPair& wall = p_.walls[d];
       if (!wall.present) continue;
-      for (std::size_t i = 0; i < state_.size(); ++i)
+      for (std::size_t i = 0; i < owned_; ++i)
         for (int side = 0; side < 2; ++side) {
           const double h = side ? p_.box[d] - state_.x[d][i] : state_.x[d][i];
           if (!wall.thermal[side] || h >= wall_range(d, side)) continue;
@@ -211,11 +213,11 @@ template <class M> void Simulation<M>::wall_heat_pass() {
           const int index = 2 * d + side;
           double g[2];
           noise.particle_gaussians(state_.id[i], 2 * index + 1, g[0], g[1]);
-          wall_energy_in_[index] +=
-              exchange_wall_heat(noise, i, index, c, wall.temperature[side], g[1]);
+          tally_.add(index, exchange_wall_heat(noise, i, index, c, wall.temperature[side], g[1]));
         }
     }
   }
+  tally_.end_pass(); // on several ranks its terms replay in this place (OrderedTally)
 }
 
 // ec-verlet and euler: the walls' friction and random force on every particle within range, at
@@ -227,14 +229,15 @@ void Simulation<M>::wall_forces(const std::array<std::vector<double>, D>& v,
   const PairNoise noise(p_.seed, static_cast<std::uint64_t>(step_), PairNoise::Wall);
   for (int d = 0; d < D; ++d) {
     if (!p_.walls[d].present) continue;
-    for (std::size_t i = 0; i < state_.size(); ++i)
+    for (std::size_t i = 0; i < owned_; ++i)
       for (int side = 0; side < 2; ++side) {
         double force[D];
         if (!wall_force(noise, v, i, d, side, force)) continue;
         for (int t = 0; t < D; ++t) f[t][i] += scale * force[t];
-        wall_momentum_in_[2 * d + side] += (side ? -1 : 1) * force[d] * dt_;
+        tally_.add(6 + 2 * d + side, (side ? -1 : 1) * force[d] * dt_);
       }
   }
+  tally_.end_pass(); // on several ranks its terms replay in this place (OrderedTally)
 }
 
 // One wall's friction and random force on particle i at velocities `v` (the same noise numbers
@@ -275,7 +278,7 @@ template <class M> void Simulation<M>::wall_work_split(std::vector<double>& du) 
     const PairNoise noise(p_.seed, static_cast<std::uint64_t>(step_), PairNoise::Wall);
     for (int d = 0; d < D; ++d) {
       if (!p_.walls[d].present) continue;
-      for (std::size_t i = 0; i < state_.size(); ++i)
+      for (std::size_t i = 0; i < owned_; ++i)
         for (int side = 0; side < 2; ++side) {
           double force[D];
           if (!wall_force(noise, v_old_, i, d, side, force)) continue;
@@ -284,10 +287,11 @@ template <class M> void Simulation<M>::wall_work_split(std::vector<double>& du) 
             work += force[t] * dt_ * 0.5 * (v_old_[t][i] + state_.v[t][i]);
           const double to_particle = p_.walls[d].thermal[side] ? 0.5 * work : work;
           du[i] -= to_particle;
-          wall_energy_in_[2 * d + side] += work - to_particle;
+          tally_.add(2 * d + side, work - to_particle);
         }
     }
   }
+  tally_.end_pass(); // on several ranks its terms replay in this place (OrderedTally)
 }
 
 // Nothing crosses a wall: a particle past the plane is put back by specular reflection
@@ -298,23 +302,24 @@ template <class M> void Simulation<M>::reflect_at_walls() {
     if (!wall.present) continue;
     const double length = p_.box[d];
     auto& x = state_.x[d];
-    for (std::size_t i = 0; i < state_.size(); ++i) {
+    for (std::size_t i = 0; i < owned_; ++i) {
       if (x[i] >= 0 && x[i] <= length) continue;
       const int side = x[i] < 0 ? 0 : 1;
       x[i] = x[i] < 0 ? -x[i] : 2 * length - x[i];
-      ++crossings_;
+      tally_.count(1);
       if (x[i] < 0 || x[i] > length) fail(i, "a particle moved more than a box length in one step");
       if (diffuse_wall(d, side)) { // re-emitted at the end of the step (emit_from_walls)
         emissions_.push_back({state_.id[i], 2 * d + side});
         continue;
       }
-      wall_momentum_in_[2 * d + side] += 2 * model_.mass * std::fabs(state_.v[d][i]);
+      tally_.add(6 + 2 * d + side, 2 * model_.mass * std::fabs(state_.v[d][i]));
       if (wall.no_slip)
         for (int t = 0; t < D; ++t) state_.v[t][i] = -state_.v[t][i];
       else
         state_.v[d][i] = -state_.v[d][i];
     }
   }
+  tally_.end_pass(); // on several ranks its terms replay in this place (OrderedTally)
 }
 
 template <class M> bool Simulation<M>::diffuse_wall(int d, int side) const {
@@ -329,13 +334,14 @@ template <class M> bool Simulation<M>::diffuse_wall(int d, int side) const {
 template <class M> void Simulation<M>::emit_from_walls() {
   std::sort(emissions_.begin(), emissions_.end());
   const PairNoise noise(p_.seed, static_cast<std::uint64_t>(step_), PairNoise::Wall);
-  for (std::size_t i = 0; i < state_.size(); ++i) {
+  for (std::size_t i = 0; i < owned_; ++i) {
     const Emission key{state_.id[i], -1};
     auto it = std::lower_bound(emissions_.begin(), emissions_.end(), key);
     for (; it != emissions_.end() && it->id == state_.id[i]; ++it)
       emit_from_wall(noise, i, it->wall / 2, it->wall % 2);
   }
   emissions_.clear();
+  tally_.end_pass(); // on several ranks its terms replay in this place (OrderedTally)
 }
 
 // A diffuse thermal wall re-emits particle i as wall material at T_w would emit it (Maxwell's
@@ -361,7 +367,7 @@ void Simulation<M>::emit_from_wall(const PairNoise& noise, std::size_t i, int d,
   if (wall.no_slip)
     for (int t = 0, k = 1; t < D; ++t)
       if (t != d) state_.v[t][i] = std::sqrt(T_w / m) * g[k++];
-  wall_momentum_in_[index] += m * (v_in + v_out);
+  tally_.add(6 + index, m * (v_in + v_out));
   double k_new = 0;
   for (int t = 0; t < D; ++t) k_new += state_.v[t][i] * state_.v[t][i];
   double du = 0;
@@ -370,7 +376,7 @@ void Simulation<M>::emit_from_wall(const PairNoise& noise, std::size_t i, int d,
     du = u_new - state_.u[i];
     state_.u[i] = u_new;
   }
-  wall_energy_in_[index] += 0.5 * m * (k_new - k_old) + du;
+  tally_.add(index, 0.5 * m * (k_new - k_old) + du);
 }
 
 // Gamma(a, 1) for a >= 1 by Marsaglia & Tsang (2000), each attempt from its own counter.

@@ -24,6 +24,7 @@
 #include <sstream>
 
 #include "io/files.hpp"
+#include "particle/decomposition.hpp"
 #include "particle/run.hpp"
 #include "study/bench.hpp"
 
@@ -192,8 +193,11 @@ int bench(const RunOptions& cl, const std::vector<std::string>& settings) {
              "|\n|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   else
     table << "| dim | N | scene | integrator | threads | skin | noise | particle-steps/s | steps "
-             "per list | peak RSS kB |\n|---|---|---|---|---|---|---|---|---|---|\n";
-  std::cout << table.str() << std::flush;
+             "per list | peak RSS kB | MPI ranks | array bytes per particle "
+             "|\n|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  // Under mpirun every rank runs each point (particle/decomposition.hpp); rank 0 reports.
+  const bool root = particle::Slabs::world_rank() == 0;
+  if (root) std::cout << table.str() << std::flush;
   io::Json rows = io::Json::array();
   for (const auto& size : o.sizes)
     for (const Scene* scene : o.scenes)
@@ -213,6 +217,7 @@ int bench(const RunOptions& cl, const std::vector<std::string>& settings) {
                 p.steps = o.thermo;
                 p.sample_interval = std::max(1L, o.thermo / 200);
                 const io::Json s = run_particles(p).summary;
+                if (!root) continue; // its summary is rank 0's
                 auto num = [&](const char* k) { return io::number(s, {k}); };
                 const double drift = num("energy_relative_drift_max");
                 std::snprintf(line, sizeof line,
@@ -228,10 +233,14 @@ int bench(const RunOptions& cl, const std::vector<std::string>& settings) {
                     o.steps > 0 ? o.steps : std::max(5L, 3000000L / p.particle_count());
                 const BenchResult r = bench_particles(p, steps);
                 std::snprintf(line, sizeof line,
-                              "| %d | %ld | %s | %s | %d | %g | %s | %.3g | %.1f | %ld |\n",
+                              "| %d | %ld | %s | %s | %d | %g | %s | %.3g | %.1f | %ld | %d | %.0f "
+                              "|\n",
                               size.dim, r.particles, scene->name, to_string(integrator), threads,
                               skin, noise, r.particle_steps_per_second, r.steps_per_list,
-                              peak_rss_kb());
+                              peak_rss_kb(), r.ranks, r.bytes_per_particle);
+                row["ranks"] = r.ranks;
+                row["bytes_per_particle"] = r.bytes_per_particle;
+                row["ghosts_per_owned"] = r.ghosts_per_owned;
                 row["steps_per_list"] = r.steps_per_list;
                 row["N"] = r.particles;
                 row["steps"] = steps;
@@ -239,7 +248,7 @@ int bench(const RunOptions& cl, const std::vector<std::string>& settings) {
                 row["particle_steps_per_second"] = r.particle_steps_per_second;
                 row["peak_rss_kb"] = peak_rss_kb();
               }
-              std::cout << line << std::flush;
+              if (root) std::cout << line << std::flush;
               table << line;
               row["dim"] = size.dim;
               row["scene"] = scene->name;
@@ -249,6 +258,7 @@ int bench(const RunOptions& cl, const std::vector<std::string>& settings) {
               row["noise"] = noise;
               rows.push_back(row);
             }
+  if (!root) return 0;
   stage.create();
   io::Json summary = io::Json::object();
   summary["stage"] = "bench";

@@ -102,6 +102,10 @@ io::Json write_results(const Case& c, const io::StageDirectory& stage, particle:
 
 int particle_stage(const Case& c, const RunOptions& options) {
   const CaseParameters& p = c.parameters;
+  // Under mpirun the particles are split over the ranks (particle/decomposition.hpp); rank 0
+  // writes every file, the checkpoint included.
+  const int ranks = particle::Slabs::world_size();
+  const bool root = particle::Slabs::world_rank() == 0;
   const fs::path run_dir = run_directory(options, p.name);
   const io::StageDirectory stage(run_dir, "particle", options.force && !options.restart);
   const fs::path checkpoint_path = stage.file("checkpoint.twfc");
@@ -121,19 +125,23 @@ int particle_stage(const Case& c, const RunOptions& options) {
       throw io::InputError(checkpoint_path.string() +
                            ": was written for other case parameters; restart with the same case "
                            "file and --set options (or start afresh with --force)");
-    std::cout << "particle: resumed from step "
-              << (resume->contains("step") ? std::to_string(resume->get<std::int64_t>("step"))
-                                           : std::string("?"))
-              << " (checkpoint of "
-              << (resume->contains("written_at") ? resume->get<std::string>("written_at")
-                                                 : std::string("an unknown date"))
-              << ")" << std::endl;
+    if (root)
+      std::cout << "particle: resumed from step "
+                << (resume->contains("step") ? std::to_string(resume->get<std::int64_t>("step"))
+                                             : std::string("?"))
+                << " (checkpoint of "
+                << (resume->contains("written_at") ? resume->get<std::string>("written_at")
+                                                   : std::string("an unknown date"))
+                << ")" << std::endl;
   }
   stop_signal = 0; // from here on a signal stops the run cleanly, with a checkpoint
   std::signal(SIGINT, on_stop_signal);
   std::signal(SIGTERM, on_stop_signal);
-  stage.create();
-  if (!options.restart) fs::remove(checkpoint_path); // a fresh run leaves no old one behind
+  if (root) {
+    stage.create();
+    if (!options.restart) fs::remove(checkpoint_path); // a fresh run leaves no old one behind
+  }
+  if (ranks > 1) MPI_Barrier(MPI_COMM_WORLD);
   const auto started = std::chrono::steady_clock::now();
   particle::RunControl control;
   control.progress = isatty(STDERR_FILENO);
@@ -156,10 +164,12 @@ int particle_stage(const Case& c, const RunOptions& options) {
     out = particle::run_particles(p.particle, control);
   } catch (const particle::InstabilityError& e) {
     std::cerr << "twinflow: particle run stopped: " << e.what() << "\n";
+    if (ranks > 1) MPI_Abort(MPI_COMM_WORLD, kExitUnstable); // the other ranks wait for this one
     return kExitUnstable;
   }
   std::signal(SIGINT, SIG_DFL);
   std::signal(SIGTERM, SIG_DFL);
+  if (!root) return out.interrupted ? kExitInterrupted : 0;
   if (out.interrupted) {
     std::cerr << "twinflow: particle run "
               << (stop_signal ? "interrupted by a signal" : "reached the wall-time limit")
@@ -190,7 +200,7 @@ int particle_stage(const Case& c, const RunOptions& options) {
 int particle_command(const Case& c, const RunOptions& options) {
   const StageInputs inputs = stage_inputs(c, {"Scene/", "Particle/"}, {});
   const int rc = particle_stage(c, options);
-  if (rc == 0)
+  if (rc == 0 && particle::Slabs::world_rank() == 0)
     io::write_file_atomically(run_directory(options, c.parameters.name) / "particle" /
                                   "inputs.json",
                               io::dump(inputs.inputs));

@@ -146,6 +146,11 @@ int continuum_stage(const Case& c, const RunOptions& options, const std::string&
     throw io::InputError("'continuum' with " + std::to_string(n_processes) +
                          " MPI processes: only the iterative 3D Boussinesq path runs in parallel "
                          "(Continuum/Solver/Linear solver = iterative); run it on one process");
+  if (p.model == continuum::Model::Compressible && !(p.heat_capacity > 1))
+    throw io::InputError(
+        "'Continuum/Coefficients/Heat capacity' = " + std::to_string(p.heat_capacity) +
+        " for the compressible twin (Model = auto chose it); allowed: > 1 (c_p > "
+        "k: c_V = c_p - k > 0), or Coefficients/Source = transport");
   const auto numbers = continuum::dimensionless_numbers(p);
   if (root && parameters.twin.model_chosen_automatically && parameters.scene.has_walls()) {
     // Why auto chose this model (study::automatic_model's order: stratification, epsilon).

@@ -307,7 +307,9 @@ continuum::ContinuumParameters resolve_continuum(const Registry& r,
   c.viscosity = law("Viscosity");
   c.conductivity = law("Conductivity");
   c.heat_capacity = r.get_positive(k + "Heat capacity");
-  r.require(c.model != continuum::Model::Compressible || c.heat_capacity > 1 ||
+  // Checked here when the user chose the model; when `auto` chose it, the continuum stage checks
+  // the c_p it finally takes (the transport stage's, with `run`).
+  r.require(r.get(s + "Model") != "compressible" || c.heat_capacity > 1 ||
                 r.get(k + "Source") == "transport",
             k + "Heat capacity",
             "> 1 (c_p > k: c_V = c_p - k > 0) with Continuum/Model = compressible");

@@ -35,6 +35,12 @@ void print_ending(const fs::path& run_dir, std::chrono::steady_clock::time_point
 }
 } // namespace
 
+bool chooses_coefficient_source(const std::vector<std::string>& assignments) {
+  for (const auto& a : assignments)
+    if (a.rfind("Continuum/Coefficients/Source", 0) == 0) return true;
+  return false;
+}
+
 int run_all(Case c, const RunOptions& options) {
   const auto started = std::chrono::steady_clock::now();
   CaseParameters& p = c.parameters;
@@ -83,9 +89,7 @@ int run_all(Case c, const RunOptions& options) {
         return transport_stage(c, transport_options);
       }))
     return rc;
-  bool chosen = false; // the user's own --set of the coefficients' source wins
-  for (const auto& s : c.settings) chosen |= s.rfind("Continuum/Coefficients/Source", 0) == 0;
-  if (!chosen) {
+  if (!chooses_coefficient_source(c.settings)) { // the user's own --set wins
     p.twin.coefficients_from_transport = true;
     c.record_value("Continuum/Coefficients/Source", "transport");
   }

@@ -6,6 +6,7 @@
 
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "study/case.hpp"
 
@@ -37,6 +38,10 @@ int compare_stage(const Case& c, const std::filesystem::path& run_dir);
 // Figures and report.md/html in DIR/report (a run, a sweep or a stability map), by the Python
 // package compare/report/; a missing python3 with matplotlib is said, not an error.
 void write_report(const std::filesystem::path& dir);
+
+// Whether the user's assignments (--set, a grid's --vary) choose Continuum/Coefficients/Source;
+// if not, `run` feeds the twin the transport stage's coefficients.
+bool chooses_coefficient_source(const std::vector<std::string>& assignments);
 
 // All stages; a stage whose inputs are unchanged is reused.
 int run_all(Case c, const RunOptions& options);

@@ -12,6 +12,7 @@
 #include "continuum/parameters.hpp"
 #include "io/files.hpp"
 #include "study/grid.hpp"
+#include "study/stages.hpp"
 #include "study/sweeps.hpp"
 #include "study/twin_coefficients.hpp"
 #include "transport/coefficients.hpp"
@@ -107,14 +108,10 @@ std::array<double, 3> gravity_for_rayleigh(const continuum::ContinuumParameters&
 }
 
 // True when the point's twin takes the transport stage's coefficients, as `run` decides
-// (study/run.cpp): unless a --set or --vary chooses Continuum/Coefficients/Source.
+// (study/run.cpp, chooses_coefficient_source).
 bool twin_takes_transport(const GridOptions& cl, const Point& p) {
-  const auto chooses = [](const std::string& a) {
-    return a.rfind("Continuum/Coefficients/Source", 0) == 0;
-  };
   return p.resolved.twin.coefficients_from_transport ||
-         (std::none_of(cl.settings.begin(), cl.settings.end(), chooses) &&
-          std::none_of(p.assignments.begin(), p.assignments.end(), chooses));
+         (!chooses_coefficient_source(cl.settings) && !chooses_coefficient_source(p.assignments));
 }
 
 std::string vector_text(const std::array<double, 3>& v, int dim) {

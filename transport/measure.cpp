@@ -4,6 +4,7 @@
 #include <sstream>
 #include <vector>
 
+#include "particle/seeds.hpp"
 #include "statistics/blocking.hpp"
 #include "statistics/line_fit.hpp"
 
@@ -88,10 +89,11 @@ Repeated measure_diffusion(const particle::ParticleParameters& p, long steps, in
       continue;
     }
     particle::ParticleParameters q = p;
-    q.seed = p.seed + 7727 * static_cast<std::uint64_t>(r);
+    q.seed = particle::derived_seed(p.seed, particle::SeedPurpose::DiffusionRepeat,
+                                    static_cast<std::uint64_t>(r));
     d.push_back(diffusion_from_msd(run_at(q, p.density, p.temperature, steps).corr, p.dim));
   }
-  return summarise_repeats(d);
+  return summarise_repeats(d, RepeatError::Spread);
 }
 
 Measured measure(const particle::ParticleParameters& p, long steps, int diffusion_repeats,
@@ -103,10 +105,11 @@ Measured measure(const particle::ParticleParameters& p, long steps, int diffusio
   m.temperature = c.t;
   m.rdf_csv = c.rdf;
   // D's error from independent runs: within one run the groups of tracked particles share the
-  // box's collective flows (in 2D they scattered 1.3x wider over seeds than the groups said,
+  // box's collective flows (in 2D runs scattered 1.3x wider over seeds than the groups said,
   // docs/notebook/2026-11-25-seed-errors.md).
   const Repeated d = measure_diffusion(p, steps, diffusion_repeats, c.corr);
   m.diffusion = d.value;
+  m.diffusion_dof = d.dof;
   m.diffusion_repeats = d.repeats;
   const Point tp = run_at(p, rho, T * (1 + h), steps), tm = run_at(p, rho, T * (1 - h), steps);
   const Point rp = run_at(p, rho * (1 + h), T, steps), rm = run_at(p, rho * (1 - h), T, steps);
@@ -137,6 +140,7 @@ io::Json Measured::json() const {
   put("pressure", pressure);
   put("temperature_kinetic", temperature);
   put("self_diffusion", diffusion);
+  j["self_diffusion_stderr_dof"] = diffusion_dof;
   j["self_diffusion_repeats"] = io::Json::array();
   for (const auto& e : diffusion_repeats) {
     io::Json r = io::Json::object();
@@ -150,7 +154,7 @@ io::Json Measured::json() const {
   return j;
 }
 
-Repeated summarise_repeats(const std::vector<Estimate>& all) {
+Repeated summarise_repeats(const std::vector<Estimate>& all, RepeatError rule) {
   Repeated r;
   r.repeats = all;
   std::vector<Estimate> runs; // a failed fit (NaN) is dropped, and counted
@@ -170,7 +174,12 @@ Repeated summarise_repeats(const std::vector<Estimate>& all) {
   // Standard error of a mean of m independent runs: sample sd / sqrt(m), or sqrt(sum se^2) / m.
   r.spread_stderr = runs.size() > 1 ? std::sqrt(ss / (m - 1) / m) : std::nan("");
   r.fit_stderr = std::sqrt(var_fits / m / m);
-  r.value = {mean, runs.size() > 1 ? std::max(r.spread_stderr, r.fit_stderr) : r.fit_stderr};
+  if (runs.size() < 2)
+    r.value = {mean, r.fit_stderr};
+  else if (rule == RepeatError::Spread)
+    r.value = {mean, r.spread_stderr}, r.dof = static_cast<int>(runs.size()) - 1;
+  else
+    r.value = {mean, std::max(r.spread_stderr, r.fit_stderr)};
   return r;
 }
 
@@ -181,6 +190,7 @@ io::Json Repeated::json() const {
   j["spread_stderr"] = spread_stderr;
   j["fit_stderr"] = fit_stderr;
   j["failed_fits"] = failed;
+  j["stderr_dof"] = dof;
   io::Json runs = io::Json::array();
   for (const auto& e : repeats) {
     io::Json r = io::Json::object();

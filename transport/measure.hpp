@@ -14,6 +14,7 @@ namespace twinflow::transport {
 struct Measured {
   particle::Estimate pressure, temperature;
   particle::Estimate diffusion;      // from the MSD slope, 2 d D, over independent repeats
+  int diffusion_dof = 0;             // its error's degrees of freedom (repeats - 1)
   particle::Estimate expansion;      // alpha = (dp/dT)_rho / (rho (dp/drho)_T)
   particle::Estimate dp_dt, dp_drho; // equation-of-state derivatives
   particle::Estimate cp_minus_cv;    // per particle, k = 1: 1 for the ideal gas
@@ -29,22 +30,38 @@ Measured measure(const particle::ParticleParameters& p, long steps, int diffusio
                  double h = 0.05);
 
 // A coefficient measured by independent repeats (different seeds): the mean, and the standard
-// error of that mean from their spread, or from the fits' own errors when those are larger (a
-// spread of few repeats can come out small by chance).
+// error of that mean by one of two rules.
 struct Repeated {
   particle::Estimate value;
   std::vector<particle::Estimate> repeats;  // each run's fit
   double spread_stderr = 0, fit_stderr = 0; // sd / sqrt(M), and the fits' rms error / sqrt(M)
   int failed = 0;                           // repeats whose fit failed (left out)
+  // Degrees of freedom of value.stderr_: M - 1 when it is the spread's; 0 when it is (or may be)
+  // the fits' own errors, whose degrees of freedom are not known here.
+  int dof = 0;
   io::Json json() const;
 };
 
-Repeated summarise_repeats(const std::vector<particle::Estimate>& runs);
+enum class RepeatError {
+  // The larger of the spread's and the fits' (a spread of few repeats can come out small by
+  // chance; right when the fits' errors are themselves honest: the relaxation runs).
+  LargerOfSpreadAndFits,
+  // The spread's alone, M - 1 degrees of freedom (the fits' errors miss what the repeats see;
+  // one run: its fit's error, dof 0). For D: the groups' error understates the scatter of runs
+  // by 1.3x (docs/notebook/2026-11-25-seed-errors.md), so a floor from it only biases.
+  Spread,
+};
 
-// D by `repeats` independent runs (seeds p.seed + 7727 r) at p's state point, each `steps`
-// sampled steps after steps / 2 to settle; `first_correlations`, when given, is repeat 0's
-// correlations.csv (a run already made with p.seed). Why repeats: one run's MSD window is one
-// sample of the box's slow collective flows, which move the tracked particles together.
+Repeated summarise_repeats(const std::vector<particle::Estimate>& runs,
+                           RepeatError rule = RepeatError::LargerOfSpreadAndFits);
+
+// D by `repeats` independent runs at p's state point (repeat r's seed derived_seed(p.seed,
+// DiffusionRepeat, r), repeat 0's p.seed itself), each `steps` sampled steps after steps / 2 to
+// settle; `first_correlations`, when given, is repeat 0's correlations.csv (a run already made
+// with p.seed). D the mean, its error the repeats' spread (RepeatError::Spread, repeats - 1
+// degrees of freedom). Why repeats: one run's MSD window is one sample of the box's slow
+// collective flows, which move all tracked particles together (in 2D they are the long-time
+// tail: D(t) grows with the window), so its particle groups cannot see them.
 Repeated measure_diffusion(const particle::ParticleParameters& p, long steps, int repeats,
                            const std::string& first_correlations = "");
 

@@ -4,8 +4,10 @@
 #include <cmath>
 #include <cstdio>
 #include <random>
+#include <set>
 
 #include "../particle/helpers.hpp"
+#include "particle/seeds.hpp"
 #include "transport/estimates.hpp"
 #include "transport/measure.hpp"
 
@@ -32,6 +34,39 @@ TEST(RepeatedMeasurement, ErrorIsTheLargerOfSpreadAndFits) {
   const Repeated failed = summarise_repeats({{10, 0.1}, {std::nan(""), std::nan("")}, {14, 0.1}});
   EXPECT_DOUBLE_EQ(failed.value.mean, 12);
   EXPECT_EQ(failed.failed, 1);
+}
+
+// D's rule: the spread's alone, with its degrees of freedom, even when the fits say more; one run
+// falls back to its fit's error (dof 0).
+TEST(RepeatedMeasurement, SpreadRuleStatesTheSpreadAndItsDegreesOfFreedom) {
+  const Repeated spread = summarise_repeats({{5, 3}, {6, 3}, {7, 3}}, RepeatError::Spread);
+  EXPECT_NEAR(spread.value.stderr_, 1 / std::sqrt(3.0), 1e-12); // sd 1 over sqrt(3)
+  EXPECT_EQ(spread.dof, 2);
+  EXPECT_NEAR(spread.fit_stderr, std::sqrt(3.0), 1e-12); // reported beside it
+  const Repeated larger = summarise_repeats({{5, 3}, {6, 3}, {7, 3}});
+  EXPECT_NEAR(larger.value.stderr_, std::sqrt(3.0), 1e-12);
+  EXPECT_EQ(larger.dof, 0);
+  const Repeated one = summarise_repeats({{7, 0.5}}, RepeatError::Spread);
+  EXPECT_DOUBLE_EQ(one.value.stderr_, 0.5);
+  EXPECT_EQ(one.dof, 0);
+}
+
+// Repeat seeds: repeat 0 is the base seed; no repeat of one base seed equals a repeat (or the
+// base) of another, also for bases that differ by the old additive step (7727).
+TEST(RepeatedMeasurement, RepeatSeedsOfDifferentBasesNeverCoincide) {
+  using particle::derived_seed;
+  using particle::SeedPurpose;
+  std::set<std::uint64_t> seen;
+  std::size_t made = 0;
+  for (std::uint64_t base : {1ull, 2ull, 7728ull, 15455ull, 1000003ull, 6000018ull})
+    for (std::uint64_t r = 0; r < 100; ++r, ++made) {
+      const std::uint64_t s = derived_seed(base, SeedPurpose::DiffusionRepeat, r);
+      if (r == 0) {
+        EXPECT_EQ(s, base);
+      }
+      seen.insert(s);
+    }
+  EXPECT_EQ(seen.size(), made);
 }
 
 // A small 2D ideal DPDE box: the heat and the transverse momentum modes both decay and give

@@ -27,8 +27,11 @@ if perf:
     variants = [v for v in ["shardlow", "shardlow+uniform", "ec-verlet", "ec-verlet+uniform"]
                 if any(k[0] == "ours" and k[1] == v for k in perf)]
     cfg = [("ours", v, t) for v in variants for t in (1, 2)]
+    ranked = [v for v in ("shardlow", "ec-verlet") if any(k[:2] == ("ours-2ranks", v) for k in perf)]
+    cfg += [("ours-2ranks", v, 1) for v in ranked]
     cfg += [("lammps", "shardlow", 1), ("lammps", "shardlow", 2)]
     names = ["%s %dT" % (v, t) for v in variants for t in (1, 2)]
+    names += ["%s 2 ranks x 1T" % v for v in ranked]
     names += ["LAMMPS 1 rank", "LAMMPS 2 ranks"]
     reps = max(len(v) for v in perf.values())
     print("particle-steps/s, a0 = 15 + heat (median of %d; ratios against LAMMPS's best "
@@ -47,6 +50,14 @@ if perf:
             " | ".join("%s (%s)" % (ratio(two), ratio(one)) for one, two in ours),
             ", ".join(eff(one, two) for one, two in ours)))
     print("\n(ratios: 2 threads, in brackets 1 thread)\n")
+    if ranked:
+        print("2 MPI ranks x 1 thread against 1 rank x 2 threads (same binary, same run):\n")
+        for v in ranked:
+            k = 2 * variants.index(v) + 1
+            print("- %s: " % v + ", ".join(
+                "N = %d: %.2f" % (n, med(perf[("ours-2ranks", v, 1, n)]) / med(perf[cfg[k] + (n,)]))
+                for n in sizes if perf.get(("ours-2ranks", v, 1, n)) and perf.get(cfg[k] + (n,))))
+        print()
     print("cost exponent b in time per step ~ N^b (least squares over N = %s):\n" %
           ", ".join(map(str, sizes)))
     def slope(pts):

@@ -6,8 +6,9 @@
 # dt = 0.005, box 2L x L x L with N = 6 L^3.
 #
 # usage: bench/vs_lammps.sh [perf] [scenes] [thermo]      (default: all three)
-#   perf    particle-steps/s at SIZES: ours (shardlow, ec-verlet; 1 and 2 OpenMP threads) and
-#           LAMMPS (1 and 2 MPI ranks), ratios to LAMMPS's best, the cost exponent in N,
+#   perf    particle-steps/s at SIZES: ours (shardlow, ec-verlet; 1 and 2 OpenMP threads, and 2
+#           MPI ranks x 1 thread) and LAMMPS (1 and 2 MPI ranks), ratios to LAMMPS's best, the
+#           cost exponent in N,
 #           two-thread efficiency, memory per particle (peak RSS difference between sizes)
 #   scenes  ours only, N = 48000: ideal, ideal+heat, a0=15, a0=15+heat
 #   thermo  N = 6000, 10 tau equilibration + 10 tau sampled: energy drift, T_kinetic,
@@ -17,7 +18,7 @@
 #      "6000 48000 384000"), REPS (default 3), PS (particle-steps per timed run, default 6e6),
 #      OUT (default bench/runs), OMP_WAIT_POLICY / GOMP_SPINCOUNT (default: twinflow's, see
 #      below), NOISES (ours' pair noises, default "gaussian uniform": Particle/Noise; LAMMPS
-#      draws Gaussians)
+#      draws Gaussians), RANKS (default 1: ours on 2 MPI ranks too; 0: not)
 set -euo pipefail
 HERE=$(cd "$(dirname "$0")" && pwd)
 ROOT=$(cd "$HERE/.." && pwd)
@@ -27,6 +28,7 @@ SIZES=${SIZES:-"6000 48000 384000"}
 REPS=${REPS:-3}
 PS=${PS:-6e6}
 NOISES=${NOISES:-"gaussian uniform"}
+RANKS=${RANKS:-1} # 1: perf also runs ours on 2 MPI ranks x 1 thread (Gaussian noise); 0: not
 OUT=${OUT:-$HERE/runs}
 MODES=("$@")
 [ ${#MODES[@]} -eq 0 ] && MODES=(perf scenes thermo)
@@ -55,6 +57,13 @@ ours() { # N scene integrator threads steps noise -> "particle-steps/s peak-RSS-
     awk -F'|' '/^\| 3 \|/ {gsub(/ /, "", $9); gsub(/ /, "", $11); print $9, $11}'
 }
 label() { [ "$2" = gaussian ] && echo "$1" || echo "$1+$2"; } # integrator noise -> key
+
+ours_ranks() { # N integrator steps -> "particle-steps/s peak-RSS-kB" on 2 MPI ranks x 1 thread
+  OMP_NUM_THREADS=1 mpirun -np 2 --bind-to none "$TW" bench --force -o "$OUT/twinflow" \
+    --threads 1 --set "Bench/N=$1" --set Bench/Scenes=a0=15+heat --set "Bench/Integrators=$2" \
+    --set Bench/Threads=1 --set "Bench/Steps=$3" |
+    awk -F'|' '/^\| 3 \|/ {gsub(/ /, "", $9); gsub(/ /, "", $11); print $9, $11}'
+}
 
 lammps() { # N ranks steps -> "particle-steps/s peak-RSS-kB"
   local n=$1 ranks=$2 steps=$3 l log
@@ -85,6 +94,10 @@ do_perf() {
             echo "perf ours:$(label "$integ" "$noise"):$t:$n $ps $rss" | tee -a "$RAW"
           done
         done
+        if [ "$RANKS" = 1 ]; then # 2 MPI ranks x 1 thread, beside LAMMPS's 2 ranks
+          read -r ps rss <<<"$(ours_ranks "$n" "$integ" "$s")"
+          echo "perf ours-2ranks:$integ:1:$n $ps $rss" | tee -a "$RAW"
+        fi
       done
       if [ $HAVE_LMP = 1 ]; then
         for r in 1 2; do

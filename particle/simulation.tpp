@@ -34,59 +34,71 @@ Simulation<M>::Simulation(const M& model, const ParticleParameters& p)
   sqrt_dt_ = std::sqrt(dt_);
   inv_sqrt_dt_ = 1 / sqrt_dt_;
   const std::size_t n = static_cast<std::size_t>(p.particle_count());
-  for (int d = 0; d < D; ++d) {
-    state_.box[d] = p.box[d];
-    state_.x[d].resize(n);
-    state_.v[d].resize(n);
-    carried_.f[d].assign(n, 0.0);
-  }
-  state_.id.resize(n);
-  // Positions uniform, velocities Maxwell at T: counter-based, so independent of threads.
+  // Several MPI ranks: each keeps the particles of its slab's planes.
+  slabs_ = Slabs::split(grid_.counts()[D - 1], !p.walls[D - 1].present, D == 2 ? "y" : "z");
+  // Positions uniform, velocities Maxwell at T: counter-based, so independent of threads and
+  // ranks. Two passes over the ids, so that no rank ever holds all N: the first sums the
+  // velocities (the same sum in the same order on every rank), the second keeps a rank's own.
   const PairNoise initial(p.seed, 0, PairNoise::Initial);
   const double vscale = std::sqrt(p.temperature / p.mass);
-  std::array<double, D> mean{};
-  for (std::size_t i = 0; i < n; ++i) {
-    state_.id[i] = static_cast<std::uint32_t>(i);
+  auto make = [&](std::size_t i, double* x, double* v) {
     for (int d = 0; d < D; ++d) {
       double g1, g2;
       initial.particle_gaussians(static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(d), g1,
                                  g2);
       // Gaussian -> uniform through the normal CDF of g1: exact and cheap enough at start-up.
-      state_.x[d][i] = p.box[d] * 0.5 * std::erfc(-g1 / std::sqrt(2.0));
-      state_.v[d][i] = p.initial_velocities == InitialVelocities::Maxwell ? vscale * g2 : 0.0;
+      x[d] = p.box[d] * 0.5 * std::erfc(-g1 / std::sqrt(2.0));
+      v[d] = p.initial_velocities == InitialVelocities::Maxwell ? vscale * g2 : 0.0;
       if (d == 1 && p.shear_perturbation != 0) // the shear relaxation scene's initial mode
-        state_.v[1][i] +=
-            p.shear_perturbation * vscale * std::sin(2 * M_PI * state_.x[0][i] / p.box[0]);
-      mean[d] += state_.v[d][i] / n;
+        v[1] += p.shear_perturbation * vscale * std::sin(2 * M_PI * x[0] / p.box[0]);
     }
+  };
+  std::array<double, D> mean{};
+  double x[D], v[D];
+  for (std::size_t i = 0; i < n; ++i) {
+    make(i, x, v);
+    for (int d = 0; d < D; ++d) mean[d] += v[d] / n;
   }
-  for (int d = 0; d < D; ++d)
-    for (auto& v : state_.v[d]) v -= mean[d];
-  if constexpr (M::has_energy) {
-    // 000:(3.21): <u> = (c_v + k) T in equilibrium (k = 1); seed 002 starts at theta_i = T
-    const double u0 = p.initial_internal_energy == InitialInternalEnergy::Equilibrium
-                          ? (model_.cv + 1) * p.temperature
-                          : model_.cv * p.temperature;
-    state_.u.assign(n, u0);
+  const double share =
+      slabs_.active() ? double(slabs_.end() - slabs_.begin()) / grid_.counts()[D - 1] : 1.0;
+  const auto expected = static_cast<std::size_t>(1.05 * share * n + 64); // a slab's count varies
+  for (int d = 0; d < D; ++d) {
+    state_.box[d] = p.box[d];
+    state_.x[d].reserve(expected), state_.v[d].reserve(expected);
+  }
+  state_.id.reserve(expected);
+  if constexpr (M::has_energy) state_.u.reserve(expected);
+  // 000:(3.21): <u> = (c_v + k) T in equilibrium (k = 1); seed 002 starts at theta_i = T
+  const double u0 = p.initial_internal_energy == InitialInternalEnergy::Equilibrium
+                        ? (model_.cv + 1) * p.temperature
+                        : model_.cv * p.temperature;
+  for (std::size_t i = 0; i < n; ++i) {
+    make(i, x, v);
+    double u = u0;
     if (p.temperature_perturbation != 0) // the thermal relaxation scene's initial mode
-      for (std::size_t i = 0; i < n; ++i)
-        state_.u[i] *=
-            1 + p.temperature_perturbation * std::sin(2 * M_PI * state_.x[0][i] / p.box[0]);
+      u *= 1 + p.temperature_perturbation * std::sin(2 * M_PI * x[0] / p.box[0]);
+    if (slabs_.active()) {
+      for (int d = 0; d < D; ++d) x[d] = grid_.wrapped(x[d], d);
+      // the plane as the sort will take it: of the listed (float) position when there is a list
+      const double key =
+          listed_key() ? static_cast<double>(static_cast<float>(x[D - 1])) : x[D - 1];
+      if (slabs_.owner(grid_.global_plane(key)) != slabs_.rank) continue;
+    }
+    for (int d = 0; d < D; ++d) state_.x[d].push_back(x[d]), state_.v[d].push_back(v[d] - mean[d]);
+    state_.id.push_back(static_cast<std::uint32_t>(i));
+    if constexpr (M::has_energy) state_.u.push_back(u);
   }
-  if (p_.integrator != Integrator::Shardlow) carried_.q.assign(n, 0.0); // heat rates
-  carried_.potential.assign(n, 0.0);
-  owned_ = n;
-  // Several MPI ranks: every rank made all particles (the same numbers); each keeps its slab's.
-  slabs_ = Slabs::split(grid_.counts()[D - 1], !p.walls[D - 1].present, D == 2 ? "y" : "z");
+  owned_ = state_.id.size();
+  for (int d = 0; d < D; ++d) carried_.f[d].assign(owned_, 0.0);
+  if (p_.integrator != Integrator::Shardlow) carried_.q.assign(owned_, 0.0); // heat rates
+  carried_.potential.assign(owned_, 0.0);
   if (slabs_.active()) {
     tally_.start_logging();
     grid_.restrict_to_slab(slabs_.begin(), slabs_.end() - slabs_.begin(),
                            slabs_.upper != MPI_PROC_NULL);
     halo_.sim = this;
     grid_.set_phase_hook(&halo_);
-    grid_.wrap(state_);
     if (listed_key()) list_positions();
-    keep_owned(false);
   }
   update_neighbours(true);
   prepare();

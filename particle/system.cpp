@@ -125,8 +125,8 @@ void CellGrid<D>::build_pairs(const Positions<T>& x, std::size_t count, double r
   if (buffers_.size() < threads) buffers_.resize(threads);
   // First guess of the pairs per thread, 10% above the uniform density's N rho V_D(rc) / 2, so
   // that a buffer is allocated once instead of grown through copies (peak memory).
-  double volume = 1;
-  for (int d = 0; d < D; ++d) volume *= box_[d];
+  double volume = 1; // of the cells this grid holds (a slab's planes, its ghost plane included)
+  for (int d = 0; d < D; ++d) volume *= n_[d] * side(d);
   const double ball = D == 3 ? 4.18879020478639 * rc2 * rc : 3.141592653589793 * rc2;
   const double n = static_cast<double>(count);
   const auto guess = static_cast<std::size_t>(1.1 * 0.5 * n * n / volume * ball / threads) + 4096;

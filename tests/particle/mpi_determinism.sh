@@ -73,7 +73,7 @@ fi
 
 if [ "$part" = restart ]; then
   # Interrupted by the wall-time limit (a checkpoint, exit 5) on R ranks, continued on R'.
-  # ~3 s of work on one process: the wall-time limit stops it midway.
+  # ~3 s of work on one process, stopped by the wall-time limit midway.
   long=("${cavity_2d[@]}" --set "Particle/Steps=4000")
   for integrator in shardlow ec-verlet euler; do
     set_integrator=(--set "Particle/Integrator=$integrator")
@@ -84,8 +84,10 @@ if [ "$part" = restart ]; then
     for pair in "2 1" "1 2"; do
       read -r first then <<<"$pair"
       name=restart_${integrator}_${first}to${then}
-      wall_time=0.5 # seconds of the stage; two ranks spend more of them starting
-      [ "$first" -gt 1 ] && wall_time=1.5
+      # A third of the whole run's own time: midway on one process, and on two ranks too (they
+      # run faster but spend more starting), however fast or busy the host is.
+      wall_time=$(python3 -c "import json,sys; print(max(0.2, json.load(open(sys.argv[1]))['results']['wall_seconds'] / 3))" \
+        "$work/whole_$integrator/particle/summary.json" 2>/dev/null || echo 0.5)
       run "$name" "$first" 1 "${long[@]}" "${set_integrator[@]}" --wall-time $wall_time
       code=$?
       if [ $code -ne 5 ]; then

@@ -66,8 +66,10 @@ def main():
         zt, _ = zero_crossing(ys, [float(r["vx_nominal"]) for r in rows])
         bin_width = ys[1] - ys[0]
         nu_p, nu_t = particle["nusselt"], twin["nusselt"]
+        se = twin.get("nusselt_stderr_from_coefficients")
+        nu_t_se = f" +- {se:.3f}" if isinstance(se, float) and math.isfinite(se) else ""
         print(f"| {run_dir} | {model} | {nu_p:.3f} +- {particle['nusselt_stderr']:.3f} | "
-              f"{nu_t:.3f} | {nu_p / nu_t - 1:+.1%} | {l2('temperature')} | {l2('velocity')} | "
+              f"{nu_t:.3f}{nu_t_se} | {nu_p / nu_t - 1:+.1%} | {l2('temperature')} | {l2('velocity')} | "
               f"{l2('density')} | {zp:.2f} +- {zp_se:.2f} | {zt:.2f} | {bin_width:g} |")
 
 

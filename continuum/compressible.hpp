@@ -104,6 +104,11 @@ public:
   double nusselt_flux_scale() const {
     return (this->numbers_.temperature_difference > 0 ? 1.0 : -1.0) * reference_flux_;
   }
+  // The mean pressure over p0 = n0 k T_ref (the box at rest at T_ref): as s = g H / c^2 -> 0 the
+  // pressure becomes uniform and this tends to the low-Mach twin's P / p0 (Le Quere et al. 2005).
+  double pressure_ratio() const {
+    return mean_pressure_ / (this->prm_.number_density * this->prm_.reference_temperature);
+  }
   std::string state_note() const {
     std::ostringstream note;
     note << ", int n dV / N - 1 = " << mass_defect_ / total_particles_;
@@ -137,7 +142,7 @@ public:
                                     dealii::update_values | dealii::update_JxW_values);
     const dealii::FEValuesExtractors::Scalar scalar(dim), temperature(dim + 1);
     std::vector<double> n(fe_values.n_quadrature_points), T(fe_values.n_quadrature_points);
-    double mass = 0;
+    double mass = 0, pressure_integral = 0;
     for (const auto& cell : dofs.active_cell_iterators()) {
       fe_values.reinit(cell);
       fe_values[scalar].get_function_values(x, n);
@@ -146,9 +151,12 @@ public:
         if (!(n[q] > 0) || !(T[q] > 0))
           throw std::runtime_error("compressible: n <= 0 or T <= 0 at a quadrature point");
         mass += n[q] * fe_values.JxW(q);
+        pressure_integral +=
+            pressure(this->prm_.equation_of_state, n[q], T[q]).p * fe_values.JxW(q);
       }
     }
     mass_defect_ = mass - total_particles_;
+    mean_pressure_ = pressure_integral / volume_;
   }
   // The rank-one row: r - beta e_k (the matrix carries beta e_k e_k^T).
   template <class VectorType> void end_assembly(VectorType& row) const {
@@ -196,7 +204,8 @@ private:
   dealii::types::global_dof_index anchor_ = 0;
   double anchor_weight_ = 1; // beta
   bool anchor_assembled_ = false;
-  double mass_defect_ = 0; // int n dV - N of the last assembled state
+  double mass_defect_ = 0;   // int n dV - N of the last assembled state
+  double mean_pressure_ = 0; // (1/|Omega|) int p dV of the same state
   std::vector<dealii::Tensor<1, dim>> grad_n_, history_u_;
   std::vector<double> history_n_, history_T_;
   std::vector<dealii::types::global_dof_index> dofs_;
@@ -324,6 +333,7 @@ void CompressibleModel<dim>::finish_result(const dealii::DoFHandler<dim>& dofs, 
   }
   result.density_min = lo, result.density_max = hi;
   result.mass_error = flow.particles / total_particles_ - 1.0;
+  result.pressure_ratio = pressure_ratio();
 }
 
 template <int dim>

@@ -134,6 +134,7 @@ io::Json to_json(const ContinuumResult& r) {
     results["nusselt_volume_average"] = r.nusselt;
     if (r.model == "compressible") {
       results["relative_mass_error"] = r.mass_error;
+      results["mean_pressure_over_p0"] = r.pressure_ratio; // p0 = n0 k T_ref
       results["number_density_min"] = r.density_min;
       results["number_density_max"] = r.density_max;
     }

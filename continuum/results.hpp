@@ -42,7 +42,8 @@ struct MeshLevel {
   unsigned long dofs = 0;
   double nusselt = 0;
   double change_in_nusselt = 0; // to the previous level
-  double pressure_ratio = 0;    // low-Mach: P / p0 at this level (0: Boussinesq)
+  double pressure_ratio =
+      0; // P / p0 at this level (low-Mach; compressible: mean p / p0; 0: Boussinesq)
   int newton_iterations = 0;
   double wall_time = 0;
 };

@@ -202,8 +202,7 @@ int continuum_stage(const Case& c, const RunOptions& options, const std::string&
   if (has_errors && n_processes > 1)
     std::cout << "continuum: the coefficients' effect on the heat flux is not computed under "
                  "mpirun (its extra solves run on one process)\n";
-  if ((result.model == "boussinesq" || result.model == "low-mach") && !p.transient() &&
-      n_processes == 1 && has_errors) {
+  if (result.model != "heat-conduction" && !p.transient() && n_processes == 1 && has_errors) {
     summary["coefficient_uncertainty"] = coefficient_uncertainty(
         p, coefficient_errors, result.nusselt * result.numbers.conduction_flux);
     std::cout << "continuum: heat flux +- "

@@ -133,7 +133,6 @@ int continuum_stage(const Case& c, const RunOptions& options, const std::string&
   const auto start = std::chrono::steady_clock::now();
   const CaseParameters& parameters = c.parameters;
   const fs::path run_dir = run_directory(options, parameters.name);
-  const io::StageDirectory stage(run_dir, stage_name, options.force);
   continuum::ContinuumParameters p = parameters.continuum;
   CoefficientErrors coefficient_errors;
   if (parameters.twin.coefficients_from_transport)
@@ -146,11 +145,15 @@ int continuum_stage(const Case& c, const RunOptions& options, const std::string&
     throw io::InputError("'continuum' with " + std::to_string(n_processes) +
                          " MPI processes: only the iterative 3D Boussinesq path runs in parallel "
                          "(Continuum/Solver/Linear solver = iterative); run it on one process");
+  // Checked on the c_p the twin takes (the case's, or with `run` the transport stage's), before
+  // anything is written.
   if (p.model == continuum::Model::Compressible && !(p.heat_capacity > 1))
     throw io::InputError(
         "'Continuum/Coefficients/Heat capacity' = " + std::to_string(p.heat_capacity) +
-        " for the compressible twin (Model = auto chose it); allowed: > 1 (c_p > "
-        "k: c_V = c_p - k > 0), or Coefficients/Source = transport");
+        " for the compressible twin" +
+        (parameters.twin.model_chosen_automatically ? " (Model = auto chose it)" : "") +
+        "; allowed: > 1 (c_p > k: c_V = c_p - k > 0), or Coefficients/Source = transport");
+  const io::StageDirectory stage(run_dir, stage_name, options.force);
   const auto numbers = continuum::dimensionless_numbers(p);
   if (root && parameters.twin.model_chosen_automatically && parameters.scene.has_walls()) {
     // Why auto chose this model (study::automatic_model's order: stratification, epsilon).

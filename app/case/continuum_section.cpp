@@ -307,12 +307,8 @@ continuum::ContinuumParameters resolve_continuum(const Registry& r,
   c.viscosity = law("Viscosity");
   c.conductivity = law("Conductivity");
   c.heat_capacity = r.get_positive(k + "Heat capacity");
-  // Checked here when the user chose the model; when `auto` chose it, the continuum stage checks
-  // the c_p it finally takes (the transport stage's, with `run`).
-  r.require(r.get(s + "Model") != "compressible" || c.heat_capacity > 1 ||
-                r.get(k + "Source") == "transport",
-            k + "Heat capacity",
-            "> 1 (c_p > k: c_V = c_p - k > 0) with Continuum/Model = compressible");
+  // The compressible twin's c_p > k is checked by the continuum stage on the c_p it takes (`run`
+  // takes the transport stage's whatever the case says).
   c.thermal_expansion = r.get_double(k + "Thermal expansion");
   c.reference_temperature = r.get_positive(k + "Reference temperature");
   c.bulk_viscosity = r.get_double(k + "Bulk viscosity");

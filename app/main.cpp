@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
@@ -19,6 +20,7 @@
 #include "io/files.hpp"
 #include "study/case.hpp"
 #include "study/grid.hpp"
+#include "study/ranks.hpp"
 
 namespace po = boost::program_options;
 using namespace twinflow;
@@ -136,6 +138,10 @@ int main(int argc, char** argv) {
   study::save_environment_before_mpi(); // what sweep --launcher hands an MPI launcher
   // One process; deal.II's solvers and HDF5 expect MPI initialised.
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  // Under mpirun rank 0 prints; the other ranks' console lines would repeat its own (their
+  // errors still reach stderr).
+  if (!study::on_rank_zero() && !std::freopen("/dev/null", "w", stdout))
+    std::cout.setstate(std::ios::badbit);
 
   po::options_description opts("options");
   opts.add_options()("help,h", "this help")("out,o", po::value<std::string>(),

@@ -21,7 +21,7 @@ study::Case load_case(const CommandLine& cl) {
 }
 
 study::GridOptions grid_options(const CommandLine& cl) {
-  return {cl.target, cl.settings, cl.vary, cl.rayleigh, cl.run, cl.jobs, cl.launcher};
+  return {cl.target, cl.settings, cl.vary, cl.rayleigh, cl.run, cl.jobs, cl.launcher, cl.plan};
 }
 
 // The case file for a grid's points: read, resolved, or only its record.
@@ -169,6 +169,7 @@ const std::vector<Command>& commands() {
        "  --jobs N, -j N        points run at once (default: cores / --threads)\n"
        "  --launcher 'T {cmd}'  each point under a launcher: 'mpirun -np 2 {cmd}', 'srun -n 4 "
        "{cmd}'\n"
+       "  --plan                write DIR/points/NNN/command.sh, run nothing (job arrays)\n"
        "  --out, --set, --threads, --force as for run\n"
        "\nexample:\n"
        "  twinflow sweep cases/quickstart_2d.prm --out runs/seeds --vary 'Particle/Seed=1,2,3'\n\n"
@@ -183,6 +184,7 @@ const std::vector<Command>& commands() {
        "  --jobs N, -j N        points run at once (default: cores / --threads)\n"
        "  --launcher 'T {cmd}'  each point under a launcher: 'mpirun -np 2 {cmd}', 'srun -n 4 "
        "{cmd}'\n"
+       "  --plan                write DIR/points/NNN/command.sh, run nothing (job arrays)\n"
        "  --out, --set, --threads, --force as for run\n"
        "\nexample:\n"
        "  twinflow stability cases/stiff_cavity.prm --out runs/map --vary 'Particle/Time "

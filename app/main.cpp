@@ -164,7 +164,9 @@ int main(int argc, char** argv) {
       "sweep, stability: points run at once (default: cores / threads per point; 1 with "
       "--launcher)")("launcher", po::value<std::string>(),
                      "sweep, stability: run each point under this command, {cmd} the point's "
-                     "command: 'mpirun -np 2 {cmd}', 'srun -n 4 {cmd}'");
+                     "command: 'mpirun -np 2 {cmd}', 'srun -n 4 {cmd}'")(
+      "plan", "sweep, stability: write each point's command as DIR/points/NNN/command.sh (for a "
+              "job array) and run nothing");
   po::options_description hidden;
   hidden.add_options()("command", po::value<std::string>())("target", po::value<std::string>());
   po::positional_options_description positional;
@@ -213,7 +215,7 @@ int main(int argc, char** argv) {
     if (vm.count("wall-time"))
       cl.run.wall_time_limit = parse_duration(vm["wall-time"].as<std::string>());
     const bool grid_command = cl.command == "sweep" || cl.command == "stability";
-    for (const char* option : {"vary", "rayleigh", "jobs", "launcher"})
+    for (const char* option : {"vary", "rayleigh", "jobs", "launcher", "plan"})
       if (vm.count(option) && !grid_command)
         throw io::InputError(std::string("--") + option + " belongs to sweep and stability, not '" +
                              cl.command + "'");
@@ -228,6 +230,7 @@ int main(int argc, char** argv) {
       cl.launcher = vm["launcher"].as<std::string>();
       study::check_launcher(cl.launcher);
     }
+    cl.plan = vm.count("plan") > 0;
     if (vm.count("jobs")) {
       cl.jobs = vm["jobs"].as<int>();
       if (cl.jobs < 1)

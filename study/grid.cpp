@@ -613,9 +613,9 @@ int run_study(const GridOptions& o, Study& s, std::vector<Point>& points) {
              : !o.launcher.empty() ? 1
                                    : std::max(1, cores / std::max(1, o.run.threads));
   jobs = std::max(1, std::min<int>(jobs, static_cast<int>(tasks.size())));
-  const int threads = o.run.threads > 0 ? o.run.threads
-                      : jobs > 1        ? 1
-                                        : 0; // 0: the child's default
+  const int threads = o.run.threads > 0     ? o.run.threads
+                      : jobs > 1 && !o.plan ? 1
+                                            : 0; // 0: the child's default
   for (std::size_t t = 0; t < tasks.size(); ++t) {
     if (threads > 0)
       tasks[t].arguments.insert(tasks[t].arguments.end(), {"--threads", std::to_string(threads)});
@@ -623,6 +623,22 @@ int run_study(const GridOptions& o, Study& s, std::vector<Point>& points) {
     points[task_point[t]].command = task_command(tasks[t]);
   }
   write_table(dir, s, o.launcher, varied, points, rows);
+  if (o.plan) { // each point's command as a script, for a scheduler to run (docs/cluster.md)
+    for (std::size_t t = 0; t < tasks.size(); ++t) {
+      const Point& p = points[task_point[t]];
+      const fs::path script = dir / "points" / p.name / "command.sh";
+      io::write_file_atomically(script, "#!/bin/sh\n# " + s.name + " point " + p.name + " (" +
+                                            s.name + " --plan): run it, then the same " + s.name +
+                                            " command again for the table\n" +
+                                            (o.launcher.empty() ? "exec " : "") + p.command + "\n");
+      fs::permissions(script, fs::perms::owner_exec | fs::perms::group_exec, fs::perm_options::add);
+    }
+    std::cerr << s.name << ": planned " << tasks.size() << " of " << points.size()
+              << " points, nothing run: DIR/points/NNN/command.sh each (DIR = " << dir.string()
+              << "); the same command without --plan then skips the finished ones and writes "
+                 "the table\n";
+    return 0;
+  }
   std::cerr << s.name << ": " << points.size() << " points, " << tasks.size() << " to run, " << jobs
             << " at a time" << (threads > 0 ? ", " + std::to_string(threads) : "")
             << (threads > 0 ? " thread(s) each" : "")

@@ -27,6 +27,9 @@ struct GridOptions {
   // A command template each point runs under, e.g. "mpirun -np 2 {cmd}" or "srun -n 4 {cmd}":
   // {cmd} becomes the point's shell-quoted command (empty: the point runs directly).
   std::string launcher;
+  // Write each point's command as DIR/points/NNN/command.sh (and the table, every point
+  // pending) and run nothing: a scheduler's job array runs them (docs/cluster.md).
+  bool plan = false;
 };
 
 // A word as a POSIX shell reads it back: bare if it has only safe characters, else in single

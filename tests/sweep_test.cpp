@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -349,4 +350,36 @@ TEST(Stability, LauncherRunsEachPointOnTwoRanks) {
   for (const char* f : {"thermo.csv", "fields.csv"})
     EXPECT_EQ(file_text(dir / "points/000/particle" / f), file_text(alone / "particle" / f)) << f;
 #endif
+}
+
+// --plan (a job array's first step, docs/cluster.md): the table with every point pending and each
+// point's command as DIR/points/NNN/command.sh, nothing run; a point's script run on its own (as
+// an array task would) is then skipped by the same command without --plan, which runs the rest.
+TEST(Stability, PlanWritesEachPointsCommandForAJobArray) {
+  const fs::path dir = fresh_dir("stability_plan");
+  const std::string args = "stability " + shipped("heated_cavity_2d") +
+                           " --set 'Scene/Box size=8, 8' --set 'Particle/Equilibration steps=100'"
+                           " --set 'Particle/Steps=300' --vary 'Particle/Seed=1,2' --threads 1"
+                           " --out " +
+                           dir.string();
+  const Result plan = run(args + " --plan");
+  ASSERT_EQ(plan.code, 0) << plan.output;
+  EXPECT_NE(plan.output.find("planned 2 of 2 points, nothing run"), std::string::npos)
+      << plan.output;
+  for (const auto& row : rows(dir / "stability.json")) EXPECT_EQ(text(row, "status"), "pending");
+  const std::string script = file_text(dir / "points/001/command.sh");
+  EXPECT_NE(script.find(" particle "), std::string::npos) << script;
+  EXPECT_NE(script.find("--set Particle/Seed=2"), std::string::npos) << script;
+  EXPECT_FALSE(fs::exists(dir / "points/000/particle"));
+
+  const int task =
+      std::system(("sh " + (dir / "points/000/command.sh").string() + " > /dev/null 2>&1").c_str());
+  ASSERT_EQ(task, 0);
+  const Result table = run(args);
+  ASSERT_EQ(table.code, 0) << table.output;
+  EXPECT_NE(table.output.find("point 000 skipped (finished earlier: stable)"), std::string::npos)
+      << table.output;
+  const auto rows_now = rows(dir / "stability.json");
+  ASSERT_EQ(rows_now.size(), 2u);
+  for (const auto& row : rows_now) EXPECT_EQ(text(row, "status"), "stable") << text(row, "reason");
 }

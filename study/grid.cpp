@@ -624,6 +624,9 @@ int run_study(const GridOptions& o, Study& s, std::vector<Point>& points) {
   }
   write_table(dir, s, o.launcher, varied, points, rows);
   if (o.plan) { // each point's command as a script, for a scheduler to run (docs/cluster.md)
+    for (const Point& p :
+         points) // an earlier plan's script of a point finished (or rejected) since
+      fs::remove(dir / "points" / p.name / "command.sh");
     for (std::size_t t = 0; t < tasks.size(); ++t) {
       const Point& p = points[task_point[t]];
       const fs::path script = dir / "points" / p.name / "command.sh";

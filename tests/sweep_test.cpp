@@ -375,6 +375,12 @@ TEST(Stability, PlanWritesEachPointsCommandForAJobArray) {
   const int task =
       std::system(("sh " + (dir / "points/000/command.sh").string() + " > /dev/null 2>&1").c_str());
   ASSERT_EQ(task, 0);
+  // Planned again: only the unfinished point keeps a script.
+  const Result replan = run(args + " --plan");
+  ASSERT_EQ(replan.code, 0) << replan.output;
+  EXPECT_NE(replan.output.find("planned 1 of 2 points"), std::string::npos) << replan.output;
+  EXPECT_FALSE(fs::exists(dir / "points/000/command.sh"));
+  EXPECT_TRUE(fs::exists(dir / "points/001/command.sh"));
   const Result table = run(args);
   ASSERT_EQ(table.code, 0) << table.output;
   EXPECT_NE(table.output.find("point 000 skipped (finished earlier: stable)"), std::string::npos)

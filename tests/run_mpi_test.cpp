@@ -109,11 +109,12 @@ TEST(RunMpi, SweepPointsRunOnTwoRanksAsOnOneProcess) {
       " --set 'Particle/Equilibration steps=200' --set 'Particle/Steps=400'"
       " --set 'Continuum/Mesh/Cells=4' --set 'Continuum/Mesh/Refinements=1'"
       " --set 'Transport/Measure kappa and eta=false' --set 'Transport/Kappa from walls=false'"
-      " --set 'Transport/Diffusion repeats=1' --threads 1";
+      " --set 'Transport/Diffusion repeats=1' --set 'Transport/Temperature=0.8' --threads 1";
   const fs::path dir = twinflow::testing::fresh_dir("run_mpi", "sweep");
   const fs::path cache = twinflow::testing::fresh_dir("run_mpi", "cache");
   const std::string launcher = std::string(TWINFLOW_MPIEXEC) + " -np 2 --bind-to none {cmd}";
-  // The box is no transport input: one measurement (on two ranks) serves the three points.
+  // The box is no transport input and the state point is fixed (else each point's own mean
+  // temperature): one measurement (on two ranks, into the cache) serves the three points.
   const auto r = twinflow::testing::run_twinflow(
       "sweep " + cavity + " --vary 'Scene/Box size=10 10,12 10,10 12,10 2' --out " + dir.string() +
           " --launcher '" + launcher + "'",

@@ -410,6 +410,7 @@ int run_children(const std::vector<ChildTask>& tasks, int jobs,
       result.wall_seconds =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - it->start).count();
       result.message = last_message(tasks[it->task].log, it->log_offset);
+      result.stopped = forwarded > 0;
       if (WIFSIGNALED(status) && result.message.empty())
         result.message = "killed by signal " + std::to_string(WTERMSIG(status));
       const std::size_t task = it->task;
@@ -657,6 +658,11 @@ int run_study(const GridOptions& o, Study& s, std::vector<Point>& points) {
     row["exit_code"] = result.exit_code;
     row["reason"] = result.exit_code == 0 ? "" : result.message;
     s.describe(points[i], point_dir, result, row);
+    // A launcher may end with its own code when stopped (mpirun: 1, whatever its ranks said):
+    // a point stopped by the forwarded signal that left a checkpoint was interrupted.
+    if (result.stopped && result.exit_code != 0 &&
+        fs::exists(point_dir / "particle" / "checkpoint.twfc"))
+      row["status"] = "interrupted";
     // A continued particle run adds to the wall time of its earlier attempts.
     const double before = io::number(row, {"wall_seconds"});
     const double earlier = restarted[t] && std::isfinite(before) ? before : 0;

@@ -88,6 +88,7 @@ struct ChildResult {
   int exit_code = 0;       // the child's exit code; 128 + N when signal N killed it
   double wall_seconds = 0; // of this attempt
   std::string message;     // its last "twinflow: ..." line (or last line), without the prefix
+  bool stopped = false;    // the grid forwarded a stop signal (Ctrl-C, SIGTERM) to it
 };
 
 // Runs `twinflow ARGUMENTS` (this very binary) with stdout and stderr appended to `log`; with a

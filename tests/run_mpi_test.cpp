@@ -3,10 +3,12 @@
 // over two ranks, rank 0 alone runs the twins and the comparison. Three points finish, one fails
 // under the launcher (its box is too short for two ranks) and is recorded as failed; point 000's
 // files are the one-process run's, byte for byte, but for wall-clock times (which differ between
-// any two runs). About 3-4 minutes on a busy 2-core machine: label validation.
+// any two runs). About 1-3 minutes on a busy 2-core machine: label validation. And a grid point
+// under mpirun stopped by Ctrl-C / SIGTERM: interrupted with a checkpoint, continued.
 
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -100,6 +102,15 @@ void expect_same_results(const fs::path& one, const fs::path& two) {
 const std::string kMpiAsRoot = "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 "
                                "OMPI_MCA_rmaps_base_oversubscribe=1";
 
+// The rows of DIR/<command>.json, in point order.
+std::vector<Json> table_rows(const fs::path& table) {
+  std::vector<Json> out;
+  const Json j = twinflow::io::read_json(table);
+  for (const auto& p : *twinflow::io::find(j, {"points"}))
+    out.push_back(*twinflow::io::find(p, {"row"}));
+  return out;
+}
+
 } // namespace
 
 TEST(RunMpi, SweepPointsRunOnTwoRanksAsOnOneProcess) {
@@ -150,4 +161,42 @@ TEST(RunMpi, SweepPointsRunOnTwoRanksAsOnOneProcess) {
       "run " + cavity + " --set 'Scene/Box size=10, 10' --out " + alone.string());
   ASSERT_EQ(one.code, 0) << one.output;
   expect_same_results(alone, dir / "points/000");
+}
+
+// Ctrl-C / SIGTERM under a launcher: the grid forwards it to the launcher (mpirun), which passes
+// it to the ranks; they checkpoint. mpirun itself then ends with 1, not the ranks' 5: the point
+// is `interrupted` because it was stopped and left a checkpoint, and the same command continues
+// it on two ranks (--restart) to the end. Label validation: ~40 s alone, ~2.5 min beside
+// another test on a busy 2-core machine.
+TEST(LauncherMpi, PointStoppedBySignalIsInterruptedAndContinues) {
+#ifndef TWINFLOW_MPIEXEC
+  GTEST_SKIP() << "no mpirun";
+#else
+  const fs::path dir = twinflow::testing::fresh_dir("run_mpi", "signal");
+  const std::string args =
+      "stability " + std::string(TWINFLOW_SOURCE_DIR) + "/cases/heated_cavity_2d.prm" +
+      " --set 'Scene/Box size=8, 8' --set 'Particle/Equilibration steps=100'"
+      " --set 'Particle/Steps=50000' --vary 'Particle/Seed=1' --threads 1 --out " +
+      dir.string() + " --launcher '" + TWINFLOW_MPIEXEC + " -np 2 --bind-to none {cmd}'";
+  // Stopped once the particle stage has begun (its folder exists), as a user's Ctrl-C would.
+  const fs::path script = dir.string() + ".sh";
+  std::ofstream(script) << kMpiAsRoot << " TWINFLOW_CACHE=off " << TWINFLOW_BINARY << " " << args
+                        << " > " << dir.string() << ".log 2>&1 &\npid=$!\n"
+                        << "for i in $(seq 600); do [ -d " << (dir / "points/000/particle")
+                        << " ] && break; sleep 0.1; done\nsleep 1\nkill -TERM $pid\nwait $pid\n";
+  const int code = WEXITSTATUS(std::system(("bash " + script.string()).c_str()));
+  EXPECT_EQ(code, 5) << file_text(dir.string() + ".log");
+  auto rows_now = table_rows(dir / "stability.json");
+  ASSERT_EQ(rows_now.size(), 1u);
+  EXPECT_EQ(twinflow::io::text(rows_now[0], {"status"}), "interrupted")
+      << twinflow::io::text(rows_now[0], {"reason"});
+  EXPECT_TRUE(fs::exists(dir / "points/000/particle/checkpoint.twfc"));
+
+  const auto again = twinflow::testing::run_twinflow(args, "off", kMpiAsRoot);
+  ASSERT_EQ(again.code, 0) << again.output;
+  rows_now = table_rows(dir / "stability.json");
+  EXPECT_EQ(twinflow::io::text(rows_now[0], {"status"}), "stable")
+      << twinflow::io::text(rows_now[0], {"reason"});
+  EXPECT_NE(file_text(dir / "points/000/log.txt").find("resumed from step"), std::string::npos);
+#endif
 }

@@ -389,38 +389,3 @@ TEST(Stability, PlanWritesEachPointsCommandForAJobArray) {
   ASSERT_EQ(rows_now.size(), 2u);
   for (const auto& row : rows_now) EXPECT_EQ(text(row, "status"), "stable") << text(row, "reason");
 }
-
-// Ctrl-C / SIGTERM under a launcher: the grid forwards it to the launcher (mpirun), which passes
-// it to the ranks; they checkpoint. mpirun itself then ends with 1, not the ranks' 5: the point
-// is `interrupted` because it was stopped and left a checkpoint, and the same command continues
-// it on two ranks (--restart) to the end.
-TEST(Stability, LauncherPointStoppedBySignalIsInterruptedAndContinues) {
-#ifndef TWINFLOW_MPIEXEC
-  GTEST_SKIP() << "no mpirun";
-#else
-  const fs::path dir = fresh_dir("stability_launcher_signal");
-  const std::string args =
-      "stability " + shipped("heated_cavity_2d") +
-      " --set 'Scene/Box size=8, 8' --set 'Particle/Equilibration steps=100'"
-      " --set 'Particle/Steps=50000' --vary 'Particle/Seed=1' --threads 1 --out " +
-      dir.string() + " --launcher '" + TWINFLOW_MPIEXEC + " -np 2 --bind-to none {cmd}'";
-  // Stopped once the particle stage has begun (its folder exists), as a user's Ctrl-C would.
-  const fs::path script = dir.string() + ".sh";
-  std::ofstream(script) << kMpiAsRoot << " TWINFLOW_CACHE=off " << TWINFLOW_BINARY << " " << args
-                        << " > " << dir.string() << ".log 2>&1 &\npid=$!\n"
-                        << "for i in $(seq 600); do [ -d " << (dir / "points/000/particle")
-                        << " ] && break; sleep 0.1; done\nsleep 1\nkill -TERM $pid\nwait $pid\n";
-  const int code = WEXITSTATUS(std::system(("bash " + script.string()).c_str()));
-  EXPECT_EQ(code, 5) << file_text(dir.string() + ".log");
-  auto rows_now = rows(dir / "stability.json");
-  ASSERT_EQ(rows_now.size(), 1u);
-  EXPECT_EQ(text(rows_now[0], "status"), "interrupted") << text(rows_now[0], "reason");
-  EXPECT_TRUE(fs::exists(dir / "points/000/particle/checkpoint.twfc"));
-
-  const Result again = twinflow::testing::run_twinflow(args, "off", kMpiAsRoot);
-  ASSERT_EQ(again.code, 0) << again.output;
-  rows_now = rows(dir / "stability.json");
-  EXPECT_EQ(text(rows_now[0], "status"), "stable") << text(rows_now[0], "reason");
-  EXPECT_NE(file_text(dir / "points/000/log.txt").find("resumed from step"), std::string::npos);
-#endif
-}

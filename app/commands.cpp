@@ -21,7 +21,7 @@ study::Case load_case(const CommandLine& cl) {
 }
 
 study::GridOptions grid_options(const CommandLine& cl) {
-  return {cl.target, cl.settings, cl.vary, cl.rayleigh, cl.run, cl.jobs};
+  return {cl.target, cl.settings, cl.vary, cl.rayleigh, cl.run, cl.jobs, cl.launcher, cl.plan};
 }
 
 // The case file for a grid's points: read, resolved, or only its record.
@@ -167,6 +167,9 @@ const std::vector<Command>& commands() {
        "  --vary 'S/Key=V1,V2'  one axis (repeatable; vector components separated by spaces)\n"
        "  --rayleigh R1,R2      target Rayleigh numbers, reached by scaling |g|\n"
        "  --jobs N, -j N        points run at once (default: cores / --threads)\n"
+       "  --launcher 'T {cmd}'  each point under a launcher: 'mpirun -np 2 {cmd}', 'srun -n 4 "
+       "{cmd}'\n"
+       "  --plan                write DIR/points/NNN/command.sh, run nothing (job arrays)\n"
        "  --out, --set, --threads, --force as for run\n"
        "\nexample:\n"
        "  twinflow sweep cases/quickstart_2d.prm --out runs/seeds --vary 'Particle/Seed=1,2,3'\n\n"
@@ -179,6 +182,9 @@ const std::vector<Command>& commands() {
        "options:\n"
        "  --vary 'S/Key=V1,V2'  one axis (repeatable)\n"
        "  --jobs N, -j N        points run at once (default: cores / --threads)\n"
+       "  --launcher 'T {cmd}'  each point under a launcher: 'mpirun -np 2 {cmd}', 'srun -n 4 "
+       "{cmd}'\n"
+       "  --plan                write DIR/points/NNN/command.sh, run nothing (job arrays)\n"
        "  --out, --set, --threads, --force as for run\n"
        "\nexample:\n"
        "  twinflow stability cases/stiff_cavity.prm --out runs/map --vary 'Particle/Time "

@@ -18,6 +18,8 @@ struct CommandLine {
   std::vector<std::string> vary; // "Section/Key=V1,V2,..." per option
   std::vector<double> rayleigh;  // target Rayleigh numbers (sweep)
   int jobs = 0;                  // points run at once; 0: cores / threads per point
+  std::string launcher;          // each point under this template ("mpirun -np 2 {cmd}")
+  bool plan = false;             // write each point's command.sh, run nothing
 };
 
 struct Command {

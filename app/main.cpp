@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
@@ -18,6 +19,8 @@
 #include "app/commands.hpp"
 #include "io/files.hpp"
 #include "study/case.hpp"
+#include "study/grid.hpp"
+#include "study/ranks.hpp"
 
 namespace po = boost::program_options;
 using namespace twinflow;
@@ -62,26 +65,14 @@ void version(std::ostream& out) {
       << "." << minor << " (" << mpi_library << ")\n";
 }
 
-// A word as a POSIX shell reads it back: bare if it has only safe characters, else in single
-// quotes ('\'' for a quote inside).
-std::string shell_quoted(const std::string& word) {
-  if (!word.empty() &&
-      word.find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789"
-                             "_-./=:,+@%") == std::string::npos)
-    return word;
-  std::string out = "'";
-  for (char ch : word) out += ch == '\'' ? std::string("'\\''") : std::string(1, ch);
-  return out + "'";
-}
-
 // The command line as typed, every option kept, with --restart: what continues an interrupted
 // run (the same case, --set, --threads, --seed, --out; --restart once).
 std::string continue_command(int argc, char** argv) {
-  std::string out = shell_quoted(argv[0]);
+  std::string out = study::shell_quoted(argv[0]);
   bool restart = false;
   for (int i = 1; i < argc; ++i) {
     restart |= std::string(argv[i]) == "--restart";
-    out += " " + shell_quoted(argv[i]);
+    out += " " + study::shell_quoted(argv[i]);
   }
   return restart ? out : out + " --restart";
 }
@@ -144,8 +135,13 @@ void default_openmp_wait(char** argv) {
 
 int main(int argc, char** argv) {
   default_openmp_wait(argv);
+  study::save_environment_before_mpi(); // what sweep --launcher hands an MPI launcher
   // One process; deal.II's solvers and HDF5 expect MPI initialised.
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  // Under mpirun rank 0 prints; the other ranks' console lines would repeat its own (their
+  // errors still reach stderr).
+  if (!study::on_rank_zero() && !std::freopen("/dev/null", "w", stdout))
+    std::cout.setstate(std::ios::badbit);
 
   po::options_description opts("options");
   opts.add_options()("help,h", "this help")("out,o", po::value<std::string>(),
@@ -165,7 +161,12 @@ int main(int argc, char** argv) {
       "rayleigh", po::value<std::string>(),
       "sweep: target Rayleigh numbers R1,R2,... reached by scaling |g|")(
       "jobs,j", po::value<int>(),
-      "sweep, stability: points run at once (default: cores / threads per point)");
+      "sweep, stability: points run at once (default: cores / threads per point; 1 with "
+      "--launcher)")("launcher", po::value<std::string>(),
+                     "sweep, stability: run each point under this command, {cmd} the point's "
+                     "command: 'mpirun -np 2 {cmd}', 'srun -n 4 {cmd}'")(
+      "plan", "sweep, stability: write each point's command as DIR/points/NNN/command.sh (for a "
+              "job array) and run nothing");
   po::options_description hidden;
   hidden.add_options()("command", po::value<std::string>())("target", po::value<std::string>());
   po::positional_options_description positional;
@@ -214,7 +215,7 @@ int main(int argc, char** argv) {
     if (vm.count("wall-time"))
       cl.run.wall_time_limit = parse_duration(vm["wall-time"].as<std::string>());
     const bool grid_command = cl.command == "sweep" || cl.command == "stability";
-    for (const char* option : {"vary", "rayleigh", "jobs"})
+    for (const char* option : {"vary", "rayleigh", "jobs", "launcher", "plan"})
       if (vm.count(option) && !grid_command)
         throw io::InputError(std::string("--") + option + " belongs to sweep and stability, not '" +
                              cl.command + "'");
@@ -225,6 +226,11 @@ int main(int argc, char** argv) {
                            " (stop it with Ctrl-C; running the same command again continues it)");
     if (vm.count("vary")) cl.vary = vm["vary"].as<std::vector<std::string>>();
     if (vm.count("rayleigh")) cl.rayleigh = parse_rayleigh_list(vm["rayleigh"].as<std::string>());
+    if (vm.count("launcher")) {
+      cl.launcher = vm["launcher"].as<std::string>();
+      study::check_launcher(cl.launcher);
+    }
+    cl.plan = vm.count("plan") > 0;
     if (vm.count("jobs")) {
       cl.jobs = vm["jobs"].as<int>();
       if (cl.jobs < 1)

@@ -10,7 +10,8 @@
 
 namespace twinflow::continuum {
 
-ContinuumResult run(const ContinuumParameters& p, const std::filesystem::path& output_dir) {
+ContinuumResult run(const ContinuumParameters& p, const std::filesystem::path& output_dir,
+                    MPI_Comm comm) {
   check(p);
   if (p.model == Model::HeatConduction) {
     switch (p.dim) {
@@ -34,7 +35,7 @@ ContinuumResult run(const ContinuumParameters& p, const std::filesystem::path& o
     if (p.dim == 2) return CompressibleProblem<2>(p).run(output_dir);
     return CompressibleProblem<3>(p).run(output_dir);
   }
-  if (p.uses_iterative_solver()) return DistributedBoussinesqProblem<3>(p).run(output_dir);
+  if (p.uses_iterative_solver()) return DistributedBoussinesqProblem<3>(p, comm).run(output_dir);
   if (p.dim == 2) return BoussinesqProblem<2>(p).run(output_dir);
   return BoussinesqProblem<3>(p).run(output_dir);
 }

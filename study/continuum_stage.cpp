@@ -11,6 +11,7 @@
 #include "continuum/run.hpp"
 #include "continuum/twin_walls.hpp"
 #include "io/files.hpp"
+#include "study/ranks.hpp"
 #include "study/stages.hpp"
 #include "study/twin_coefficients.hpp"
 #include "transport/coefficients.hpp"
@@ -73,7 +74,7 @@ CoefficientErrors take_transport_coefficients(const fs::path& run_dir, const std
 // errors, one at a time (one more solve each, no files): the part of a particle-twin difference
 // the twin's own inputs can explain.
 io::Json coefficient_uncertainty(const continuum::ContinuumParameters& p,
-                                 const CoefficientErrors& errors, double heat_flux) {
+                                 const CoefficientErrors& errors, double heat_flux, MPI_Comm comm) {
   io::Json j = io::Json::object();
   double variance = 0;
   const auto vary = [&](const std::string& name, double stderr_, auto shift) {
@@ -82,7 +83,7 @@ io::Json coefficient_uncertainty(const continuum::ContinuumParameters& p,
     const double value = shift(shifted, stderr_);
     double change = std::nan("");
     try {
-      const continuum::ContinuumResult r = continuum::run(shifted, "");
+      const continuum::ContinuumResult r = continuum::run(shifted, "", comm);
       change = r.nusselt * r.numbers.conduction_flux / heat_flux - 1;
     } catch (const std::exception& e) { // the twin itself converged: keep it, say what failed
       std::cout << "continuum: the solve with " << name << " + 1 stderr failed (" << e.what()
@@ -138,9 +139,11 @@ int continuum_stage(const Case& c, const RunOptions& options, const std::string&
   if (parameters.twin.coefficients_from_transport)
     coefficient_errors = take_transport_coefficients(run_dir, parameters.transport.source, p);
   // Under mpirun only the distributed (iterative) path shares the work; rank 0 writes the
-  // summary and tables, the HDF5 fields are written collectively.
-  const unsigned n_processes = dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD);
-  const bool root = dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
+  // summary and tables, the HDF5 fields are written collectively. Inside `run` under mpirun the
+  // twin runs on rank 0 alone (the other ranks only took part in the particle runs).
+  const MPI_Comm comm = rank_zero_alone() ? MPI_COMM_SELF : MPI_COMM_WORLD;
+  const unsigned n_processes = dealii::Utilities::MPI::n_mpi_processes(comm);
+  const bool root = dealii::Utilities::MPI::this_mpi_process(comm) == 0;
   if (n_processes > 1 && !p.uses_iterative_solver())
     throw io::InputError("'continuum' with " + std::to_string(n_processes) +
                          " MPI processes: only the iterative 3D Boussinesq path runs in parallel "
@@ -175,8 +178,8 @@ int continuum_stage(const Case& c, const RunOptions& options, const std::string&
               << ", g H / c^2 = " << parameters.scene.stratification(p.particle_mass) << std::endl;
 
   if (root) stage.create();
-  MPI_Barrier(MPI_COMM_WORLD);
-  const continuum::ContinuumResult result = continuum::run(p, stage.path());
+  MPI_Barrier(comm);
+  const continuum::ContinuumResult result = continuum::run(p, stage.path(), comm);
   if (!root) return 0;
 
   io::write_file_atomically(stage.file("bins.csv"), continuum::bins_csv(result, p));
@@ -207,7 +210,7 @@ int continuum_stage(const Case& c, const RunOptions& options, const std::string&
                  "mpirun (its extra solves run on one process)\n";
   if (result.model != "heat-conduction" && !p.transient() && n_processes == 1 && has_errors) {
     summary["coefficient_uncertainty"] = coefficient_uncertainty(
-        p, coefficient_errors, result.nusselt * result.numbers.conduction_flux);
+        p, coefficient_errors, result.nusselt * result.numbers.conduction_flux, comm);
     std::cout << "continuum: heat flux +- "
               << 100 * io::number(summary, {"coefficient_uncertainty", "heat_flux_relative_stderr"})
               << "% from the measured coefficients' errors"

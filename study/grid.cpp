@@ -5,6 +5,7 @@
 #include <cmath>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <ctime>
 #include <fstream>
@@ -157,6 +158,128 @@ std::vector<Point> make_points(const GridOptions& o, const CaseReader& reader,
   return points;
 }
 
+std::string shell_quoted(const std::string& word) {
+  if (!word.empty() &&
+      word.find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789"
+                             "_-./=:,+@%") == std::string::npos)
+    return word;
+  std::string out = "'";
+  for (char ch : word) out += ch == '\'' ? std::string("'\\''") : std::string(1, ch);
+  return out + "'";
+}
+
+namespace {
+
+constexpr const char* kCommandPlaceholder = "{cmd}";
+
+std::vector<std::string>& environment_before_mpi() {
+  static std::vector<std::string> saved;
+  return saved;
+}
+
+// The template's first word when it names a program to run (not a shell builtin or keyword, an
+// assignment, a quoted or expanded word, or {cmd} itself), else "".
+std::string launcher_program(const std::string& launcher) {
+  static const std::set<std::string> shell_words = {
+      ".",     ":", "cd", "command", "eval", "exec",   "exit",  "export", "if",    "for",
+      "while", "{", "!",  "set",     "time", "ulimit", "umask", "true",   "false", "case"};
+  std::istringstream words(launcher);
+  std::string first;
+  words >> first;
+  if (first.empty() || first.find(kCommandPlaceholder) != std::string::npos ||
+      first.find_first_of("'\"\\$`=;&|()<>*?[~") != std::string::npos || shell_words.count(first))
+    return "";
+  return first;
+}
+
+bool executable_file(const fs::path& file) {
+  std::error_code error;
+  return fs::is_regular_file(file, error) && access(file.c_str(), X_OK) == 0;
+}
+
+bool found_on_path(const std::string& program) {
+  if (program.find('/') != std::string::npos) return executable_file(program);
+  const char* path = std::getenv("PATH");
+  std::istringstream directories(path ? path : "/usr/bin:/bin");
+  for (std::string directory; std::getline(directories, directory, ':');)
+    if (executable_file(fs::path(directory.empty() ? "." : directory) / program)) return true;
+  return false;
+}
+
+// This binary's absolute path: a launcher starts it elsewhere than in this process.
+std::string this_binary() {
+  std::error_code error;
+  const fs::path self = fs::read_symlink("/proc/self/exe", error);
+  return error ? std::string("twinflow") : self.string();
+}
+
+// Runs `sh -n -c TEXT` (parse only); true when the shell accepts its syntax.
+bool valid_shell_syntax(const std::string& text) {
+  std::vector<std::string> words = {"sh", "-n", "-c", text};
+  std::vector<char*> argv;
+  for (auto& w : words) argv.push_back(w.data());
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t files;
+  posix_spawn_file_actions_init(&files);
+  posix_spawn_file_actions_addopen(&files, 0, "/dev/null", O_RDONLY, 0);
+  posix_spawn_file_actions_addopen(&files, 1, "/dev/null", O_WRONLY, 0);
+  posix_spawn_file_actions_adddup2(&files, 1, 2);
+  pid_t pid = 0;
+  const int rc = posix_spawn(&pid, "/bin/sh", &files, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&files);
+  if (rc != 0) return true; // no shell to ask: the points will say
+  int status = 0;
+  waitpid(pid, &status, 0);
+  return WIFEXITED(status) && WEXITSTATUS(status) == 0;
+}
+
+} // namespace
+
+void check_launcher(const std::string& launcher) {
+  const std::string allowed = "allowed: a command with {cmd} once where each point's command "
+                              "goes, e.g. 'mpirun -np 2 {cmd}' or 'srun -n 4 {cmd}'";
+  if (launcher.find_first_of("\n\r") != std::string::npos)
+    throw io::InputError("--launcher: the template spans several lines; " + allowed);
+  const std::string where = "--launcher '" + launcher + "'";
+  std::size_t placeholders = 0;
+  for (auto at = launcher.find(kCommandPlaceholder); at != std::string::npos;
+       at = launcher.find(kCommandPlaceholder, at + 1))
+    ++placeholders;
+  if (placeholders != 1)
+    throw io::InputError(where + ": " +
+                         (placeholders ? "{cmd} " + std::to_string(placeholders) + " times"
+                                       : std::string("no {cmd}")) +
+                         "; " + allowed);
+  if (!valid_shell_syntax(launched_command(launcher, {"particle"})))
+    throw io::InputError(
+        where + ": not valid shell syntax (sh -n refuses it: an unclosed quote?); " + allowed);
+  const std::string program = launcher_program(launcher);
+  if (!program.empty() && !found_on_path(program))
+    throw io::InputError(where + ": '" + program + "' not found (not an executable on PATH)");
+}
+
+std::string launched_command(const std::string& launcher,
+                             const std::vector<std::string>& arguments) {
+  std::string command = shell_quoted(this_binary());
+  for (const auto& a : arguments) command += " " + shell_quoted(a);
+  std::string text = launcher;
+  text.replace(text.find(kCommandPlaceholder), std::string(kCommandPlaceholder).size(), command);
+  return launcher_program(launcher).empty() ? text : "exec " + text;
+}
+
+void save_environment_before_mpi() {
+  auto& saved = environment_before_mpi();
+  saved.clear();
+  for (char** v = environ; *v; ++v) saved.emplace_back(*v);
+}
+
+std::string task_command(const ChildTask& task) {
+  if (!task.launcher.empty()) return launched_command(task.launcher, task.arguments);
+  std::string command = shell_quoted(this_binary());
+  for (const auto& a : task.arguments) command += " " + shell_quoted(a);
+  return command;
+}
+
 namespace {
 
 volatile std::sig_atomic_t signals_received = 0;
@@ -169,9 +292,15 @@ extern "C" void on_grid_stop_signal(int sig) { // C linkage: one name per progra
 // This binary again, in its own process group (a terminal's Ctrl-C reaches only the grid, which
 // forwards it once: a second signal would stop a particle run without its checkpoint), stdin
 // from /dev/null, stdout and stderr appended to the log.
+// With a launcher, `/bin/sh -c` runs the launched command (the group then holds the shell, or
+// the launcher it became; MPI launchers put their ranks in groups of their own and forward a
+// signal to them once).
 pid_t spawn(const ChildTask& task) {
   std::vector<std::string> words = {"twinflow"};
-  words.insert(words.end(), task.arguments.begin(), task.arguments.end());
+  if (task.launcher.empty())
+    words.insert(words.end(), task.arguments.begin(), task.arguments.end());
+  else
+    words = {"sh", "-c", launched_command(task.launcher, task.arguments)};
   std::vector<char*> argv;
   for (auto& w : words) argv.push_back(w.data());
   argv.push_back(nullptr);
@@ -193,8 +322,15 @@ pid_t spawn(const ChildTask& task) {
   sigemptyset(&mask);
   posix_spawnattr_setsigdefault(&attributes, &defaults);
   posix_spawnattr_setsigmask(&attributes, &mask);
+  std::vector<std::string> saved = environment_before_mpi();
+  std::vector<char*> launcher_environment;
+  for (auto& v : saved) launcher_environment.push_back(v.data());
+  launcher_environment.push_back(nullptr);
+  char** environment =
+      task.launcher.empty() || saved.empty() ? environ : launcher_environment.data();
   pid_t pid = 0;
-  const int rc = posix_spawn(&pid, "/proc/self/exe", &files, &attributes, argv.data(), environ);
+  const int rc = posix_spawn(&pid, task.launcher.empty() ? "/proc/self/exe" : "/bin/sh", &files,
+                             &attributes, argv.data(), environment);
   posix_spawn_file_actions_destroy(&files);
   posix_spawnattr_destroy(&attributes);
   if (rc != 0)
@@ -252,16 +388,15 @@ int run_children(const std::vector<ChildTask>& tasks, int jobs,
       const ChildTask& t = tasks[next];
       {
         std::ofstream header(t.log, std::ios::app);
-        header << "# " << timestamp() << ": twinflow";
-        for (const auto& a : t.arguments) header << " '" << a << "'";
-        header << "\n";
+        header << "# " << timestamp() << ": " << task_command(t) << "\n";
       }
       const std::uintmax_t offset = fs::file_size(t.log);
       running.push_back({spawn(t), next, std::chrono::steady_clock::now(), offset});
       ++next;
     }
     for (; forwarded < signals_received; ++forwarded)
-      for (const auto& r : running) kill(r.pid, last_signal);
+      for (const auto& r : running) // a launcher's group: the shell, or the launcher it became
+        kill(tasks[r.task].launcher.empty() ? r.pid : -r.pid, last_signal);
     if (running.empty() && (next == tasks.size() || signals_received > 0)) break;
     bool reaped = false;
     for (auto it = running.begin(); it != running.end();) {
@@ -275,6 +410,7 @@ int run_children(const std::vector<ChildTask>& tasks, int jobs,
       result.wall_seconds =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - it->start).count();
       result.message = last_message(tasks[it->task].log, it->log_offset);
+      result.stopped = forwarded > 0;
       if (WIFSIGNALED(status) && result.message.empty())
         result.message = "killed by signal " + std::to_string(WTERMSIG(status));
       const std::size_t task = it->task;
@@ -335,8 +471,9 @@ std::vector<std::string> table_columns(const Study& s, const std::vector<std::st
   return columns;
 }
 
-void write_table(const fs::path& dir, const Study& s, const std::vector<std::string>& varied,
-                 const std::vector<Point>& points, const std::vector<io::Json>& rows) {
+void write_table(const fs::path& dir, const Study& s, const std::string& launcher,
+                 const std::vector<std::string>& varied, const std::vector<Point>& points,
+                 const std::vector<io::Json>& rows) {
   const auto columns = table_columns(s, varied, rows);
   std::ostringstream csv;
   for (std::size_t c = 0; c < columns.size(); ++c) {
@@ -347,6 +484,8 @@ void write_table(const fs::path& dir, const Study& s, const std::vector<std::str
   io::Json json = io::Json::object();
   json["command"] = s.name;
   json["grid"] = s.grid;
+  // Not part of the grid: the answers do not depend on the ranks (a resumed grid may change it).
+  json["launcher"] = launcher.empty() ? io::Json() : io::Json(launcher);
   json["columns"] = io::Json::array();
   for (const auto& c : columns) json["columns"].push_back(c);
   json["points"] = io::Json::array();
@@ -359,6 +498,7 @@ void write_table(const fs::path& dir, const Study& s, const std::vector<std::str
     point["set"] = io::Json::array();
     for (const auto& a : points[i].assignments) point["set"].push_back(a);
     point["log"] = "points/" + points[i].name + "/log.txt";
+    point["command"] = points[i].command.empty() ? io::Json() : io::Json(points[i].command);
     json["points"].push_back(point);
   }
   io::write_file_atomically(dir / (s.name + ".csv"), csv.str());
@@ -386,6 +526,7 @@ int run_study(const GridOptions& o, Study& s, std::vector<Point>& points) {
   if (fs::exists(dir) && !fs::is_directory(dir))
     throw io::InputError(dir.string() + ": exists and is not a directory");
   std::map<std::string, io::Json> previous;
+  std::map<std::string, std::string> previous_command; // what each point ran then
   bool afresh = o.run.force;
   if (fs::exists(json_path) && !o.run.force) {
     io::Json old;
@@ -402,8 +543,10 @@ int run_study(const GridOptions& o, Study& s, std::vector<Point>& points) {
                            "start afresh (deletes its points) or another --out");
     if (const io::Json* old_points = io::find(old, {"points"}))
       for (const auto& p : *old_points)
-        if (const io::Json* row = io::find(p, {"row"}); row && io::find(*row, {"point"}))
+        if (const io::Json* row = io::find(p, {"row"}); row && io::find(*row, {"point"})) {
           previous[io::text(*row, {"point"})] = *row;
+          previous_command[io::text(*row, {"point"})] = io::text(p, {"command"});
+        }
   } else if (fs::exists(dir) && !fs::is_empty(dir) && !o.run.force) {
     throw io::InputError(dir.string() + ": exists and holds no " + s.name +
                          ".json; use --force to use it anyway or another --out");
@@ -443,6 +586,7 @@ int run_study(const GridOptions& o, Study& s, std::vector<Point>& points) {
       continue;
     }
     if (!afresh && s.finished(p, point_dir, previous_row, row)) {
+      points[i].command = previous_command[p.name];
       std::cerr << s.name << ": point " << p.name
                 << " skipped (finished earlier: " << io::text(row, {"status"}) << ")\n";
       ++settled;
@@ -458,24 +602,51 @@ int run_study(const GridOptions& o, Study& s, std::vector<Point>& points) {
     else if (has_stage_folder(point_dir))
       t.arguments.push_back("--force"); // a run cut short after its particle stage: afresh
     t.log = point_dir / "log.txt";
+    t.launcher = o.launcher;
     tasks.push_back(t);
     task_point.push_back(i);
     restarted.push_back(restart);
   }
   const int cores = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
-  int jobs = o.jobs > 0 ? o.jobs : std::max(1, cores / std::max(1, o.run.threads));
+  // A launcher places the points' processes itself (on this node or others): one at a time
+  // unless --jobs says.
+  int jobs = o.jobs > 0            ? o.jobs
+             : !o.launcher.empty() ? 1
+                                   : std::max(1, cores / std::max(1, o.run.threads));
   jobs = std::max(1, std::min<int>(jobs, static_cast<int>(tasks.size())));
-  const int threads = o.run.threads > 0 ? o.run.threads
-                      : jobs > 1        ? 1
-                                        : 0; // 0: the child's default
-  for (auto& t : tasks) {
-    if (threads > 0) t.arguments.insert(t.arguments.end(), {"--threads", std::to_string(threads)});
-    fs::create_directories(t.log.parent_path());
+  const int threads = o.run.threads > 0     ? o.run.threads
+                      : jobs > 1 && !o.plan ? 1
+                                            : 0; // 0: the child's default
+  for (std::size_t t = 0; t < tasks.size(); ++t) {
+    if (threads > 0)
+      tasks[t].arguments.insert(tasks[t].arguments.end(), {"--threads", std::to_string(threads)});
+    fs::create_directories(tasks[t].log.parent_path());
+    points[task_point[t]].command = task_command(tasks[t]);
   }
-  write_table(dir, s, varied, points, rows);
+  write_table(dir, s, o.launcher, varied, points, rows);
+  if (o.plan) { // each point's command as a script, for a scheduler to run (docs/cluster.md)
+    for (const Point& p :
+         points) // an earlier plan's script of a point finished (or rejected) since
+      fs::remove(dir / "points" / p.name / "command.sh");
+    for (std::size_t t = 0; t < tasks.size(); ++t) {
+      const Point& p = points[task_point[t]];
+      const fs::path script = dir / "points" / p.name / "command.sh";
+      io::write_file_atomically(script, "#!/bin/sh\n# " + s.name + " point " + p.name + " (" +
+                                            s.name + " --plan): run it, then the same " + s.name +
+                                            " command again for the table\n" +
+                                            (o.launcher.empty() ? "exec " : "") + p.command + "\n");
+      fs::permissions(script, fs::perms::owner_exec | fs::perms::group_exec, fs::perm_options::add);
+    }
+    std::cerr << s.name << ": planned " << tasks.size() << " of " << points.size()
+              << " points, nothing run: DIR/points/NNN/command.sh each (DIR = " << dir.string()
+              << "); the same command without --plan then skips the finished ones and writes "
+                 "the table\n";
+    return 0;
+  }
   std::cerr << s.name << ": " << points.size() << " points, " << tasks.size() << " to run, " << jobs
             << " at a time" << (threads > 0 ? ", " + std::to_string(threads) : "")
             << (threads > 0 ? " thread(s) each" : "")
+            << (o.launcher.empty() ? "" : ", each under '" + o.launcher + "'")
             << "; table: " << (dir / (s.name + ".csv")).string() << "\n";
 
   double wall_sum = 0;
@@ -487,11 +658,16 @@ int run_study(const GridOptions& o, Study& s, std::vector<Point>& points) {
     row["exit_code"] = result.exit_code;
     row["reason"] = result.exit_code == 0 ? "" : result.message;
     s.describe(points[i], point_dir, result, row);
+    // A launcher may end with its own code when stopped (mpirun: 1, whatever its ranks said):
+    // a point stopped by the forwarded signal that left a checkpoint was interrupted.
+    if (result.stopped && result.exit_code != 0 &&
+        fs::exists(point_dir / "particle" / "checkpoint.twfc"))
+      row["status"] = "interrupted";
     // A continued particle run adds to the wall time of its earlier attempts.
     const double before = io::number(row, {"wall_seconds"});
     const double earlier = restarted[t] && std::isfinite(before) ? before : 0;
     row["wall_seconds"] = earlier + result.wall_seconds;
-    write_table(dir, s, varied, points, rows);
+    write_table(dir, s, o.launcher, varied, points, rows);
     wall_sum += result.wall_seconds;
     ++done_now;
     ++settled;

@@ -23,8 +23,28 @@ struct GridOptions {
   // out (empty: twinflow-runs/<case file stem>-<command>), force, and threads per point (0: 1
   // when points run side by side, else the child's default)
   RunOptions run;
-  int jobs = 0; // points run at once; 0: cores / threads per point
+  int jobs = 0; // points run at once; 0: cores / threads per point (1 with a launcher)
+  // A command template each point runs under, e.g. "mpirun -np 2 {cmd}" or "srun -n 4 {cmd}":
+  // {cmd} becomes the point's shell-quoted command (empty: the point runs directly).
+  std::string launcher;
+  // Write each point's command as DIR/points/NNN/command.sh (and the table, every point
+  // pending) and run nothing: a scheduler's job array runs them (docs/cluster.md).
+  bool plan = false;
 };
+
+// A word as a POSIX shell reads it back: bare if it has only safe characters, else in single
+// quotes ('\'' for a quote inside).
+std::string shell_quoted(const std::string& word);
+
+// Checks a --launcher template before anything runs: exactly one {cmd}, one line, valid shell
+// syntax, and its first word (the launcher) found on PATH when it is a program. Throws
+// io::InputError naming the problem.
+void check_launcher(const std::string& launcher);
+
+// The shell command a point runs: the launcher template with {cmd} replaced by `command`'s
+// words, shell-quoted (the first word is this binary's absolute path). A template that starts
+// with a program gets `exec ` so that the shell becomes the launcher (signals reach it).
+std::string launched_command(const std::string& launcher, const std::vector<std::string>& command);
 
 // The case file as the grid needs it (app/case/ provides it): `check` reads it with extra
 // assignments and throws io::InputError for an unknown key or a value outside its pattern;
@@ -51,6 +71,7 @@ struct Point {
   std::vector<std::size_t> value_index;  // per axis
   std::vector<std::string> assignments;  // "Key=value", --set after the user's own
   std::string rejected;                  // non-empty: the case's message for these values together
+  std::string command;                   // the shell command it last ran (the table records it)
   CaseParameters resolved;               // the point's parameters (when not rejected)
   io::Json columns = io::Json::object(); // the command's own columns before wall_seconds
 };
@@ -67,13 +88,24 @@ struct ChildResult {
   int exit_code = 0;       // the child's exit code; 128 + N when signal N killed it
   double wall_seconds = 0; // of this attempt
   std::string message;     // its last "twinflow: ..." line (or last line), without the prefix
+  bool stopped = false;    // the grid forwarded a stop signal (Ctrl-C, SIGTERM) to it
 };
 
-// Runs `twinflow ARGUMENTS` (this very binary) with stdout and stderr appended to `log`.
+// Runs `twinflow ARGUMENTS` (this very binary) with stdout and stderr appended to `log`; with a
+// launcher, `/bin/sh -c` runs launched_command(launcher, ...) instead.
 struct ChildTask {
   std::vector<std::string> arguments;
   std::filesystem::path log;
+  std::string launcher; // a --launcher template; empty: none
 };
+
+// Keeps a copy of the environment as the program started, before MPI_Init: a launcher gets it
+// (the singleton MPI_Init of this process adds OMPI_*/PMIX_* variables with which a child
+// `mpirun` fails at once). Without the call launchers get the current environment.
+void save_environment_before_mpi();
+
+// What a task runs, as one shell command line (its log's header, the table's "command").
+std::string task_command(const ChildTask&);
 
 // Runs the tasks, up to `jobs` at once, and calls `on_done` (in this thread) as each ends. On
 // SIGINT/SIGTERM no new task starts and the signal is forwarded to the running ones, which are

@@ -3,6 +3,7 @@
 #include <iostream>
 
 #include "io/files.hpp"
+#include "study/ranks.hpp"
 
 namespace twinflow::study {
 
@@ -65,16 +66,25 @@ bool reusable(const fs::path& stage_dir, const StageInputs& s) {
 }
 
 int run_or_reuse(const fs::path& stage_dir, const StageInputs& s, bool force,
-                 const std::function<int()>& stage) {
-  if (!force && reusable(stage_dir, s)) {
-    std::cout << "run: " << stage_dir.filename().string() << ": inputs unchanged (" << s.hash
-              << "), results reused\n";
+                 const std::function<int()>& stage, Ranks ranks) {
+  bool reuse = false;
+  if (const int rc = rank_zero_runs([&] {
+        reuse = !force && reusable(stage_dir, s);
+        if (reuse)
+          std::cout << "run: " << stage_dir.filename().string() << ": inputs unchanged (" << s.hash
+                    << "), results reused\n";
+        else
+          fs::remove(stage_dir / "inputs.json"); // stale until the stage finishes again
+        return 0;
+      }))
+    return rc;
+  if (from_rank_zero(reuse ? "reuse" : "run") == "reuse") return 0;
+  const int rc = ranks == Ranks::Every ? every_rank_runs(stage) : rank_zero_runs(stage);
+  if (rc != 0) return rc;
+  return rank_zero_runs([&] {
+    io::write_file_atomically(stage_dir / "inputs.json", io::dump(s.inputs));
     return 0;
-  }
-  fs::remove(stage_dir / "inputs.json"); // stale until the stage finishes again
-  const int rc = stage();
-  if (rc == 0) io::write_file_atomically(stage_dir / "inputs.json", io::dump(s.inputs));
-  return rc;
+  });
 }
 
 } // namespace twinflow::study

@@ -31,9 +31,13 @@ StageInputs stage_inputs(const Case& c, std::initializer_list<const char*> secti
 // before a parameter existed lacks it: the same inputs if it has its default).
 bool reusable(const std::filesystem::path& stage_dir, const StageInputs& s);
 
+// Which ranks run a stage under mpirun (study/ranks.hpp): all of them (its particle runs are
+// split over them), or rank 0 alone (a serial stage).
+enum class Ranks { Every, Zero };
+
 // Runs a stage unless its inputs are unchanged (or `force`); records its inputs after it
-// succeeds. Returns the stage's exit code.
+// succeeds. Returns the stage's exit code. Rank 0 decides and writes the record.
 int run_or_reuse(const std::filesystem::path& stage_dir, const StageInputs& s, bool force,
-                 const std::function<int()>& stage);
+                 const std::function<int()>& stage, Ranks ranks = Ranks::Zero);
 
 } // namespace twinflow::study

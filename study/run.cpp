@@ -5,6 +5,7 @@
 
 #include "io/files.hpp"
 #include "study/inputs.hpp"
+#include "study/ranks.hpp"
 #include "study/stages.hpp"
 
 namespace twinflow::study {
@@ -46,18 +47,30 @@ int run_all(Case c, const RunOptions& options) {
   CaseParameters& p = c.parameters;
   const fs::path run_dir = run_directory(options, p.name);
   const bool walls = p.scene.has_walls() && p.scene.heat_slabs.empty();
-  // The particle results are the expensive ones: kept unless their inputs are unchanged (reused)
-  // or --force / --restart says otherwise; checked before anything runs (bad input writes
-  // nothing). Later stages are derived from them and recomputed whenever their inputs changed.
+  // Under mpirun every rank takes part in the particle runs (the particle stage, the transport
+  // stage's runs); rank 0 alone runs the continuum twins and the comparison, reads and writes
+  // every file and prints (study/ranks.hpp). The particle results are the expensive ones: kept
+  // unless their inputs are unchanged (reused) or --force / --restart says otherwise; checked
+  // before anything runs (bad input writes nothing). Later stages are derived from them and
+  // recomputed whenever their inputs changed.
   const StageInputs particle_inputs = stage_inputs(c, {"Scene/", "Particle/"}, {});
-  const bool reuse_particle =
-      !options.force && !options.restart && reusable(run_dir / "particle", particle_inputs);
-  if (!reuse_particle) io::StageDirectory(run_dir, "particle", options.force || options.restart);
-  std::cout << "run: '" << p.name << "': particle, transport, continuum"
-            << (walls ? " (nominal and calibrated)" : "") << ", compare\n";
-  if (const int rc =
-          run_or_reuse(run_dir / "particle", particle_inputs, options.force || options.restart,
-                       [&] { return particle_stage(c, options); }))
+  const int ranks = rank_count();
+  if (const int rc = rank_zero_runs([&] {
+        const bool reuse_particle =
+            !options.force && !options.restart && reusable(run_dir / "particle", particle_inputs);
+        if (!reuse_particle)
+          io::StageDirectory(run_dir, "particle", options.force || options.restart);
+        std::cout << "run: '" << p.name << "': particle, transport, continuum"
+                  << (walls ? " (nominal and calibrated)" : "") << ", compare"
+                  << (ranks > 1 ? " (particle runs on " + std::to_string(ranks) + " MPI ranks)"
+                                : "")
+                  << "\n";
+        return 0;
+      }))
+    return rc;
+  if (const int rc = run_or_reuse(
+          run_dir / "particle", particle_inputs, options.force || options.restart,
+          [&] { return particle_stage(c, options); }, Ranks::Every))
     return rc;
   RunOptions later = options;
   later.restart = false;
@@ -66,15 +79,24 @@ int run_all(Case c, const RunOptions& options) {
   // The coefficients at the temperature the particle fluid has, unless the case says: its
   // measured mean to 4 digits (more would be noise, ~1e-3, and would defeat the transport cache).
   if (p.transport.temperature == 0) {
-    const double T =
-        io::number(io::read_json(run_dir / "particle" / "summary.json"), {"results", "T_kinetic"});
-    if (T > 0) {
-      std::ostringstream text;
-      text << std::setprecision(4) << T;
-      p.transport.temperature = std::stod(text.str());
-      c.record_value("Transport/Temperature", text.str());
-      std::cout << "run: transport at the particle fluid's mean temperature: "
-                << "Transport/Temperature=" << text.str() << "\n";
+    std::string temperature;
+    if (const int rc = rank_zero_runs([&] {
+          const double T = io::number(io::read_json(run_dir / "particle" / "summary.json"),
+                                      {"results", "T_kinetic"});
+          if (T > 0) {
+            std::ostringstream text;
+            text << std::setprecision(4) << T;
+            temperature = text.str();
+            std::cout << "run: transport at the particle fluid's mean temperature: "
+                      << "Transport/Temperature=" << temperature << "\n";
+          }
+          return 0;
+        }))
+      return rc;
+    temperature = from_rank_zero(temperature);
+    if (!temperature.empty()) {
+      p.transport.temperature = std::stod(temperature);
+      c.record_value("Transport/Temperature", temperature);
     }
   }
   const StageInputs transport_inputs =
@@ -84,36 +106,42 @@ int run_all(Case c, const RunOptions& options) {
   // transport cache (later.force would bypass that): only the user's --force measures again.
   RunOptions transport_options = later;
   transport_options.force = options.force;
-  if (const int rc = run_or_reuse(run_dir / "transport", transport_inputs, false, [&] {
-        fs::remove(run_dir / "transport" / "summary.json"); // stale: its inputs changed
-        return transport_stage(c, transport_options);
-      }))
+  if (const int rc = run_or_reuse(
+          run_dir / "transport", transport_inputs, false,
+          [&] {
+            if (on_rank_zero()) fs::remove(run_dir / "transport" / "summary.json"); // stale
+            return transport_stage(c, transport_options);
+          },
+          Ranks::Every))
     return rc;
   if (!chooses_coefficient_source(c.settings)) { // the user's own --set wins
     p.twin.coefficients_from_transport = true;
     c.record_value("Continuum/Coefficients/Source", "transport");
   }
-  const StageInputs continuum_inputs =
-      stage_inputs(c, {"Scene/", "Transport/", "Continuum/"}, {transport_inputs.hash});
-  if (const int rc = run_or_reuse(run_dir / "continuum", continuum_inputs, false,
-                                  [&] { return continuum_stage(c, later, "continuum"); }))
-    return rc;
-  if (walls && fs::exists(run_dir / "particle" / "fields.h5")) {
-    const Case calibrated = calibrated_case(c, run_dir);
-    const StageInputs calibrated_inputs =
-        stage_inputs(calibrated, {"Scene/", "Transport/", "Continuum/"},
-                     {transport_inputs.hash, particle_inputs.hash});
-    if (const int rc =
-            run_or_reuse(run_dir / "continuum_calibrated", calibrated_inputs, false, [&] {
-              return continuum_stage(calibrated, later, "continuum_calibrated");
-            }))
+  // From here on rank 0 alone: the twins, the comparison, the report.
+  return rank_zero_runs([&] {
+    const StageInputs continuum_inputs =
+        stage_inputs(c, {"Scene/", "Transport/", "Continuum/"}, {transport_inputs.hash});
+    if (const int rc = run_or_reuse(run_dir / "continuum", continuum_inputs, false,
+                                    [&] { return continuum_stage(c, later, "continuum"); }))
       return rc;
-  }
-  if (fs::exists(run_dir / "particle" / "fields.h5")) { // else nothing binned to compare
-    if (const int rc = compare_stage(c, run_dir)) return rc;
-  }
-  print_ending(run_dir, started);
-  return 0;
+    if (walls && fs::exists(run_dir / "particle" / "fields.h5")) {
+      const Case calibrated = calibrated_case(c, run_dir);
+      const StageInputs calibrated_inputs =
+          stage_inputs(calibrated, {"Scene/", "Transport/", "Continuum/"},
+                       {transport_inputs.hash, particle_inputs.hash});
+      if (const int rc =
+              run_or_reuse(run_dir / "continuum_calibrated", calibrated_inputs, false, [&] {
+                return continuum_stage(calibrated, later, "continuum_calibrated");
+              }))
+        return rc;
+    }
+    if (fs::exists(run_dir / "particle" / "fields.h5")) { // else nothing binned to compare
+      if (const int rc = compare_stage(c, run_dir)) return rc;
+    }
+    print_ending(run_dir, started);
+    return 0;
+  });
 }
 
 } // namespace twinflow::study

@@ -215,6 +215,7 @@ int sweep(const GridOptions& cl, const CaseReader& reader) {
           if (cl.run.threads > 0)
             t.arguments.insert(t.arguments.end(), {"--threads", std::to_string(cl.run.threads)});
           t.log = reference / "log.txt";
+          t.launcher = cl.launcher; // the transport stage's particle runs use its ranks too
           std::cerr << "sweep: point " << p.name
                     << ": its transport stage, for its gravity (log: " << t.log.string() << ")\n";
           ChildResult result;

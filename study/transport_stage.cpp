@@ -1,11 +1,13 @@
 #include <algorithm>
 #include <cstdlib>
 #include <iostream>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "io/files.hpp"
+#include "study/ranks.hpp"
 #include "study/stages.hpp"
 #include "transport/measurement.hpp"
 
@@ -184,28 +186,11 @@ bool restore_from_cache(const fs::path& entry, const io::StageDirectory& stage, 
   io::write_file_atomically(stage.file("summary.json"), io::dump(summary));
   return true;
 }
-} // namespace
-
-int transport_stage(const Case& c, const RunOptions& options) {
+// The measurement's files in the stage, its cache entry, its table on the console.
+int write_measurement(const Case& c, const io::StageDirectory& stage,
+                      const transport::TransportMeasurement& m, const std::string& key,
+                      const io::Json& key_inputs, const fs::path& cache) {
   const CaseParameters& cp = c.parameters;
-  const fs::path run_dir = run_directory(options, cp.name);
-  const io::StageDirectory stage(run_dir, "transport", options.force);
-  const particle::ParticleParameters bulk =
-      transport::bulk_fluid(cp.scene, cp.particle, cp.transport);
-  const io::Json key_inputs = measurement_inputs(c, bulk, cp.transport);
-  const std::string key = io::content_hash(key_inputs.dump());
-  const fs::path cache = cache_directory(key);
-  // --force measures again (and refreshes the entry).
-  if (!cache.empty() && !options.force && restore_from_cache(cache, stage, c)) {
-    std::cout << console_table(io::read_file(stage.file("coefficients.csv")))
-              << "transport: measurements reused from the cache (" << cache.string()
-              << "; TWINFLOW_CACHE=off recomputes)\noutputs: "
-              << fs::absolute(stage.path()).string() << "\n";
-    return 0;
-  }
-  stage.create();
-  const transport::TransportMeasurement m =
-      transport::measure_transport(cp.scene, cp.particle, bulk, cp.transport);
   io::write_file_atomically(stage.file("coefficients.csv"), m.coefficients_csv);
   io::write_file_atomically(stage.file("rdf.csv"), m.rdf_csv);
   io::Json summary = io::Json::object();
@@ -237,6 +222,43 @@ int transport_stage(const Case& c, const RunOptions& options) {
   std::cout << console_table(m.coefficients_csv)
             << "outputs: " << fs::absolute(stage.path()).string() << "\n";
   return 0;
+}
+} // namespace
+
+int transport_stage(const Case& c, const RunOptions& options) {
+  const CaseParameters& cp = c.parameters;
+  const fs::path run_dir = run_directory(options, cp.name);
+  const particle::ParticleParameters bulk =
+      transport::bulk_fluid(cp.scene, cp.particle, cp.transport);
+  const io::Json key_inputs = measurement_inputs(c, bulk, cp.transport);
+  const std::string key = io::content_hash(key_inputs.dump());
+  const fs::path cache = cache_directory(key);
+  // Under mpirun rank 0 alone reads and writes the folder and the cache and prints; every rank
+  // takes part in the measurement's particle runs (study/ranks.hpp).
+  std::optional<io::StageDirectory> stage;
+  bool restored = false;
+  if (const int rc = rank_zero_runs([&] {
+        stage.emplace(run_dir, "transport", options.force);
+        // --force measures again (and refreshes the entry).
+        restored = !cache.empty() && !options.force && restore_from_cache(cache, *stage, c);
+        if (restored)
+          std::cout << console_table(io::read_file(stage->file("coefficients.csv")))
+                    << "transport: measurements reused from the cache (" << cache.string()
+                    << "; TWINFLOW_CACHE=off recomputes)\noutputs: "
+                    << fs::absolute(stage->path()).string() << "\n";
+        else
+          stage->create();
+        return 0;
+      }))
+    return rc;
+  if (from_rank_zero(restored ? "restored" : "measure") == "restored") return 0;
+  transport::TransportMeasurement m;
+  if (const int rc = every_rank_runs([&] {
+        m = transport::measure_transport(cp.scene, cp.particle, bulk, cp.transport);
+        return 0;
+      }))
+    return rc;
+  return rank_zero_runs([&] { return write_measurement(c, *stage, m, key, key_inputs, cache); });
 }
 
 } // namespace twinflow::study

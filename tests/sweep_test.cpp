@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -51,6 +52,11 @@ std::string text(const Json& row, const std::string& key) {
 double number(const Json& row, const std::string& key) {
   return twinflow::io::number(row, {key});
 }
+
+// OpenMPI refuses to run as root (CI does) without these; oversubscribing lets 2 ranks share a
+// busy core.
+const std::string kMpiAsRoot = "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 "
+                               "OMPI_MCA_rmaps_base_oversubscribe=1";
 
 std::string file_text(const fs::path& file) {
   std::ifstream in(file);
@@ -153,6 +159,13 @@ TEST(Sweep, BadVaryOrRayleighExitsTwoAndWritesNothing) {
       {"sweep " + shipped("equilibrium_ideal_3d") + " --rayleigh 1e3", "Scene/Gravity"},
       {"sweep " + cavity + " --rayleigh 1e3 --set 'Scene/x boundaries/Upper wall temperature=1.5'",
        "heated direction"},
+      {"stability " + cavity + " --vary 'Particle/Seed=1' --launcher 'mpirun -np 2'", "no {cmd}"},
+      {"sweep " + cavity + " --vary 'Particle/Seed=1' --launcher '{cmd} {cmd}'", "{cmd} 2 times"},
+      {"sweep " + cavity + " --vary 'Particle/Seed=1' --launcher 'no-such-launcher -n 2 {cmd}'",
+       "'no-such-launcher' not found"},
+      {"sweep " + cavity + " --vary 'Particle/Seed=1' --launcher \"mpirun -np 2 '{cmd}\"",
+       "not valid shell syntax"},
+      {"run " + cavity + " --launcher 'mpirun -np 2 {cmd}'", "--launcher belongs to sweep"},
   };
   for (const auto& c : cases) {
     const Result r = run(c.args + " --out " + out.string());
@@ -286,4 +299,93 @@ TEST(Stability, ClassifiesPointsBesideTheoryLimits) {
   const Result again = run(args);
   ASSERT_EQ(again.code, 0) << again.output;
   EXPECT_NE(again.output.find("2 points, 0 to run"), std::string::npos) << again.output;
+}
+
+// --launcher: every point runs under `mpirun -np 2` (its particle run split over two ranks), the
+// launcher and each point's command are recorded, a blow-up is classified as without one, and a
+// point's results are the one-process run's, byte for byte (the decomposition's promise).
+TEST(Stability, LauncherRunsEachPointOnTwoRanks) {
+#ifndef TWINFLOW_MPIEXEC
+  GTEST_SKIP() << "no mpirun";
+#else
+  const fs::path dir = fresh_dir("stability_launcher");
+  const std::string scene = shipped("heated_cavity_2d") +
+                            " --set 'Scene/Box size=8, 8' --set 'Scene/Field bins=4, 4'"
+                            " --set 'Particle/Equilibration steps=100' --set 'Particle/Steps=300'";
+  const std::string launcher = std::string(TWINFLOW_MPIEXEC) + " -np 2 --bind-to none {cmd}";
+  const Result r = twinflow::testing::run_twinflow(
+      "stability " + scene +
+          " --vary 'Particle/Time step=0.01,2' --vary 'Particle/Seed=1,2' --threads 1 --out " +
+          dir.string() + " --launcher '" + launcher + "'",
+      "off", kMpiAsRoot);
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("4 to run, 1 at a time, 1 thread(s) each, each under '" + launcher),
+            std::string::npos)
+      << r.output;
+  const auto rows_now = rows(dir / "stability.json");
+  ASSERT_EQ(rows_now.size(), 4u);
+  for (const std::size_t stable : {0u, 1u})
+    EXPECT_EQ(text(rows_now[stable], "status"), "stable")
+        << text(rows_now[stable], "reason") << file_text(dir / "points/000/log.txt");
+  for (const std::size_t blown : {2u, 3u}) {
+    EXPECT_EQ(number(rows_now[blown], "exit_code"), 4) << text(rows_now[blown], "reason");
+    EXPECT_NE(text(rows_now[blown], "status"), "failed") << text(rows_now[blown], "reason");
+    EXPECT_NE(text(rows_now[blown], "reason").find("unstable at step"), std::string::npos);
+  }
+  const Json table = twinflow::io::read_json(dir / "stability.json");
+  EXPECT_EQ(text(table, "launcher"), launcher);
+  const Json& first = (*twinflow::io::find(table, {"points"}))[0];
+  const std::string command = text(first, "command");
+  EXPECT_EQ(command.rfind("exec " + std::string(TWINFLOW_MPIEXEC) + " -np 2 --bind-to none /", 0),
+            0u)
+      << command;
+  EXPECT_NE(command.find(" particle "), std::string::npos) << command;
+  EXPECT_NE(file_text(dir / "points/000/log.txt").find(command), std::string::npos);
+
+  // Point 000 again on one process, no launcher: the same bytes.
+  const fs::path alone = fresh_dir("stability_launcher_alone");
+  const Result one = run("particle " + scene + " --set 'Particle/Time step=0.01'" +
+                         " --set 'Particle/Seed=1' --threads 1 --out " + alone.string());
+  ASSERT_EQ(one.code, 0) << one.output;
+  for (const char* f : {"thermo.csv", "fields.csv"})
+    EXPECT_EQ(file_text(dir / "points/000/particle" / f), file_text(alone / "particle" / f)) << f;
+#endif
+}
+
+// --plan (a job array's first step, docs/cluster.md): the table with every point pending and each
+// point's command as DIR/points/NNN/command.sh, nothing run; a point's script run on its own (as
+// an array task would) is then skipped by the same command without --plan, which runs the rest.
+TEST(Stability, PlanWritesEachPointsCommandForAJobArray) {
+  const fs::path dir = fresh_dir("stability_plan");
+  const std::string args = "stability " + shipped("heated_cavity_2d") +
+                           " --set 'Scene/Box size=8, 8' --set 'Particle/Equilibration steps=100'"
+                           " --set 'Particle/Steps=300' --vary 'Particle/Seed=1,2' --threads 1"
+                           " --out " +
+                           dir.string();
+  const Result plan = run(args + " --plan");
+  ASSERT_EQ(plan.code, 0) << plan.output;
+  EXPECT_NE(plan.output.find("planned 2 of 2 points, nothing run"), std::string::npos)
+      << plan.output;
+  for (const auto& row : rows(dir / "stability.json")) EXPECT_EQ(text(row, "status"), "pending");
+  const std::string script = file_text(dir / "points/001/command.sh");
+  EXPECT_NE(script.find(" particle "), std::string::npos) << script;
+  EXPECT_NE(script.find("--set Particle/Seed=2"), std::string::npos) << script;
+  EXPECT_FALSE(fs::exists(dir / "points/000/particle"));
+
+  const int task =
+      std::system(("sh " + (dir / "points/000/command.sh").string() + " > /dev/null 2>&1").c_str());
+  ASSERT_EQ(task, 0);
+  // Planned again: only the unfinished point keeps a script.
+  const Result replan = run(args + " --plan");
+  ASSERT_EQ(replan.code, 0) << replan.output;
+  EXPECT_NE(replan.output.find("planned 1 of 2 points"), std::string::npos) << replan.output;
+  EXPECT_FALSE(fs::exists(dir / "points/000/command.sh"));
+  EXPECT_TRUE(fs::exists(dir / "points/001/command.sh"));
+  const Result table = run(args);
+  ASSERT_EQ(table.code, 0) << table.output;
+  EXPECT_NE(table.output.find("point 000 skipped (finished earlier: stable)"), std::string::npos)
+      << table.output;
+  const auto rows_now = rows(dir / "stability.json");
+  ASSERT_EQ(rows_now.size(), 2u);
+  for (const auto& row : rows_now) EXPECT_EQ(text(row, "status"), "stable") << text(row, "reason");
 }

@@ -4,11 +4,36 @@
 #include <sstream>
 #include <vector>
 
+#include "particle/decomposition.hpp"
 #include "particle/seeds.hpp"
 #include "statistics/blocking.hpp"
 #include "statistics/line_fit.hpp"
 
 namespace twinflow::transport {
+
+namespace {
+void share_from_rank_zero(std::string& text) {
+  unsigned long size = text.size();
+  MPI_Bcast(&size, 1, MPI_UNSIGNED_LONG, 0, MPI_COMM_WORLD);
+  text.resize(size);
+  MPI_Bcast(text.data(), static_cast<int>(size), MPI_CHAR, 0, MPI_COMM_WORLD);
+}
+} // namespace
+
+particle::RunOutput run_on_every_rank(const particle::ParticleParameters& p,
+                                      const particle::RunControl& control) {
+  particle::RunOutput out = particle::run_particles(p, control);
+  if (particle::Slabs::world_size() == 1) return out;
+  // Rank 0 keeps its own values (a NaN is null in the text: number() reads both as NaN).
+  std::string summary = out.summary.dump();
+  share_from_rank_zero(summary);
+  if (particle::Slabs::world_rank() != 0) out.summary = io::Json::parse(summary);
+  for (std::string* table :
+       {&out.thermo_csv, &out.histograms_csv, &out.rdf_csv, &out.correlations_csv, &out.fields_csv,
+        &out.blocks_csv, &out.wall_layers_csv, &out.slab_profile_csv, &out.relaxation_csv})
+    share_from_rank_zero(*table);
+  return out;
+}
 
 using particle::Estimate;
 
@@ -69,7 +94,7 @@ Point run_at(particle::ParticleParameters p, double density, double temperature,
   p.temperature = temperature;
   p.steps = steps;
   p.equilibration_steps = steps / 2;
-  const auto out = particle::run_particles(p);
+  const auto out = run_on_every_rank(p);
   const auto& r = out.summary;
   Point pt;
   pt.p = {io::number(r, {"pressure"}), io::number(r, {"pressure_stderr"})};
@@ -255,7 +280,7 @@ measure_relaxation(particle::ParticleParameters p, const Estimates& estimate, do
   const std::uint64_t seed = p.seed;
   for (int r = 0; r < repeats; ++r) {
     p.seed = seed + 7919 * static_cast<std::uint64_t>(r);
-    const auto run = particle::run_particles(p);
+    const auto run = run_on_every_rank(p);
     auto fitted = [&](const char* fit, const char* key, double scale) -> Estimate {
       const std::string stderr_key = std::string(key) + "_stderr";
       return {scale * io::number(run.summary, {fit, key}),

@@ -11,6 +11,13 @@
 
 namespace twinflow::transport {
 
+// particle::run_particles, with rank 0's results (summary and tables, not the field snapshots)
+// on every rank under mpirun: each run is split over the ranks and only rank 0 assembles its
+// results, but every rank must take the same next steps (a relaxation run's length comes from
+// the g(r) measured before it). On one process: run_particles.
+particle::RunOutput run_on_every_rank(const particle::ParticleParameters& p,
+                                      const particle::RunControl& control = {});
+
 struct Measured {
   particle::Estimate pressure, temperature;
   particle::Estimate diffusion;      // from the MSD slope, 2 d D, over independent repeats

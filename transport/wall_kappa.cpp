@@ -7,6 +7,7 @@
 #include "io/files.hpp"
 #include "particle/run.hpp"
 #include "particle/wall_summary.hpp"
+#include "transport/measure.hpp"
 #include "transport/measurement.hpp"
 
 namespace twinflow::transport {
@@ -44,7 +45,7 @@ WallKappa kappa_from_walls(const scene::SceneParameters& scene,
   std::fflush(stdout);
   particle::RunControl control;
   control.progress = isatty(STDERR_FILENO); // a progress line with ETA on a terminal only
-  const particle::RunOutput out = particle::run_particles(w, control);
+  const particle::RunOutput out = run_on_every_rank(w, control);
   const auto lower = scene::wall_name(heated, 0), upper = scene::wall_name(heated, 1);
   const double q_lo = io::number(out.summary, {"walls", lower.c_str(), "heat_flux_in"});
   const double q_up = io::number(out.summary, {"walls", upper.c_str(), "heat_flux_in"});

@@ -163,7 +163,8 @@ int particle_stage(const Case& c, const RunOptions& options) {
   try {
     out = particle::run_particles(p.particle, control);
   } catch (const particle::InstabilityError& e) {
-    std::cerr << "twinflow: particle run stopped: " << e.what() << "\n";
+    // One write, so that under mpirun the launcher's own lines cannot land inside it.
+    std::cerr << "twinflow: particle run stopped: " + std::string(e.what()) + "\n" << std::flush;
     if (ranks > 1) MPI_Abort(MPI_COMM_WORLD, kExitUnstable); // the other ranks wait for this one
     return kExitUnstable;
   }

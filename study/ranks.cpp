@@ -11,26 +11,17 @@
 #include <thread>
 
 #include "io/files.hpp"
+#include "particle/decomposition.hpp"
 #include "study/case.hpp"
 
 namespace twinflow::study {
 
 namespace {
 int alone_depth = 0; // > 0: inside rank_zero_runs' work on rank 0
-
-int world_size() {
-  int initialised = 0, finalised = 0;
-  MPI_Initialized(&initialised);
-  MPI_Finalized(&finalised);
-  if (!initialised || finalised) return 1;
-  int size = 1;
-  MPI_Comm_size(MPI_COMM_WORLD, &size);
-  return size;
-}
 } // namespace
 
 int rank_count() {
-  return alone_depth > 0 ? 1 : world_size();
+  return alone_depth > 0 ? 1 : particle::Slabs::world_size();
 }
 
 bool rank_zero_alone() {

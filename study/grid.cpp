@@ -213,20 +213,39 @@ std::string this_binary() {
   return error ? std::string("twinflow") : self.string();
 }
 
-// Runs `sh -n -c TEXT` (parse only); true when the shell accepts its syntax.
-bool valid_shell_syntax(const std::string& text) {
-  std::vector<std::string> words = {"sh", "-n", "-c", text};
+// A child's files: stdin from /dev/null, stdout and stderr both into `out` (opened with `flags`).
+class ChildFiles {
+public:
+  ChildFiles(const char* out, int flags) {
+    posix_spawn_file_actions_init(&actions_);
+    posix_spawn_file_actions_addopen(&actions_, 0, "/dev/null", O_RDONLY, 0);
+    posix_spawn_file_actions_addopen(&actions_, 1, out, flags, 0644);
+    posix_spawn_file_actions_adddup2(&actions_, 1, 2);
+  }
+  ~ChildFiles() { posix_spawn_file_actions_destroy(&actions_); }
+  ChildFiles(const ChildFiles&) = delete;
+  ChildFiles& operator=(const ChildFiles&) = delete;
+  const posix_spawn_file_actions_t* get() const { return &actions_; }
+
+private:
+  posix_spawn_file_actions_t actions_;
+};
+
+// argv for posix_spawn: pointers into `words`, null-terminated.
+std::vector<char*> argv_of(std::vector<std::string>& words) {
   std::vector<char*> argv;
   for (auto& w : words) argv.push_back(w.data());
   argv.push_back(nullptr);
-  posix_spawn_file_actions_t files;
-  posix_spawn_file_actions_init(&files);
-  posix_spawn_file_actions_addopen(&files, 0, "/dev/null", O_RDONLY, 0);
-  posix_spawn_file_actions_addopen(&files, 1, "/dev/null", O_WRONLY, 0);
-  posix_spawn_file_actions_adddup2(&files, 1, 2);
+  return argv;
+}
+
+// Runs `sh -n -c TEXT` (parse only); true when the shell accepts its syntax.
+bool valid_shell_syntax(const std::string& text) {
+  std::vector<std::string> words = {"sh", "-n", "-c", text};
+  const std::vector<char*> argv = argv_of(words);
+  const ChildFiles files("/dev/null", O_WRONLY);
   pid_t pid = 0;
-  const int rc = posix_spawn(&pid, "/bin/sh", &files, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&files);
+  const int rc = posix_spawn(&pid, "/bin/sh", files.get(), nullptr, argv.data(), environ);
   if (rc != 0) return true; // no shell to ask: the points will say
   int status = 0;
   waitpid(pid, &status, 0);
@@ -301,15 +320,8 @@ pid_t spawn(const ChildTask& task) {
     words.insert(words.end(), task.arguments.begin(), task.arguments.end());
   else
     words = {"sh", "-c", launched_command(task.launcher, task.arguments)};
-  std::vector<char*> argv;
-  for (auto& w : words) argv.push_back(w.data());
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t files;
-  posix_spawn_file_actions_init(&files);
-  posix_spawn_file_actions_addopen(&files, 0, "/dev/null", O_RDONLY, 0);
-  posix_spawn_file_actions_addopen(&files, 1, task.log.c_str(), O_WRONLY | O_CREAT | O_APPEND,
-                                   0644);
-  posix_spawn_file_actions_adddup2(&files, 1, 2);
+  const std::vector<char*> argv = argv_of(words);
+  const ChildFiles files(task.log.c_str(), O_WRONLY | O_CREAT | O_APPEND);
   posix_spawnattr_t attributes;
   posix_spawnattr_init(&attributes);
   posix_spawnattr_setflags(&attributes,
@@ -329,9 +341,8 @@ pid_t spawn(const ChildTask& task) {
   char** environment =
       task.launcher.empty() || saved.empty() ? environ : launcher_environment.data();
   pid_t pid = 0;
-  const int rc = posix_spawn(&pid, task.launcher.empty() ? "/proc/self/exe" : "/bin/sh", &files,
-                             &attributes, argv.data(), environment);
-  posix_spawn_file_actions_destroy(&files);
+  const int rc = posix_spawn(&pid, task.launcher.empty() ? "/proc/self/exe" : "/bin/sh",
+                             files.get(), &attributes, argv.data(), environment);
   posix_spawnattr_destroy(&attributes);
   if (rc != 0)
     throw std::runtime_error("cannot start a child twinflow: " + std::string(std::strerror(rc)));

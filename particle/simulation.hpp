@@ -121,7 +121,7 @@ public:
       // rebuilds the cell index only, and the list is the one the run had.
       const bool listed = !x_listed_[0].empty();
       owned_ = state_.size();
-      if (slabs_.active()) keep_owned(true);
+      if (slabs_.active()) keep_owned();
       grid_.sort(state_, carried_, listed ? &x_listed_ : nullptr);
       if (slabs_.active()) build_ghosts();
       if (listed) grid_.build_pairs(x_listed_, state_.size(), list_cutoff_);
@@ -150,11 +150,11 @@ private:
   }
   // ---- several ranks (decomposition.hpp)
   bool listed_key() const { return skin_ > 0 && p_.integrator != Integrator::Euler; }
-  int owner_of(std::size_t i) const;  // the rank whose slab holds particle i's sort cell
-  void keep_owned(bool with_carried); // drops the particles of other ranks' slabs
-  void migrate();                     // sends particles to the ranks of their sort cells
-  void build_ghosts();                // the upper rank's first plane into the ghost plane
-  void rebuild_slab();                // update_neighbours' rebuild on a slab
+  int owner_of(std::size_t i) const; // the rank whose slab holds particle i's sort cell
+  void keep_owned();   // drops the particles of other ranks' slabs (a loaded checkpoint's)
+  void migrate();      // sends particles to the ranks of their sort cells
+  void build_ghosts(); // the upper rank's first plane into the ghost plane
+  void rebuild_slab(); // update_neighbours' rebuild on a slab
   bool slab_list_still_complete(double largest, std::size_t moved);
   void resize_local(std::size_t n); // every per-particle array to n (carried included)
   // Every rank's emissions to every rank: a particle may have moved to another rank since it

@@ -23,7 +23,7 @@ template <class M> void Simulation<M>::resize_local(std::size_t n) {
   carried_.potential.resize(n);
 }
 
-template <class M> void Simulation<M>::keep_owned(bool with_carried) {
+template <class M> void Simulation<M>::keep_owned() {
   std::size_t kept = 0;
   auto move = [](auto& a, std::size_t from, std::size_t to) {
     if (!a.empty()) a[to] = a[from];
@@ -32,10 +32,10 @@ template <class M> void Simulation<M>::keep_owned(bool with_carried) {
     if (owner_of(i) != slabs_.rank) continue;
     for (int d = 0; d < D; ++d) {
       move(state_.x[d], i, kept), move(state_.v[d], i, kept), move(x_listed_[d], i, kept);
-      if (with_carried) move(carried_.f[d], i, kept);
+      move(carried_.f[d], i, kept);
     }
     move(state_.u, i, kept), move(state_.id, i, kept);
-    if (with_carried) move(carried_.q, i, kept), move(carried_.potential, i, kept);
+    move(carried_.q, i, kept), move(carried_.potential, i, kept);
     ++kept;
   }
   owned_ = kept;

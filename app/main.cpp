@@ -142,6 +142,9 @@ int main(int argc, char** argv) {
   // errors still reach stderr).
   if (!study::on_rank_zero() && !std::freopen("/dev/null", "w", stdout))
     std::cout.setstate(std::ios::badbit);
+  // Line by line into a log file too (`twinflow run ... > log`), so that the log shows a long
+  // run's stages as they happen rather than at exit.
+  std::setvbuf(stdout, nullptr, _IOLBF, BUFSIZ);
 
   po::options_description opts("options");
   opts.add_options()("help,h", "this help")("out,o", po::value<std::string>(),

@@ -10,13 +10,13 @@ namespace twinflow::compare {
 
 std::string calibration_description(const CompareParameters& compare, const TwinFacts& twin) {
   std::string text =
-      compare.calibration != "kapitza" || !twin.boussinesq
+      compare.calibration != "kapitza" || !twin.robin_walls
           ? "walls at the fluid's wall temperatures"
       : twin.kapitza_inverse
           ? "Kapitza walls, inverse law (h_K T_w^2 (1/T_f - 1/T_w) = the particle wall's heat "
             "flux)"
           : "Kapitza walls (h_K = the particle wall's heat flux / its jump)";
-  if (compare.wall_slip && twin.boussinesq)
+  if (compare.wall_slip && twin.robin_walls)
     text += "; Navier slip at no-slip walls (b from the particle wall's friction)";
   if (compare.effective_walls) text += "; walls at their effective positions (Gibbs depths)";
   return text;
@@ -31,10 +31,10 @@ CalibratedWalls calibrate_walls(const io::Json& results, const BinnedState& fina
   std::array<bool, 3> walled{{false, false, false}};
   for (int d = 0; d < scene.dim; ++d) walled[d] = !scene.boundary[d].periodic;
   const auto interior = interior_bins(final_state.grid, walled, compare.wall_layer);
-  out.kapitza = compare.calibration == "kapitza" && twin.boussinesq;
+  out.kapitza = compare.calibration == "kapitza" && twin.robin_walls;
   if (compare.calibration == "kapitza" && !out.kapitza)
-    out.notes.push_back("Kapitza walls need the Boussinesq twin; this one is calibrated by its "
-                        "walls' temperatures");
+    out.notes.push_back("Kapitza walls need the Boussinesq or compressible twin; this one is "
+                        "calibrated by its walls' temperatures");
   // The twin's walls: the scene's, or the particle walls' effective positions (Gibbs depths).
   out.effective_positions = compare.effective_walls;
   for (int d = 0; d < scene.dim; ++d)
@@ -82,7 +82,7 @@ CalibratedWalls calibrate_walls(const io::Json& results, const BinnedState& fina
       }
     }
   }
-  out.slip = compare.wall_slip && twin.boussinesq;
+  out.slip = compare.wall_slip && twin.robin_walls;
   if (out.slip) {
     // Navier slip from the particle wall's friction per area zeta, acting at its mean depth
     // h_f: eta u'(plane) = zeta u(h_f), u(h_f) ~ u(plane) + u' (h_f - plane), so

@@ -33,7 +33,7 @@ struct CalibratedWalls {
 
 // What the calibration needs of the twin it calibrates.
 struct TwinFacts {
-  bool boussinesq = true;       // Kapitza walls and Navier slip exist in the Boussinesq twin only
+  bool robin_walls = true; // the twin has Kapitza walls and Navier slip (Boussinesq, compressible)
   bool kapitza_inverse = false; // the twin's Kapitza law: h_K T_w^2 (1/T_f - 1/T_w)
   double viscosity = 0;         // the nominal twin's eta at its reference temperature (slip)
 };

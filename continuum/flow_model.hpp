@@ -111,6 +111,9 @@ public:
   // At rest; T from the case's expression, else the conduction profile between the walls of the
   // heated direction (T_ref without one). Defined in flow_problem.templates.hpp.
   std::unique_ptr<dealii::Function<dim>> initial_state() const;
+  // The interpolated start made to hold a constraint exactly (compressible: the particle count).
+  template <class VectorType>
+  void normalise_initial_state(const dealii::DoFHandler<dim>& /*dofs*/, VectorType& /*x*/) const {}
 
   std::vector<NamedField> derived_fields() const { return {}; }
   // The number density at a point from s and T (the heat capacity per volume is c_p n).

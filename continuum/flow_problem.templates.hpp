@@ -254,6 +254,7 @@ template <int dim, class Model, class Backend>
 void FlowProblem<dim, Model, Backend>::initial_guess() {
   dealii::VectorTools::interpolate(dof_handler_, *model_.initial_state(), solution_);
   nonzero_constraints_.distribute(solution_);
+  model_.normalise_initial_state(dof_handler_, solution_);
   evaluation_point_ = solution_;
   model_.update_derived_state(dof_handler_, evaluation_point_);
 }

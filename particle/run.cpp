@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include <unistd.h>
+
 #include "particle/archive.hpp"
 #include "particle/diagnostics/diagnostics.hpp"
 #include "particle/simulation.hpp"
@@ -21,6 +23,7 @@ template <class M> class ParticleRun {
 public:
   static constexpr int D = M::D;
   using clock = std::chrono::steady_clock;
+  using Progress = RunControl::Progress;
 
   ParticleRun(const M& model, const ParticleParameters& p)
       : model_(model), p_(p), sim_(model, p),
@@ -64,9 +67,13 @@ public:
       sim_.step();
       ++step_;
       if (step_ % p_.sample_interval == 0 || step_ == total_steps_) sample();
-      if (root && control.progress && clock::now() - last_progress > std::chrono::seconds(2)) {
+      if (root && control.progress != Progress::none &&
+          clock::now() - last_progress > (control.progress == Progress::terminal
+                                              ? std::chrono::seconds(2)
+                                              : std::chrono::seconds(60))) {
         last_progress = clock::now();
-        progress_line();
+        progress_line(control.progress == Progress::terminal ? "\r" : "",
+                      control.progress == Progress::terminal ? "   " : "\n");
       }
       int stop = control.stop_requested && control.stop_requested();
       const bool periodic = control.checkpoint_every_seconds > 0 &&
@@ -86,14 +93,14 @@ public:
         if (root) control.write_checkpoint(c);
         last_checkpoint = clock::now();
         if (stop) {
-          if (root && control.progress) std::fprintf(stderr, "\n");
+          if (root && control.progress == Progress::terminal) std::fprintf(stderr, "\n");
           out_.interrupted = true;
           out_.steps_done = step_;
           return std::move(out_);
         }
       }
     }
-    if (root && control.progress) std::fprintf(stderr, "\n");
+    if (root && control.progress == Progress::terminal) std::fprintf(stderr, "\n");
     if (root) finish(); // on several ranks rank 0 holds the gathered samples
     out_.steps_done = step_;
     return std::move(out_);
@@ -156,13 +163,13 @@ private:
   }
   double elapsed() const { return std::chrono::duration<double>(clock::now() - t0_).count(); }
 
-  void progress_line() const {
+  void progress_line(const char* start, const char* end) const {
     const double secs = elapsed();
     const double rate = step_ / std::max(secs, 1e-9); // includes earlier parts of a restart
     std::fprintf(stderr,
-                 "\rstep %ld/%ld  t = %.2f  %.0f steps/s  ETA %.0f s  T = %.4f  dE/E = %.1e   ",
-                 step_, total_steps_, step_ * p_.dt, rate, (total_steps_ - step_) / rate,
-                 last_t_kinetic_, drift_max_);
+                 "%sstep %ld/%ld  t = %.2f  %.0f steps/s  ETA %.0f s  T = %.4f  dE/E = %.1e%s",
+                 start, step_, total_steps_, step_ * p_.dt, rate, (total_steps_ - step_) / rate,
+                 last_t_kinetic_, drift_max_, end);
   }
 
   void sample() {
@@ -338,6 +345,10 @@ template <class V> auto dispatch(const ParticleParameters& p, V&& visit) {
 }
 
 } // namespace
+
+RunControl::Progress RunControl::progress_for_stderr() {
+  return isatty(STDERR_FILENO) ? Progress::terminal : Progress::log;
+}
 
 RunOutput run_particles(const ParticleParameters& p, const RunControl& control) {
   return dispatch(p, [&](const auto& model) { return drive(model, p, control); });

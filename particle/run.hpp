@@ -38,7 +38,11 @@ struct RunOutput {
 };
 
 struct RunControl {
-  bool progress = false; // a progress line on stderr (terminal only)
+  // A progress line with ETA on stderr: rewritten in place every 2 s on a terminal; one line a
+  // minute into a log file (stderr redirected), so that a long run's log shows where it stands.
+  enum class Progress { none, terminal, log };
+  Progress progress = Progress::none;
+  static Progress progress_for_stderr(); // terminal or log, by isatty(stderr)
   // Polled after every step; true: write a checkpoint and return (RunOutput::interrupted).
   std::function<bool()> stop_requested;
   std::function<void(const io::Checkpoint&)> write_checkpoint;

@@ -15,7 +15,8 @@ namespace fs = std::filesystem;
 
 namespace {
 compare::TwinFacts twin_facts(const continuum::ContinuumParameters& p, double viscosity) {
-  return {p.model == continuum::Model::Boussinesq, p.boundary[0].kapitza_inverse, viscosity};
+  return {p.model == continuum::Model::Boussinesq || p.model == continuum::Model::Compressible,
+          p.boundary[0].kapitza_inverse, viscosity};
 }
 
 // A value handed to the calibrated twin as its record states it: `digits` significant digits.
@@ -31,7 +32,7 @@ Case calibrated_case(const Case& nominal, const fs::path& run_dir) {
   CaseParameters& p = out.parameters;
   const compare::ParticleRecord run = compare::read_particle_record(run_dir, p.scene);
   double viscosity = std::nan("");
-  if (p.compare.wall_slip && p.continuum.model == continuum::Model::Boussinesq)
+  if (p.compare.wall_slip && twin_facts(p.continuum, 0).robin_walls)
     viscosity = io::number(io::read_json(run_dir / "continuum" / "summary.json",
                                          "the nominal twin runs before the calibrated one"),
                            {"continuum_parameters", "viscosity", "value_at_reference"});
@@ -92,7 +93,7 @@ Case calibrated_case(const Case& nominal, const fs::path& run_dir) {
   try {
     continuum::check(p.continuum);
   } catch (const std::invalid_argument& e) {
-    throw io::InputError(std::string("the calibrated twin: ") + e.what());
+    throw NoCalibratedTwin(std::string("the calibrated twin: ") + e.what());
   }
   return out;
 }

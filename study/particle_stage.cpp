@@ -6,8 +6,6 @@
 #include <iostream>
 #include <optional>
 
-#include <unistd.h>
-
 #include "io/checkpoint.hpp"
 #include "io/field_file.hpp"
 #include "io/files.hpp"
@@ -144,7 +142,7 @@ int particle_stage(const Case& c, const RunOptions& options) {
   if (ranks > 1) MPI_Barrier(MPI_COMM_WORLD);
   const auto started = std::chrono::steady_clock::now();
   particle::RunControl control;
-  control.progress = isatty(STDERR_FILENO);
+  control.progress = particle::RunControl::progress_for_stderr();
   control.resume = resume ? &*resume : nullptr;
   control.checkpoint_every_seconds = 60 * p.checkpoint_interval_minutes; // 0: never
   control.stop_requested = [&] {

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "io/files.hpp"
 #include "study/case.hpp"
 
 namespace twinflow::study {
@@ -29,6 +30,10 @@ int continuum_stage(const Case& c, const RunOptions& options,
 
 // The calibrated twin's case: the nominal one with the walls calibrated from the particle run
 // in `run_dir` (compare/calibration.hpp), its values recorded.
+// The particle run's wall measurements make parameters the twin refuses (run: no calibrated twin).
+struct NoCalibratedTwin : io::InputError {
+  using io::InputError::InputError;
+};
 Case calibrated_case(const Case& nominal, const std::filesystem::path& run_dir);
 
 // RUNDIR/compare and RUNDIR/report; `c`: the case the particle run recorded (with the later

@@ -2,8 +2,6 @@
 #include <cmath>
 #include <cstdio>
 
-#include <unistd.h>
-
 #include "io/files.hpp"
 #include "particle/run.hpp"
 #include "particle/wall_summary.hpp"
@@ -44,7 +42,7 @@ WallKappa kappa_from_walls(const scene::SceneParameters& scene,
               w.particle_count(), w.equilibration_steps, w.steps);
   std::fflush(stdout);
   particle::RunControl control;
-  control.progress = isatty(STDERR_FILENO); // a progress line with ETA on a terminal only
+  control.progress = particle::RunControl::progress_for_stderr();
   const particle::RunOutput out = run_on_every_rank(w, control);
   const auto lower = scene::wall_name(heated, 0), upper = scene::wall_name(heated, 1);
   const double q_lo = io::number(out.summary, {"walls", lower.c_str(), "heat_flux_in"});

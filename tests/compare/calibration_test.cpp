@@ -110,7 +110,7 @@ TEST(Calibration, WallTemperaturesWithoutKapitzaAndALowMachTwin) {
   compare::CompareParameters c = without_wall_layer();
   const auto walls = calibrate(c, {false, false, 1.0});
   EXPECT_FALSE(walls.kapitza);
-  EXPECT_FALSE(walls.slip); // Navier slip is a Boussinesq twin's
+  EXPECT_FALSE(walls.slip); // Navier slip is a Boussinesq or compressible twin's
   EXPECT_EQ(walls.notes.size(), 1u);
   EXPECT_NEAR(walls.wall[0][0].fluid_temperature, 1.3, 1e-12);
   EXPECT_NEAR(walls.wall[0][1].fluid_temperature, 0.7, 1e-12);

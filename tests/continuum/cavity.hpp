@@ -25,4 +25,13 @@ inline ContinuumParameters cavity(int dim, double rayleigh, unsigned coarse_cell
   return p;
 }
 
+// The same parameters run in time to `end_time`, every step in the series.
+inline ContinuumParameters in_time(ContinuumParameters p, double end_time, double time_step) {
+  p.mode = Mode::Transient;
+  p.end_time = end_time;
+  p.time_step = time_step;
+  p.series_every = 1;
+  return p;
+}
+
 } // namespace twinflow::continuum::test_cases

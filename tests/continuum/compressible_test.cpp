@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "cavity.hpp"
 #include "continuum/compressible.hpp"
 #include "continuum/run.hpp"
 
@@ -393,14 +394,6 @@ TEST(Compressible, ThinPeriodicBox3DMatches2D) {
 
 namespace {
 
-ContinuumParameters in_time(ContinuumParameters p, double end_time, double time_step) {
-  p.mode = Mode::Transient;
-  p.end_time = end_time;
-  p.time_step = time_step;
-  p.series_every = 1;
-  return p;
-}
-
 // The bins of u_x, u_y, n and T of a run, one vector.
 std::vector<double> bin_values(const ContinuumResult& r) {
   std::vector<double> out;
@@ -419,7 +412,7 @@ TEST(Compressible, TransientReachesTheSteadyState) {
   // count is still exact at the end.
   const ContinuumParameters steady = limit_cavity(Model::Compressible, 0.1, 12);
   const ContinuumResult r_steady = run(steady, "");
-  const ContinuumResult r = run(in_time(steady, 3.0, 0.1), "");
+  const ContinuumResult r = run(test_cases::in_time(steady, 3.0, 0.1), "");
   for (const auto& s : r.time_series)
     if (s.step % 5 == 0)
       std::printf("  t = %4.1f: Nu = %.8f, kinetic energy = %.6e, max speed = %.3f, %d Newton\n",

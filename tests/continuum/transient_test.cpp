@@ -19,14 +19,6 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-ContinuumParameters in_time(ContinuumParameters p, double end_time, double time_step) {
-  p.mode = Mode::Transient;
-  p.end_time = end_time;
-  p.time_step = time_step;
-  p.series_every = 1;
-  return p;
-}
-
 // u_x, u_y, T at a 7x7 grid of interior points of the unit cavity (z = Lz/2 in 3D).
 template <int dim> std::vector<double> point_values(const BoussinesqProblem<dim>& problem) {
   std::vector<double> out;
@@ -60,7 +52,7 @@ TEST(TransientCavity, LateTimeNusseltIsTheSteadyOne) {
   const ContinuumParameters steady = test_cases::cavity(2, 1e4, 8, 1);
   const ContinuumResult r_steady = run(steady, "");
   const auto start = std::chrono::steady_clock::now();
-  const ContinuumResult r = run(in_time(steady, 1.5, 0.05), "");
+  const ContinuumResult r = run(test_cases::in_time(steady, 1.5, 0.05), "");
   const double seconds = seconds_since(start);
   std::printf("Ra = 1e4, 16x16 Q2: steady Nu = %.8f; in time (dt = %g, %d steps, %.1f s): "
               "Nu(t = %g) = %.8f, rel. difference %.2e\n",
@@ -93,7 +85,7 @@ TEST(TransientCavity, SecondOrderInTime) {
   std::vector<std::vector<double>> values;
   const auto start = std::chrono::steady_clock::now();
   for (const int steps : {10, 20, 40, 80}) {
-    BoussinesqProblem<2> problem(in_time(base, 0.1, 0.1 / steps));
+    BoussinesqProblem<2> problem(test_cases::in_time(base, 0.1, 0.1 / steps));
     problem.run("");
     values.push_back(point_values(problem));
   }
@@ -115,11 +107,12 @@ TEST(TransientCavity, PeriodicInZReproduces2D) {
   // The 3D serial direct path in time on a box periodic in z: the z-independent 2D solution is
   // the 3D one at every step, so the time series agree to the Newton tolerance. A 4x4x2 mesh and
   // three steps (BDF1, then BDF2) keep the 3D assembly short.
-  ContinuumParameters p3 = in_time(test_cases::cavity(3, 1e4, 4, 0), 0.03, 0.01);
+  ContinuumParameters p3 = test_cases::in_time(test_cases::cavity(3, 1e4, 4, 0), 0.03, 0.01);
   p3.cells = {{4, 4, 2}};
   p3.linear_solver = LinearSolver::Direct;
   const ContinuumResult r3 = run(p3, "");
-  const ContinuumResult r2 = run(in_time(test_cases::cavity(2, 1e4, 4, 0), 0.03, 0.01), "");
+  const ContinuumResult r2 =
+      run(test_cases::in_time(test_cases::cavity(2, 1e4, 4, 0), 0.03, 0.01), "");
   std::printf("direct 3D in time: %lu DoFs, %d steps, %.1f s (assembly %.1f, solve %.1f, "
               "postprocess %.1f s)\n",
               r3.dofs, r3.time_steps, r3.times.total(), r3.times.assembly, r3.times.solve,
@@ -140,13 +133,14 @@ TEST(TransientCavity, DistributedPathReproduces2D) {
   // p4est + Trilinos FGMRES in time on the same box: the linear solves stop at 1e-8 of the
   // residual, Newton at a relative update of 1e-9; the time series agree with 2D to 1e-6 (4x4x2
   // mesh, three steps).
-  ContinuumParameters p3 = in_time(test_cases::cavity(3, 1e4, 4, 0), 0.03, 0.01);
+  ContinuumParameters p3 = test_cases::in_time(test_cases::cavity(3, 1e4, 4, 0), 0.03, 0.01);
   p3.cells = {{4, 4, 2}};
   p3.linear_solver = LinearSolver::Iterative;
   const auto start = std::chrono::steady_clock::now();
   const ContinuumResult r3 = run(p3, "");
   const double seconds = seconds_since(start);
-  const ContinuumResult r2 = run(in_time(test_cases::cavity(2, 1e4, 4, 0), 0.03, 0.01), "");
+  const ContinuumResult r2 =
+      run(test_cases::in_time(test_cases::cavity(2, 1e4, 4, 0), 0.03, 0.01), "");
   std::printf("distributed 3D in time: %lu DoFs, %d steps, %.1f s (assembly %.1f, solve %.1f, "
               "postprocess %.1f s)\n",
               r3.dofs, r3.time_steps, seconds, r3.times.assembly, r3.times.solve,

@@ -28,12 +28,14 @@ int transport_stage(const Case& c, const RunOptions& options);
 int continuum_stage(const Case& c, const RunOptions& options,
                     const std::string& stage_name = "continuum");
 
-// The calibrated twin's case: the nominal one with the walls calibrated from the particle run
-// in `run_dir` (compare/calibration.hpp), its values recorded.
-// The particle run's wall measurements make parameters the twin refuses (run: no calibrated twin).
+// Thrown by calibrated_case when the particle run's wall measurements make parameters the twin
+// refuses; `run` then goes on without the calibrated twin.
 struct NoCalibratedTwin : io::InputError {
   using io::InputError::InputError;
 };
+
+// The calibrated twin's case: the nominal one with the walls calibrated from the particle run
+// in `run_dir` (compare/calibration.hpp), its values recorded.
 Case calibrated_case(const Case& nominal, const std::filesystem::path& run_dir);
 
 // RUNDIR/compare and RUNDIR/report; `c`: the case the particle run recorded (with the later

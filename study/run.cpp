@@ -56,11 +56,15 @@ int run_all(Case c, const RunOptions& options) {
   // recomputed whenever their inputs changed.
   const StageInputs particle_inputs = stage_inputs(c, {"Scene/", "Particle/"}, {});
   const int ranks = rank_count();
+  // --restart continues what a stop left: the particle run from its checkpoint, or, when the
+  // particle stage had finished (the stop came later), the stages after it.
+  bool rerun_particle = options.force;
   if (const int rc = rank_zero_runs([&] {
+        rerun_particle = options.force ||
+                         (options.restart && fs::exists(run_dir / "particle" / "checkpoint.twfc"));
         const bool reuse_particle =
-            !options.force && !options.restart && reusable(run_dir / "particle", particle_inputs);
-        if (!reuse_particle)
-          io::StageDirectory(run_dir, "particle", options.force || options.restart);
+            !rerun_particle && reusable(run_dir / "particle", particle_inputs);
+        if (!reuse_particle) io::StageDirectory(run_dir, "particle", rerun_particle);
         std::cout << "run: '" << p.name << "': particle, transport, continuum"
                   << (walls ? " (nominal and calibrated)" : "") << ", compare"
                   << (ranks > 1 ? " (particle runs on " + std::to_string(ranks) + " MPI ranks)"
@@ -69,8 +73,9 @@ int run_all(Case c, const RunOptions& options) {
         return 0;
       }))
     return rc;
+  rerun_particle = from_rank_zero(rerun_particle ? "rerun" : "") == "rerun";
   if (const int rc = run_or_reuse(
-          run_dir / "particle", particle_inputs, options.force || options.restart,
+          run_dir / "particle", particle_inputs, rerun_particle,
           [&] { return particle_stage(c, options); }, Ranks::Every))
     return rc;
   RunOptions later = options;

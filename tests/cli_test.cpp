@@ -359,6 +359,12 @@ TEST(Cli, RunComparesTheTwinsAndReusesUnchangedStages) {
         << stage << "\n"
         << again.output;
 
+  // --restart after a finished particle stage (a stop in a later stage) goes on from it.
+  const Result restarted = run("run " + tiny + " --out " + dir.string() + " --restart");
+  ASSERT_EQ(restarted.code, 0) << restarted.output;
+  EXPECT_NE(restarted.output.find("run: particle: inputs unchanged"), std::string::npos)
+      << restarted.output;
+
   const Result mesh = run("run " + tiny + " --set 'Continuum/Mesh/Cells=2' --out " + dir.string());
   ASSERT_EQ(mesh.code, 0) << mesh.output;
   EXPECT_NE(mesh.output.find("run: particle: inputs unchanged"), std::string::npos);

@@ -124,7 +124,7 @@ public:
       if (slabs_.active()) keep_owned();
       grid_.sort(state_, carried_, listed ? &x_listed_ : nullptr);
       if (slabs_.active()) build_ghosts();
-      if (listed) grid_.build_pairs(x_listed_, state_.size(), list_cutoff_);
+      if (listed) grid_.build_pairs(x_listed_, list_cutoff_);
     }
   }
 
@@ -167,7 +167,6 @@ private:
   struct Halo : CellGrid<D>::PhaseHook {
     Simulation* sim = nullptr;
     std::vector<std::vector<double>*> forward_fields, back_fields;
-    std::vector<double> send, receive;
     void forward() override;
     void back() override;
   };

@@ -151,7 +151,7 @@ template <class M> bool Simulation<M>::update_neighbours(bool force) {
   list_positions();
   grid_.sort(state_, carried_, &x_listed_, false);
   list_positions(); // in the sorted order
-  grid_.build_pairs(x_listed_, state_.size(), list_cutoff_);
+  grid_.build_pairs(x_listed_, list_cutoff_);
   return true;
 }
 

@@ -12,15 +12,8 @@ template <class M> int Simulation<M>::owner_of(std::size_t i) const {
   return slabs_.owner(grid_.global_plane(key));
 }
 
-// Owned plus ghost counts move a little at every rebuild. A vector grown by resize doubles its
-// capacity, which left every per-particle array at twice the owned count on two ranks (peak heap
-// 375 bytes per owned particle against one process's 194); growing by an eighth instead keeps
-// the reallocations rare and the arrays near their size.
 template <class M> void Simulation<M>::resize_local(std::size_t n) {
-  const auto fit = [n](auto& a) {
-    if (a.capacity() < n) a.reserve(n + n / 8);
-    a.resize(n);
-  };
+  const auto fit = [n](auto& a) { resize_with_margin(a, n); };
   for (int d = 0; d < D; ++d) {
     fit(state_.x[d]), fit(state_.v[d]), fit(carried_.f[d]);
     if (!x_listed_[d].empty()) fit(x_listed_[d]);
@@ -105,37 +98,24 @@ template <class M> void Simulation<M>::build_ghosts() {
   std::vector<std::vector<double>*> fields;
   for (int d = 0; d < D; ++d) fields.push_back(&state_.x[d]), fields.push_back(&state_.v[d]);
   if (!state_.u.empty()) fields.push_back(&state_.u);
-  const std::size_t nf = fields.size() + 1 + (listed ? D : 0);
   first_plane_count_ = grid_.end(grid_.cells_per_plane() - 1);
   long mine = static_cast<long>(first_plane_count_), theirs = 0;
   MPI_Sendrecv(&mine, 1, MPI_LONG, slabs_.lower, 10, &theirs, 1, MPI_LONG, slabs_.upper, 10,
                slabs_.comm, MPI_STATUS_IGNORE);
   ghost_count_ = static_cast<std::size_t>(theirs);
-  std::vector<double> send;
-  send.reserve(nf * first_plane_count_);
-  for (auto* f : fields) send.insert(send.end(), f->begin(), f->begin() + first_plane_count_);
-  for (std::size_t i = 0; i < first_plane_count_; ++i) send.push_back(state_.id[i]);
+  resize_local(owned_ + ghost_count_);
+  std::vector<ArraySpan> send, receive;
+  const std::size_t m = first_plane_count_, g = ghost_count_, o = owned_;
+  for (auto* f : fields) send.emplace_back(f->data(), m), receive.emplace_back(f->data() + o, g);
+  send.emplace_back(state_.id.data(), m), receive.emplace_back(state_.id.data() + o, g);
   if (listed)
     for (int d = 0; d < D; ++d)
-      for (std::size_t i = 0; i < first_plane_count_; ++i) send.push_back(x_listed_[d][i]);
-  std::vector<double> receive(nf * ghost_count_);
-  MPI_Sendrecv(send.data(), static_cast<int>(send.size()), MPI_DOUBLE, slabs_.lower, 11,
-               receive.data(), static_cast<int>(receive.size()), MPI_DOUBLE, slabs_.upper, 11,
-               slabs_.comm, MPI_STATUS_IGNORE);
-  resize_local(owned_ + ghost_count_);
-  const double* p = receive.data();
-  for (auto* f : fields)
-    for (std::size_t k = 0; k < ghost_count_; ++k) (*f)[owned_ + k] = *p++;
-  for (std::size_t k = 0; k < ghost_count_; ++k)
-    state_.id[owned_ + k] = static_cast<std::uint32_t>(*p++);
-  if (listed) {
-    for (int d = 0; d < D; ++d)
-      for (std::size_t k = 0; k < ghost_count_; ++k)
-        x_listed_[d][owned_ + k] = static_cast<float>(*p++);
+      send.emplace_back(x_listed_[d].data(), m), receive.emplace_back(x_listed_[d].data() + o, g);
+  sendrecv_spans(send, slabs_.lower, receive, slabs_.upper, 11, slabs_.comm);
+  if (listed)
     grid_.set_ghost_cells(x_listed_, owned_, ghost_count_);
-  } else {
+  else
     grid_.set_ghost_cells(state_.x, owned_, ghost_count_);
-  }
 }
 
 // update_neighbours' rebuild on a slab: the one-process steps (wrap, list the positions, sort by
@@ -154,7 +134,7 @@ template <class M> void Simulation<M>::rebuild_slab() {
   build_ghosts();
   if (p_.integrator == Integrator::Euler) return;
   if (listed)
-    grid_.build_pairs(x_listed_, state_.size(), list_cutoff_);
+    grid_.build_pairs(x_listed_, list_cutoff_);
   else
     grid_.build_pairs(state_, list_cutoff_);
 }
@@ -222,30 +202,20 @@ void Simulation<M>::halo(std::initializer_list<std::vector<double>*> forward,
 // The upper rank's first plane, as its even phase left it, into this rank's ghost plane.
 template <class M> void Simulation<M>::Halo::forward() {
   const std::size_t m = sim->first_plane_count_, g = sim->ghost_count_, o = sim->owned_;
-  send.clear();
-  for (auto* f : forward_fields) send.insert(send.end(), f->begin(), f->begin() + m);
-  receive.resize(forward_fields.size() * g);
-  MPI_Sendrecv(send.data(), static_cast<int>(send.size()), MPI_DOUBLE, sim->slabs_.lower, 20,
-               receive.data(), static_cast<int>(receive.size()), MPI_DOUBLE, sim->slabs_.upper, 20,
-               sim->slabs_.comm, MPI_STATUS_IGNORE);
-  const double* p = receive.data();
+  std::vector<ArraySpan> send, receive;
   for (auto* f : forward_fields)
-    for (std::size_t k = 0; k < g; ++k) (*f)[o + k] = *p++;
+    send.emplace_back(f->data(), m), receive.emplace_back(f->data() + o, g);
+  sendrecv_spans(send, sim->slabs_.lower, receive, sim->slabs_.upper, 20, sim->slabs_.comm);
 }
 
-// The ghost plane's updates back to its owner, whose first plane they are.
+// The ghost plane's updates back to its owner, whose first plane they are (none below a wall:
+// no rank holds them as ghosts, and nothing arrives from MPI_PROC_NULL).
 template <class M> void Simulation<M>::Halo::back() {
   const std::size_t m = sim->first_plane_count_, g = sim->ghost_count_, o = sim->owned_;
-  send.clear();
-  for (auto* f : back_fields) send.insert(send.end(), f->begin() + o, f->begin() + o + g);
-  receive.resize(back_fields.size() * m);
-  MPI_Sendrecv(send.data(), static_cast<int>(send.size()), MPI_DOUBLE, sim->slabs_.upper, 21,
-               receive.data(), static_cast<int>(receive.size()), MPI_DOUBLE, sim->slabs_.lower, 21,
-               sim->slabs_.comm, MPI_STATUS_IGNORE);
-  if (sim->slabs_.lower == MPI_PROC_NULL) return; // a wall below: no rank holds these as ghosts
-  const double* p = receive.data();
+  std::vector<ArraySpan> send, receive;
   for (auto* f : back_fields)
-    for (std::size_t k = 0; k < m; ++k) (*f)[k] = *p++;
+    send.emplace_back(f->data() + o, g), receive.emplace_back(f->data(), m);
+  sendrecv_spans(send, sim->slabs_.upper, receive, sim->slabs_.lower, 21, sim->slabs_.comm);
 }
 
 template <class M> void Simulation<M>::share_emissions() {

@@ -114,7 +114,7 @@ template <int D> void CellGrid<D>::build_stencil() {
 
 template <int D>
 template <class T>
-void CellGrid<D>::build_pairs(const Positions<T>& x, std::size_t count, double rc) {
+void CellGrid<D>::build_pairs(const Positions<T>& x, double rc) {
   const double rc2 = rc * rc;
   for (int c = 0; c < total_; ++c)
     if (start_[c + 1] - start_[c] > 65536)
@@ -123,12 +123,13 @@ void CellGrid<D>::build_pairs(const Positions<T>& x, std::size_t count, double r
                                " particles; the pair list takes at most 65536 (density too high)");
   const std::size_t threads = static_cast<std::size_t>(std::max(1, omp_get_max_threads()));
   if (buffers_.size() < threads) buffers_.resize(threads);
-  // First guess of the pairs per thread, 10% above the uniform density's N rho V_D(rc) / 2, so
-  // that a buffer is allocated once instead of grown through copies (peak memory).
-  double volume = 1; // of the cells this grid holds (a slab's planes, its ghost plane included)
-  for (int d = 0; d < D; ++d) volume *= n_[d] * side(d);
+  // First guess of the pairs per thread, 10% above the uniform density's n rho V_D(rc) / 2 with
+  // n the particles whose pairs this grid lists (a slab's ghost plane only ever holds a pair's
+  // j), so that a buffer is allocated once instead of grown through copies (peak memory).
+  double volume = units_ * side(D - 1); // of the planes whose pairs are listed
+  for (int d = 0; d < D - 1; ++d) volume *= n_[d] * side(d);
   const double ball = D == 3 ? 4.18879020478639 * rc2 * rc : 3.141592653589793 * rc2;
-  const double n = static_cast<double>(count);
+  const double n = static_cast<double>(start_[units_ * cells_per_plane()] - start_[0]);
   const auto guess = static_cast<std::size_t>(1.1 * 0.5 * n * n / volume * ball / threads) + 4096;
   const long rows = static_cast<long>(row_range_.size()), nx = n_[0];
 #pragma omp parallel
@@ -137,7 +138,8 @@ void CellGrid<D>::build_pairs(const Positions<T>& x, std::size_t count, double r
     PairBuffer& b = buffers_[t];
     b.used = 0;
     b.segments.clear();
-    b.i.grow(guess, 0), b.j.grow(guess, 0);
+    if (b.i.size() < guess) // a little more, so that the next lists seldom reallocate
+      b.i.grow(guess + guess / 32, 0), b.j.grow(guess + guess / 32, 0);
 #pragma omp for schedule(static)
     for (long row = 0; row < rows; ++row) {
       RowRange& r = row_range_[row];
@@ -286,7 +288,7 @@ void CellGrid<D>::sort(State<D>& s, Carried<D>& carried, const ListedPositions* 
                        bool keep_carried) {
   const std::size_t n = s.size();
   pairs_valid_ = false;
-  cell_.resize(n);
+  resize_with_margin(cell_, n);
   std::fill(start_.begin(), start_.end(), 0);
   const long count = static_cast<long>(n);
   wrap(s);
@@ -298,7 +300,7 @@ void CellGrid<D>::sort(State<D>& s, Carried<D>& carried, const ListedPositions* 
   for (std::size_t i = 0; i < n; ++i) ++start_[cell_[i] + 1];
   std::partial_sum(start_.begin(), start_.end(), start_.begin());
   // Counting sort by cell, then by id inside each cell (lists are short and nearly sorted).
-  order_.resize(n);
+  resize_with_margin(order_, n);
   std::vector<std::size_t> fill(start_.begin(), start_.end() - 1);
   for (std::size_t i = 0; i < n; ++i) order_[fill[cell_[i]]++] = static_cast<int>(i);
   for (int c = 0; c < total_; ++c) {
@@ -328,9 +330,9 @@ void CellGrid<D>::sort(State<D>& s, Carried<D>& carried, const ListedPositions* 
 
 template class CellGrid<2>;
 template class CellGrid<3>;
-template void CellGrid<2>::build_pairs(const Positions<double>&, std::size_t, double);
-template void CellGrid<3>::build_pairs(const Positions<double>&, std::size_t, double);
-template void CellGrid<2>::build_pairs(const Positions<float>&, std::size_t, double);
-template void CellGrid<3>::build_pairs(const Positions<float>&, std::size_t, double);
+template void CellGrid<2>::build_pairs(const Positions<double>&, double);
+template void CellGrid<3>::build_pairs(const Positions<double>&, double);
+template void CellGrid<2>::build_pairs(const Positions<float>&, double);
+template void CellGrid<3>::build_pairs(const Positions<float>&, double);
 
 } // namespace twinflow::particle

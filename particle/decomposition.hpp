@@ -100,8 +100,7 @@ template <> inline MPI_Datatype mpi_type<long>() {
   return MPI_LONG;
 }
 
-// The ranks' arrays concatenated in rank order on rank 0 (elsewhere `out` is left empty).
-// A range of one array, as part of a message (ArrayMessage).
+// A range of one array, as part of a message (sendrecv_spans).
 struct ArraySpan {
   void* data;
   std::size_t count;
@@ -137,6 +136,7 @@ inline void sendrecv_spans(const std::vector<ArraySpan>& send, int to,
   MPI_Type_free(&out), MPI_Type_free(&in);
 }
 
+// The ranks' arrays concatenated in rank order on rank 0 (elsewhere `out` is left empty).
 template <class T>
 void gather_in_rank_order(const Slabs& s, const T* local, std::size_t count, std::vector<T>& out) {
   int n = static_cast<int>(count);

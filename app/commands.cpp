@@ -130,7 +130,8 @@ const std::vector<Command>& commands() {
        "twinflow particle CASE [options]\n\n"
        "The case's Scene and Particle sections as DPDE particles into RUNDIR/particle/\n"
        "(summary.json, fields.h5 + fields.xdmf, thermo.csv, ...). Checkpoints every\n"
-       "Particle/Checkpoint interval minutes (default 10) and when stopped (Ctrl-C, SIGTERM).\n\n"
+       "Particle/Checkpoint interval minutes (default 10) and when stopped (Ctrl-C, SIGTERM, "
+       "SIGUSR1).\n\n"
        "options:\n" TWINFLOW_STAGE_OPTIONS TWINFLOW_RESTART_OPTIONS "\nexample:\n"
        "  twinflow particle cases/heated_cavity_2d.prm --out runs/cavity --set "
        "'Particle/Steps=4000'\n\n" TWINFLOW_EXIT_CODES},

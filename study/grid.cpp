@@ -405,9 +405,15 @@ int run_children(const std::vector<ChildTask>& tasks, int jobs,
       running.push_back({spawn(t), next, std::chrono::steady_clock::now(), offset});
       ++next;
     }
+    // To a launcher's group (the shell, or the launcher it became) the stop goes as SIGUSR1:
+    // srun and mpirun pass it on to the ranks, which checkpoint and exit 5, while srun answers
+    // SIGTERM by cancelling the step with SIGKILL (measured: Slurm 22.05, docs/cluster.md).
     for (; forwarded < signals_received; ++forwarded)
-      for (const auto& r : running) // a launcher's group: the shell, or the launcher it became
-        kill(tasks[r.task].launcher.empty() ? r.pid : -r.pid, last_signal);
+      for (const auto& r : running)
+        if (tasks[r.task].launcher.empty())
+          kill(r.pid, last_signal);
+        else
+          kill(-r.pid, SIGUSR1);
     if (running.empty() && (next == tasks.size() || signals_received > 0)) break;
     bool reaped = false;
     for (auto it = running.begin(); it != running.end();) {

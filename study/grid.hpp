@@ -4,6 +4,7 @@
 // point cannot stop the others), the table written after every finished point, and resuming an
 // interrupted grid from that table and the points' own files.
 
+#include <csignal>
 #include <filesystem>
 #include <functional>
 #include <string>
@@ -91,6 +92,13 @@ struct ChildResult {
   bool stopped = false;    // the grid forwarded a stop signal (Ctrl-C, SIGTERM) to it
 };
 
+// A child stopped by a signal: with a checkpoint (exit 5), or killed by one of the stop signals
+// outside its particle stage (128 + N).
+inline bool interrupted_exit(int exit_code) {
+  return exit_code == kExitInterrupted || exit_code == 128 + SIGINT || exit_code == 128 + SIGTERM ||
+         exit_code == 128 + SIGUSR1;
+}
+
 // Runs `twinflow ARGUMENTS` (this very binary) with stdout and stderr appended to `log`; with a
 // launcher, `/bin/sh -c` runs launched_command(launcher, ...) instead.
 struct ChildTask {
@@ -108,8 +116,8 @@ void save_environment_before_mpi();
 std::string task_command(const ChildTask&);
 
 // Runs the tasks, up to `jobs` at once, and calls `on_done` (in this thread) as each ends. On
-// SIGINT/SIGTERM no new task starts and the signal is forwarded to the running ones, which are
-// waited for. Returns the signal received (0: none).
+// SIGINT/SIGTERM no new task starts and the signal is forwarded to the running ones (as SIGUSR1
+// to a launcher), which are waited for. Returns the signal received (0: none).
 int run_children(const std::vector<ChildTask>& tasks, int jobs,
                  const std::function<void(std::size_t task, const ChildResult&)>& on_done);
 

@@ -135,6 +135,7 @@ int particle_stage(const Case& c, const RunOptions& options) {
   stop_signal = 0; // from here on a signal stops the run cleanly, with a checkpoint
   std::signal(SIGINT, on_stop_signal);
   std::signal(SIGTERM, on_stop_signal);
+  std::signal(SIGUSR1, on_stop_signal); // what a launcher passes on to its ranks (grid.cpp)
   if (root) {
     stage.create();
     if (!options.restart) fs::remove(checkpoint_path); // a fresh run leaves no old one behind
@@ -168,6 +169,7 @@ int particle_stage(const Case& c, const RunOptions& options) {
   }
   std::signal(SIGINT, SIG_DFL);
   std::signal(SIGTERM, SIG_DFL);
+  std::signal(SIGUSR1, SIG_DFL);
   if (!root) return out.interrupted ? kExitInterrupted : 0;
   if (out.interrupted) {
     std::cerr << "twinflow: particle run "

@@ -219,8 +219,7 @@ int stability(const GridOptions& cl, const CaseReader& reader) {
       classify_summary(p.resolved, point_dir, row);
     else if (r.exit_code == 4) // particle::InstabilityError
       row["status"] = classify_instability(r.message);
-    else if (r.exit_code == kExitInterrupted || r.exit_code == 128 + SIGINT ||
-             r.exit_code == 128 + SIGTERM)
+    else if (interrupted_exit(r.exit_code))
       row["status"] = "interrupted";
     else
       row["status"] = "failed";

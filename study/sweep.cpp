@@ -71,8 +71,7 @@ void add_metrics(const fs::path& point_dir, const std::set<std::string>& reserve
 
 std::string status_of(int exit_code) {
   if (exit_code == 0) return "done";
-  if (exit_code == kExitInterrupted || exit_code == 128 + SIGINT || exit_code == 128 + SIGTERM)
-    return "interrupted";
+  if (interrupted_exit(exit_code)) return "interrupted";
   return "failed";
 }
 

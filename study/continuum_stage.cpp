@@ -177,6 +177,12 @@ int continuum_stage(const Case& c, const RunOptions& options, const std::string&
               << ", epsilon = " << numbers.epsilon
               << ", g H / c^2 = " << parameters.scene.stratification(p.particle_mass) << std::endl;
 
+  const bool eos_matters =
+      p.model == continuum::Model::LowMach || p.model == continuum::Model::Compressible;
+  if (root && eos_matters && parameters.particle.conservative != particle::ConservativeForce::None)
+    std::cout << "continuum: note: the twin's equation of state is the ideal DPDE fluid's, "
+                 "p = n k T; this fluid's conservative force adds to its pressure, which the "
+                 "twin's density and pressure work leave out (docs/validation.md, Open)\n";
   if (root) stage.create();
   MPI_Barrier(comm);
   const continuum::ContinuumResult result = continuum::run(p, stage.path(), comm);

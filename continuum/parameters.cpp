@@ -110,8 +110,7 @@ void check(const ContinuumParameters& p) {
               "wall temperatures must be > 0");
     for (int side = 0; side < 2; ++side)
       require(p.boundary[d].kapitza_conductance[side] >= 0 &&
-                  (p.model == Model::Boussinesq || p.model == Model::Compressible ||
-                   p.boundary[d].kapitza_conductance[side] == 0),
+                  (has_robin_walls(p.model) || p.boundary[d].kapitza_conductance[side] == 0),
               "Kapitza conductances must be >= 0, and > 0 only in the Boussinesq and "
               "compressible models");
   }

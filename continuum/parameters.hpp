@@ -11,6 +11,10 @@
 namespace twinflow::continuum {
 
 enum class Model { Boussinesq, HeatConduction, LowMach, Compressible };
+// The models whose walls take Kapitza conductances and Navier slip (Robin conditions).
+inline bool has_robin_walls(Model m) {
+  return m == Model::Boussinesq || m == Model::Compressible;
+}
 // Steady: the stationary equations (Newton). Transient: march in time from the initial state to
 // end_time (Boussinesq: BDF2, low-Mach: implicit Euler, heat conduction: theta scheme).
 enum class Mode { Steady, Transient };

@@ -14,13 +14,8 @@ namespace twinflow::study {
 namespace fs = std::filesystem;
 
 namespace {
-// The twins whose walls take Kapitza conductances and Navier slip (continuum::check allows them).
-bool robin_walls(continuum::Model m) {
-  return m == continuum::Model::Boussinesq || m == continuum::Model::Compressible;
-}
-
 compare::TwinFacts twin_facts(const continuum::ContinuumParameters& p, double viscosity) {
-  return {robin_walls(p.model), p.boundary[0].kapitza_inverse, viscosity};
+  return {continuum::has_robin_walls(p.model), p.boundary[0].kapitza_inverse, viscosity};
 }
 
 // A value handed to the calibrated twin as its record states it: `digits` significant digits.
@@ -36,7 +31,7 @@ Case calibrated_case(const Case& nominal, const fs::path& run_dir) {
   CaseParameters& p = out.parameters;
   const compare::ParticleRecord run = compare::read_particle_record(run_dir, p.scene);
   double viscosity = std::nan("");
-  if (p.compare.wall_slip && robin_walls(p.continuum.model))
+  if (p.compare.wall_slip && continuum::has_robin_walls(p.continuum.model))
     viscosity = io::number(io::read_json(run_dir / "continuum" / "summary.json",
                                          "the nominal twin runs before the calibrated one"),
                            {"continuum_parameters", "viscosity", "value_at_reference"});

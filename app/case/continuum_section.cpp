@@ -253,8 +253,8 @@ continuum::ContinuumParameters resolve_continuum(const Registry& r,
     r.require(!c.boundary[d].periodic && c.boundary[d].fixed_temperature[side],
               s + "Kapitza conductances",
               "0 for periodic directions and adiabatic walls (h_K > 0 only at thermal walls)");
-    r.require(c.model == continuum::Model::Boussinesq || c.model == continuum::Model::Compressible,
-              s + "Kapitza conductances", "0 unless Continuum/Model = boussinesq or compressible");
+    r.require(continuum::has_robin_walls(c.model), s + "Kapitza conductances",
+              "0 unless Continuum/Model = boussinesq or compressible");
     c.boundary[d].kapitza_conductance[side] = kapitza[w];
   }
   const std::vector<double> kapitza_errors = r.get_doubles(s + "Kapitza conductance errors");

@@ -613,7 +613,7 @@ int run_study(const GridOptions& o, Study& s, std::vector<Point>& points) {
     t.arguments = {s.child_command, o.case_file, "--out", point_dir.string()};
     for (const auto& a : o.settings) t.arguments.insert(t.arguments.end(), {"--set", a});
     for (const auto& a : p.assignments) t.arguments.insert(t.arguments.end(), {"--set", a});
-    const bool restart = fs::exists(point_dir / "particle" / "checkpoint.twfc");
+    const bool restart = fs::exists(particle_checkpoint(point_dir));
     if (restart)
       t.arguments.push_back("--restart"); // the particle stage continues from its checkpoint
     else if (has_stage_folder(point_dir))
@@ -677,8 +677,7 @@ int run_study(const GridOptions& o, Study& s, std::vector<Point>& points) {
     s.describe(points[i], point_dir, result, row);
     // A launcher may end with its own code when stopped (mpirun: 1, whatever its ranks said):
     // a point stopped by the forwarded signal that left a checkpoint was interrupted.
-    if (result.stopped && result.exit_code != 0 &&
-        fs::exists(point_dir / "particle" / "checkpoint.twfc"))
+    if (result.stopped && result.exit_code != 0 && fs::exists(particle_checkpoint(point_dir)))
       row["status"] = "interrupted";
     // A continued particle run adds to the wall time of its earlier attempts.
     const double before = io::number(row, {"wall_seconds"});

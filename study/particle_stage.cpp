@@ -106,7 +106,7 @@ int particle_stage(const Case& c, const RunOptions& options) {
   const bool root = particle::Slabs::world_rank() == 0;
   const fs::path run_dir = run_directory(options, p.name);
   const io::StageDirectory stage(run_dir, "particle", options.force && !options.restart);
-  const fs::path checkpoint_path = stage.file("checkpoint.twfc");
+  const fs::path checkpoint_path = particle_checkpoint(run_dir);
   // The checkpoint belongs to these exact parameters: a changed case cannot continue it (keys
   // that change no result, the checkpoint interval, may change).
   io::Json record = c.record;

@@ -60,8 +60,8 @@ int run_all(Case c, const RunOptions& options) {
   // particle stage had finished (the stop came later), the stages after it.
   bool rerun_particle = options.force;
   if (const int rc = rank_zero_runs([&] {
-        rerun_particle = options.force ||
-                         (options.restart && fs::exists(run_dir / "particle" / "checkpoint.twfc"));
+        rerun_particle =
+            options.force || (options.restart && fs::exists(particle_checkpoint(run_dir)));
         const bool reuse_particle =
             !rerun_particle && reusable(run_dir / "particle", particle_inputs);
         if (!reuse_particle) io::StageDirectory(run_dir, "particle", rerun_particle);

@@ -39,6 +39,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <memory>
 #include <sstream>
 #include <stdexcept>
 #include <vector>
@@ -74,9 +75,8 @@ public:
   CompressibleModel(const ContinuumParameters& prm, const DimensionlessNumbers& numbers,
                     const dealii::FiniteElement<dim>& fe)
       : FlowModel<dim>(prm, numbers), values_(fe, dealii::QGauss<dim>(3)), walls_(fe, prm),
-        c_v_(heat_capacity_v(prm.equation_of_state, prm.heat_capacity)), grad_n_(values_.n_q),
-        history_u_(values_.n_q), history_n_(values_.n_q), history_T_(values_.n_q),
-        dofs_(fe.n_dofs_per_cell()) {
+        c_v_(heat_capacity_v(prm.heat_capacity)), grad_n_(values_.n_q), history_u_(values_.n_q),
+        history_n_(values_.n_q), history_T_(values_.n_q), dofs_(fe.n_dofs_per_cell()) {
     volume_ = 1;
     for (int d = 0; d < dim; ++d) volume_ *= prm.box[d];
     total_particles_ = prm.number_density * volume_; // N = n_mean |Omega|
@@ -94,7 +94,7 @@ public:
   // time where this takes 0.1.
   std::unique_ptr<dealii::Function<dim>> initial_state() const {
     std::shared_ptr<dealii::Function<dim>> temperature = FlowModel<dim>::initial_state();
-    return std::make_unique<InitialState>(this->prm_, std::move(temperature));
+    return std::make_unique<InitialState>(this->prm_, std::move(temperature), start_);
   }
   // The pressure p(n, T), for output and bins.
   std::vector<NamedField> derived_fields() const {
@@ -187,17 +187,25 @@ public:
   void finish_result(const dealii::DoFHandler<dim>& dofs, const VectorType& x,
                      const FlowIntegrals& flow, ContinuumResult& result) const;
 
-  // For a manufactured solution (tests): f(x) with dim + 2 components added to the right-hand
-  // sides of momentum, mass and energy.
-  using Forcing = std::function<void(const dealii::Point<dim>&, dealii::Vector<double>&)>;
+  // For a manufactured solution (tests): f(x, t) with dim + 2 components added to the
+  // right-hand sides of momentum, mass and energy (t: the time of the step's end; 0 steady),
+  // and its exact state as the start in time.
+  using Forcing = std::function<void(const dealii::Point<dim>&, double, dealii::Vector<double>&)>;
   void set_forcing(Forcing f) { forcing_ = std::move(f); }
+  void set_initial_state(std::shared_ptr<dealii::Function<dim>> start) {
+    start_ = std::move(start);
+  }
+  void begin_time_step(double time) { time_ = time; }
 
 private:
   class InitialState : public dealii::Function<dim> {
   public:
-    InitialState(const ContinuumParameters& prm, std::shared_ptr<dealii::Function<dim>> T)
-        : dealii::Function<dim>(dim + 2), prm_(prm), temperature_(std::move(T)) {}
+    InitialState(const ContinuumParameters& prm, std::shared_ptr<dealii::Function<dim>> T,
+                 std::shared_ptr<dealii::Function<dim>> given)
+        : dealii::Function<dim>(dim + 2), prm_(prm), temperature_(std::move(T)),
+          given_(std::move(given)) {}
     double value(const dealii::Point<dim>& p, unsigned component) const override {
+      if (given_) return given_->value(p, component);
       if (component < dim) return 0.0;
       if (component == dim + 1) return temperature_->value(p, dim + 1);
       std::array<double, 3> x{{0, 0, 0}};
@@ -207,7 +215,7 @@ private:
 
   private:
     const ContinuumParameters& prm_;
-    std::shared_ptr<dealii::Function<dim>> temperature_;
+    std::shared_ptr<dealii::Function<dim>> temperature_, given_;
   };
 
   double volume_ = 0, total_particles_ = 0;
@@ -224,6 +232,8 @@ private:
   std::vector<double> history_n_, history_T_;
   std::vector<dealii::types::global_dof_index> dofs_;
   Forcing forcing_;
+  std::shared_ptr<dealii::Function<dim>> start_; // a test's start in time, else InitialState's
+  double time_ = 0;
   dealii::Vector<double> force_ = dealii::Vector<double>(dim + 2);
 };
 
@@ -271,7 +281,7 @@ void CompressibleModel<dim>::assemble_cell(const CellIterator<dim>& cell, const 
     const dealii::Tensor<1, dim> flux = n[q] * u[q];                           // n u
     const double heating = 2 * eta * (eps_u * eps_u) + lambda * div_u * div_u; // tau : grad u
     const double JxW = v.fe_values.JxW(q);
-    if (forcing_) forcing_(v.fe_values.quadrature_point(q), force_);
+    if (forcing_) forcing_(v.fe_values.quadrature_point(q), time_, force_);
     v.shape_functions(q);
     for (unsigned k = 0; k < v.n; ++k) grad_phi_n[k] = v.fe_values[v.scalar].gradient(k, q);
     for (unsigned i = 0; i < v.n; ++i) {

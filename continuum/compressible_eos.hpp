@@ -3,12 +3,13 @@
 // with the derivatives the exact Newton Jacobian needs, and the heat capacity per particle at
 // constant volume c_V = (de/dT)_n. Particle units, k = 1 (physics.md).
 //
-// Ideal DPDE fluid (no conservative force): p = n k T (000:(3.20)) and the energy per particle
-// e = (d/2) k T + (c_v + k) T (000:(3.21)), so c_V = c_p - k is constant and (de/dn)_T = 0.
-// The hook for the particle fluid's measured p(n, T) with a conservative force (the transport
-// stage's bulk runs at a few densities and temperatures): add an EquationOfState value and return
-// its fitted p and derivatives here, and its c_V(n, T) (then with derivatives, which the model's
-// Jacobian would need: today it takes c_V constant). Not done yet.
+// p = n k T + n^2 B, B = b0 + b1 k T + b2 (n - n_ref): the ideal DPDE fluid at B = 0
+// (000:(3.20)); with a conservative force, the transport stage's fit to its bulk runs
+// (transport/measure.hpp). Thermodynamic consistency fixes the energy: (de/dn)_T =
+// (p - T p_T) / n^2 = b0 + b2 (n - n_ref) (the Maxwell relation (dE/dV)_T = T p_T - p; Landau &
+// Lifshitz, Statistical Physics, sec. 16) does not depend on T, so c_V = (de/dT)_n is the ideal
+// fluid's. The energy equation n c_V DT/Dt = -T p_T div u + ... (compressible.hpp) needs
+// nothing more.
 
 #include "continuum/parameters.hpp"
 
@@ -24,35 +25,30 @@ struct PressureWork {
   double value = 0, d_n = 0, d_T = 0; // T p_T and its derivatives in n and T
 };
 
-inline PressureState pressure(EquationOfState eos, double n, double T) {
+inline PressureState pressure(const EquationOfState& eos, double n, double T) {
+  const double B = eos.b0 + eos.b1 * T + eos.b2 * (n - eos.n_ref); // excess pressure / n^2
   PressureState s;
-  switch (eos) {
-  case EquationOfState::IdealGas:
-    // p = n k T, k = 1 (000:(3.20))
-    s.p = n * T;
-    s.p_n = T;
-    s.p_T = n;
-    s.p_nT = 1;
-    break;
-  }
+  s.p = n * T + n * n * B; // 000:(3.20) plus the fitted excess n^2 B
+  s.p_n = T + 2 * n * B + n * n * eos.b2;
+  s.p_T = n + n * n * eos.b1;
+  s.p_nn = 2 * B + 4 * n * eos.b2;
+  s.p_nT = 1 + 2 * n * eos.b1;
+  s.p_TT = 0;
   return s;
 }
 
 // The pressure work of the internal-energy equation, T (dp/dT)_n div u (Landau & Lifshitz,
 // Fluid Mechanics, sec. 49, with the Maxwell relation (ds/dv)_T = (dp/dT)_v), and its derivatives
-// in n and T (ideal gas: p itself).
+// in n and T.
 inline PressureWork pressure_work(const PressureState& s, double T) {
   return {T * s.p_T, T * s.p_nT, s.p_T + T * s.p_TT};
 }
 
 // c_V per particle, (de/dT)_n: the ideal DPDE fluid's c_v + k + (d/2) k (000:(3.21)), which is
-// c_p - k for the ideal gas (physics.md: c_p adds k). `heat_capacity_p` is the case's c_p.
-inline double heat_capacity_v(EquationOfState eos, double heat_capacity_p) {
-  switch (eos) {
-  case EquationOfState::IdealGas:
-    return heat_capacity_p - 1.0; // c_V = c_p - k, k = 1 (physics.md)
-  }
-  return heat_capacity_p;
+// c_p - k of the ideal fluid (physics.md: c_p adds k); the excess pressure adds none (above).
+// `ideal_heat_capacity_p` is the case's c_p, the ideal fluid's.
+inline double heat_capacity_v(double ideal_heat_capacity_p) {
+  return ideal_heat_capacity_p - 1.0; // c_V = c_p - k, k = 1 (physics.md)
 }
 
 } // namespace twinflow::continuum

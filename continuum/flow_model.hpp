@@ -135,7 +135,7 @@ public:
   template <class VectorType>
   void begin_assembly(const dealii::DoFHandler<dim>&, const VectorType&, bool /*with_jacobian*/) {}
   template <class VectorType> void end_assembly(VectorType& /*row*/) const {}
-  void begin_time_step() {}
+  void begin_time_step(double /*time at the step's end*/) {}
   template <class VectorType>
   void finish_result(const dealii::DoFHandler<dim>&, const VectorType&, const FlowIntegrals&,
                      ContinuumResult&) const {}

@@ -44,12 +44,15 @@ public:
   // For tests (serial backend): L2 norms over the box of u - u_exact, s - s_exact, T - T_exact,
   // `exact` with the dim + 2 components.
   std::array<double, 3> l2_errors(const dealii::Function<dim>& exact) const;
+  // The same norms of this solution less `other`'s on the same mesh (a time-step study).
+  std::array<double, 3> l2_difference(const FlowProblem& other) const;
   unsigned long n_dofs() const { return dof_handler_.n_dofs(); }
   const Model& model() const { return model_; }
   Model& model() { return model_; } // for tests: a manufactured solution's forcing
 
 private:
   using Vector = typename Backend::Vector;
+  std::array<double, 3> l2_norms(const Vector& x, const dealii::Function<dim>& exact) const;
   using GhostedVector = typename Backend::GhostedVector;
 
   void setup_dofs();

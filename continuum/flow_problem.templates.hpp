@@ -173,7 +173,7 @@ void FlowProblem<dim, Model, Backend>::march_in_time(const std::filesystem::path
     older_ = previous;
     previous_ = solution_;
     previous = solution_;
-    model_.begin_time_step();
+    model_.begin_time_step(schedule.time(step));
     int iterations = 0;
     if (!newton(1.0, iterations))
       throw std::runtime_error(std::string(Model::name) +
@@ -508,6 +508,21 @@ FlowProblem<dim, Model, Backend>::value_at(const dealii::Point<dim>& point) cons
 template <int dim, class Model, class Backend>
 std::array<double, 3>
 FlowProblem<dim, Model, Backend>::l2_errors(const dealii::Function<dim>& exact) const {
+  return l2_norms(solution_, exact);
+}
+
+template <int dim, class Model, class Backend>
+std::array<double, 3>
+FlowProblem<dim, Model, Backend>::l2_difference(const FlowProblem& other) const {
+  Vector difference = solution_;
+  difference -= other.solution_;
+  return l2_norms(difference, dealii::Functions::ZeroFunction<dim>(dim + 2));
+}
+
+template <int dim, class Model, class Backend>
+std::array<double, 3>
+FlowProblem<dim, Model, Backend>::l2_norms(const Vector& x,
+                                           const dealii::Function<dim>& exact) const {
   std::array<double, 3> errors{{0, 0, 0}};
   if constexpr (Backend::distributed) {
     throw std::logic_error("l2_errors: serial backend only");
@@ -518,8 +533,8 @@ FlowProblem<dim, Model, Backend>::l2_errors(const dealii::Function<dim>& exact) 
     for (int k = 0; k < 3; ++k) {
       const dealii::ComponentSelectFunction<dim> select(ranges[k], dim + 2);
       dealii::Vector<float> per_cell(dof_handler_.get_triangulation().n_active_cells());
-      dealii::VectorTools::integrate_difference(dof_handler_, solution_, exact, per_cell,
-                                                quadrature, dealii::VectorTools::L2_norm, &select);
+      dealii::VectorTools::integrate_difference(dof_handler_, x, exact, per_cell, quadrature,
+                                                dealii::VectorTools::L2_norm, &select);
       errors[k] = dealii::VectorTools::compute_global_error(dof_handler_.get_triangulation(),
                                                             per_cell, dealii::VectorTools::L2_norm);
     }

@@ -62,9 +62,7 @@ public:
   std::vector<NamedField> derived_fields() const {
     return {{"n", [this](const dealii::Vector<double>& v) { return density(0.0, v(dim + 1)); }}};
   }
-  double density(double /*p*/, double T) const {
-    return number_density(this->prm_.equation_of_state, P_, T).n;
-  }
+  double density(double /*p*/, double T) const { return number_density(P_, T).n; }
   // Le Quere 2005: Nu = (H / (kappa(T0) dT)) int kappa dT/dx over the wall; T0 = T_ref.
   double nusselt_flux_scale() const {
     return (this->numbers_.temperature_difference > 0 ? 1.0 : -1.0) * reference_flux_;
@@ -90,7 +88,7 @@ public:
   template <class VectorType> void end_assembly(VectorType& row) const {
     row *= -1.0 / dn_dP_total_;
   }
-  void begin_time_step() { old_pressure_ = P_; }
+  void begin_time_step(double /*time*/) { old_pressure_ = P_; }
 
   // The cell integrals of the system at the top of this file: cell.rhs = -R, and if
   // `with_jacobian`: cell.matrix = dR/dx at fixed P, cell.column = dR/dP, and cell.row(j) =
@@ -153,7 +151,7 @@ void LowMachModel<dim>::update_derived_state(const dealii::DoFHandler<dim>& dofs
       for (unsigned q = 0; q < quadrature.size(); ++q) {
         if (!(T[q] > 0))
           throw std::runtime_error("low-Mach: temperature <= 0 at a quadrature point");
-        const DensityState s = number_density(this->prm_.equation_of_state, P_, T[q]);
+        const DensityState s = number_density(P_, T[q]);
         mass += s.n * fe_values.JxW(q);
         dmass += s.n_P * fe_values.JxW(q);
       }
@@ -186,7 +184,7 @@ void LowMachModel<dim>::assemble_cell(const CellIterator<dim>& cell, const Vecto
   const auto& [u, grad_u, p, T, grad_T] = v.state;
   const auto& [phi_u, grad_phi_u, eps_phi_u, div_phi_u, phi_p, phi_T, grad_phi_T] = v.shape;
   for (unsigned q = 0; q < v.n_q; ++q) {
-    const DensityState s = number_density(prm.equation_of_state, P, T[q]);
+    const DensityState s = number_density(P, T[q]);
     const double eta = prm.viscosity.at(T[q], T_ref);
     const double deta = prm.viscosity.derivative(T[q], T_ref);
     const double kappa = prm.conductivity.at(T[q], T_ref);
@@ -200,8 +198,7 @@ void LowMachModel<dim>::assemble_cell(const CellIterator<dim>& cell, const Vecto
     // Transient: (u - u_old)/dt, (n - n_old)/dt, (T - T_old)/dt, (P - P_old)/dt.
     const dealii::Tensor<1, dim> du = inv_dt > 0 ? u[q] - u_old_[q] : dealii::Tensor<1, dim>();
     const double dT = inv_dt > 0 ? T[q] - T_old_[q] : 0.0;
-    const double n_old =
-        inv_dt > 0 ? number_density(prm.equation_of_state, old_pressure_, T_old_[q]).n : 0.0;
+    const double n_old = inv_dt > 0 ? number_density(old_pressure_, T_old_[q]).n : 0.0;
     const double dP = P - old_pressure_;
     v.shape_functions(q);
     if (with_jacobian) dn_dP_total_ += s.n_P * JxW;

@@ -3,10 +3,10 @@
 // and temperature T, with the derivatives the exact Newton Jacobian needs. Particle units, k = 1
 // (physics.md), so the mass density is m n.
 //
-// The hook for the particle fluid's measured p(n, T): add an EquationOfState value, and return
-// here n(P, T) (the inverse of p(n, T) at fixed T, e.g. by a scalar Newton solve on a fitted or
-// tabulated p) and its derivatives. Nothing else in the solver assumes the ideal gas: the
-// thermodynamic pressure is found from the mass by a scalar Newton solve on int n(P, T) dV = N.
+// The ideal fluid only (continuum::check refuses an excess pressure here): its energy equation
+// takes c_p constant and the ideal gas's dP/dt work; a non-ideal p(n, T) needs c_p(n, T) and
+// alpha_p T dP/dt there, and here n(P, T) from the quadratic p(n, T) = P. The compressible
+// model takes the fitted p(n, T) of a fluid with a conservative force.
 
 #include "continuum/parameters.hpp"
 
@@ -20,18 +20,14 @@ struct DensityState {
   double n_TP = 0; // d2n/dTdP
 };
 
-inline DensityState number_density(EquationOfState eos, double P, double T) {
+inline DensityState number_density(double P, double T) {
   DensityState s;
-  switch (eos) {
-  case EquationOfState::IdealGas:
-    // n = P / (k T), k = 1 (physics.md: p = rho k T for the ideal DPDE fluid)
-    s.n = P / T;
-    s.n_T = -P / (T * T);
-    s.n_TT = 2 * P / (T * T * T);
-    s.n_P = 1 / T;
-    s.n_TP = -1 / (T * T);
-    break;
-  }
+  // n = P / (k T), k = 1 (physics.md: p = rho k T for the ideal DPDE fluid)
+  s.n = P / T;
+  s.n_T = -P / (T * T);
+  s.n_TT = 2 * P / (T * T * T);
+  s.n_P = 1 / T;
+  s.n_TP = -1 / (T * T);
   return s;
 }
 

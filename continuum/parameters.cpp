@@ -1,5 +1,7 @@
 #include "continuum/parameters.hpp"
 
+#include "continuum/compressible_eos.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -114,25 +116,45 @@ void check(const ContinuumParameters& p) {
               "Kapitza conductances must be >= 0, and > 0 only in the Boussinesq and "
               "compressible models");
   }
+  require(p.model == Model::Compressible || p.equation_of_state.ideal(),
+          "Coefficients/Excess pressure: b0, b1, b2 != 0 need the compressible model (the "
+          "low-Mach model takes the ideal fluid only); allowed here: 0, 0, 0");
   if (p.model == Model::Compressible) {
     require(p.bulk_viscosity >= 0, "bulk viscosity must be >= 0");
-    // The barometric scale height k T_min / (m g_d) (T_min: the coldest thermal wall, else T_ref)
-    // must span 4 cells of the finest mesh: Q1 then interpolates exp(-z / H_s) to < 1%.
-    double T_min = p.reference_temperature;
+    // The temperature range: the thermal walls' (else T_ref).
+    double T_min = p.reference_temperature, T_max = T_min;
     bool walls = false;
     for (int d = 0; d < p.dim; ++d)
       for (int side = 0; side < 2; ++side)
-        if (!p.boundary[d].periodic && p.boundary[d].fixed_temperature[side])
-          T_min = walls ? std::min(T_min, p.boundary[d].temperature[side])
-                        : p.boundary[d].temperature[side],
+        if (!p.boundary[d].periodic && p.boundary[d].fixed_temperature[side]) {
+          const double T = p.boundary[d].temperature[side];
+          T_min = walls ? std::min(T_min, T) : T, T_max = walls ? std::max(T_max, T) : T;
           walls = true;
+        }
+    // Mechanical stability: dp/dn > 0 for 0 < n <= 3 n0 over the range (linear in T: its ends
+    // suffice; quadratic in n: sampled), so p > 0 there too.
+    for (const double T : {T_min, T_max})
+      for (int i = 1; i <= 60; ++i) {
+        const double n = 3 * p.number_density * i / 60;
+        const double p_n = pressure(p.equation_of_state, n, T).p_n;
+        require(p_n > 0, "Coefficients/Excess pressure: p = n T + n^2 (b0 + b1 T + b2 (n - n0)) is "
+                         "unstable in range: dp/dn = " +
+                             std::to_string(p_n) + " <= 0 at T = " + std::to_string(T) +
+                             ", n = " + std::to_string(n) +
+                             " (checked for 0 < n <= 3 n0 between the walls' temperatures)");
+      }
+    // The barometric scale height (dp/dn) / (m g_d) at T_min (k T_min / (m g_d) for the ideal
+    // fluid; the smaller of that and the value at n0) must span 4 cells of the finest mesh: Q1
+    // then interpolates exp(-z / H_s) to < 1%.
+    const double p_n_min =
+        std::min(T_min, pressure(p.equation_of_state, p.number_density, T_min).p_n);
     for (int d = 0; d < p.dim; ++d) {
       if (p.gravity[d] == 0 || p.uniform_along(d)) continue;
       const double h = p.box[d] / (p.cells[d] * std::pow(2.0, p.refinements));
-      const double scale_height = T_min / (p.particle_mass * std::abs(p.gravity[d]));
+      const double scale_height = p_n_min / (p.particle_mass * std::abs(p.gravity[d]));
       require(h <= 0.25 * scale_height,
               "mesh too coarse for the stratification: the finest cell along gravity (" +
-                  std::to_string(h) + ") must be <= 1/4 of the scale height k T_min / (m g) = " +
+                  std::to_string(h) + ") must be <= 1/4 of the scale height (dp/dn) / (m g) = " +
                   std::to_string(scale_height) + " (more Mesh/Cells or Refinements)");
     }
   }

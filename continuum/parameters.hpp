@@ -18,10 +18,14 @@ inline bool has_robin_walls(Model m) {
 // Steady: the stationary equations (Newton). Transient: march in time from the initial state to
 // end_time (Boussinesq: BDF2, low-Mach: implicit Euler, heat conduction: theta scheme).
 enum class Mode { Steady, Transient };
-// Equation of state of the low-Mach and compressible models (continuum/low_mach_eos.hpp,
-// compressible_eos.hpp): the ideal gas p = n k T; the measured p(n, T) of the particle fluid
-// plugs in there.
-enum class EquationOfState { IdealGas };
+// Equation of state p = n k T + n^2 B, B = b0 + b1 k T + b2 (n - n_ref)
+// (continuum/compressible_eos.hpp): the ideal DPDE fluid at B = 0 (000:(3.20)); with a
+// conservative force, the transport stage's fit to its bulk runs around n_ref (Groot & Warren
+// 1997's p = n k T + alpha a n^2 is B = alpha a). The low-Mach model takes the ideal fluid only.
+struct EquationOfState {
+  double b0 = 0, b1 = 0, b2 = 0, n_ref = 1;
+  bool ideal() const { return b0 == 0 && b1 == 0 && b2 == 0; }
+};
 // Boussinesq linear solver: direct (serial UMFPACK) or iterative (p4est + Trilinos FGMRES, 3D);
 // automatic: direct in 2D, iterative in 3D.
 enum class LinearSolver { Automatic, Direct, Iterative };
@@ -111,8 +115,9 @@ struct ContinuumParameters {
   PowerLaw conductivity{1.0, 0.0};    // kappa(T)
   std::vector<HeatSlab> heat_slabs;
   // Low-Mach and compressible models: n(P, T) or p(n, T) (continuum/low_mach_eos.hpp,
-  // compressible_eos.hpp).
-  EquationOfState equation_of_state = EquationOfState::IdealGas;
+  // compressible_eos.hpp). Non-ideal: compressible only; c_p above stays the ideal fluid's (the
+  // excess pressure adds no heat capacity at constant volume, see compressible_eos.hpp).
+  EquationOfState equation_of_state;
   // Compressible model: bulk viscosity zeta (units of eta), constant; the stress is
   // 2 eta S + (zeta - (2/d) eta) div u I. 0: the ideal gas's kinetic part (none for particles
   // without internal degrees of freedom in their kinetic stress); the DPD friction adds

@@ -82,8 +82,15 @@ io::Json to_json(const ContinuumParameters& p) {
   j["thermal_expansion"] = p.thermal_expansion;
   j["reference_temperature"] = p.reference_temperature;
   j["viscosity"] = power_law(p.viscosity);
-  if (p.model == Model::LowMach || p.model == Model::Compressible)
-    j["equation_of_state"] = "ideal-gas";
+  if (p.model == Model::LowMach || p.model == Model::Compressible) {
+    io::Json eos = io::Json::object();
+    eos["form"] = "p = n k T + n^2 (b0 + b1 k T + b2 (n - n_ref))";
+    eos["b0"] = p.equation_of_state.b0;
+    eos["b1"] = p.equation_of_state.b1;
+    eos["b2"] = p.equation_of_state.b2;
+    eos["n_ref"] = p.equation_of_state.n_ref;
+    j["equation_of_state"] = eos;
+  }
   if (p.model == Model::Compressible) j["bulk_viscosity"] = p.bulk_viscosity;
   j["conductivity"] = power_law(p.conductivity);
   j["heat_slabs"] = heat_slabs_json(p.heat_slabs);

@@ -31,6 +31,10 @@ void take_coefficients(const transport::Coefficients& k, continuum::ContinuumPar
   take(p.conductivity, k.conductivity);
   p.heat_capacity = k.heat_capacity_p.value;
   p.thermal_expansion = k.thermal_expansion.value;
+  // The fluid's own p(n, T) where the twin has one (the low-Mach twin is ideal-gas only).
+  if (p.model == continuum::Model::Compressible)
+    p.equation_of_state = {k.excess_pressure.b0, k.excess_pressure.b1, k.excess_pressure.b2,
+                           k.excess_pressure.n_ref};
 }
 
 namespace {
@@ -67,6 +71,16 @@ CoefficientErrors take_transport_coefficients(const fs::path& run_dir, const std
   say_law("kappa", p.conductivity, k.conductivity);
   say("c_p", k.heat_capacity_p);
   say("alpha", k.thermal_expansion);
+  if (p.model == continuum::Model::Compressible && k.excess_pressure.fitted)
+    std::cout << "continuum: p = n T + n^2 (b0 + b1 T + b2 (n - " << k.excess_pressure.n_ref
+              << ")), b0 = " << k.excess_pressure.b0 << " +- " << k.excess_pressure.b0_stderr
+              << ", b1 = " << k.excess_pressure.b1 << " +- " << k.excess_pressure.b1_stderr
+              << ", b2 = " << k.excess_pressure.b2 << " +- " << k.excess_pressure.b2_stderr
+              << " (fitted to the bulk runs, from " << file.string() << ")\n";
+  if (p.model == continuum::Model::Compressible && !k.excess_pressure.found)
+    std::cout << "continuum: " << file.string()
+              << " has no equation of state (an older measurement): the twin takes the ideal "
+                 "fluid's\n";
   return {k.conductivity.stderr_, k.viscosity.stderr_};
 }
 
@@ -179,10 +193,15 @@ int continuum_stage(const Case& c, const RunOptions& options, const std::string&
 
   const bool eos_matters =
       p.model == continuum::Model::LowMach || p.model == continuum::Model::Compressible;
-  if (root && eos_matters && parameters.particle.conservative != particle::ConservativeForce::None)
+  if (root && eos_matters &&
+      parameters.particle.conservative != particle::ConservativeForce::None &&
+      p.equation_of_state.ideal())
     std::cout << "continuum: note: the twin's equation of state is the ideal DPDE fluid's, "
                  "p = n k T; this fluid's conservative force adds to its pressure, which the "
-                 "twin's density and pressure work leave out (docs/validation.md, Open)\n";
+              << (p.model == continuum::Model::LowMach
+                      ? "low-Mach twin leaves out (the compressible twin takes the transport "
+                        "stage's fit)\n"
+                      : "twin leaves out (Coefficients/Excess pressure, or Source = transport)\n");
   if (root) stage.create();
   MPI_Barrier(comm);
   const continuum::ContinuumResult result = continuum::run(p, stage.path(), comm);

@@ -40,6 +40,14 @@ Coefficients read_coefficients(const io::Json& summary, const std::string& sourc
     c.exponent = n;
     c.value *= scale;
   };
+  if (const io::Json* eos = io::find(summary, {"results", "equation_of_state"})) {
+    const auto at = [&](const char* key) { return io::number(*eos, {key}); };
+    auto& e = k.excess_pressure;
+    e.b0 = at("b0"), e.b1 = at("b1"), e.b2 = at("b2"), e.n_ref = at("n_ref");
+    e.b0_stderr = at("b0_stderr"), e.b1_stderr = at("b1_stderr"), e.b2_stderr = at("b2_stderr");
+    e.fitted = e.b0 != 0 || e.b1 != 0 || e.b2 != 0;
+    e.found = true;
+  }
   with_law(k.viscosity, "viscosity");
   with_law(k.conductivity, "conductivity");
   return k;

@@ -17,9 +17,19 @@ struct Coefficient {
   bool measured = false;
 };
 
+// p = n k T + n^2 (b0 + b1 k T + b2 (n - n_ref)): the ideal fluid (all 0) or the fit of a fluid
+// with a conservative force (transport/measure.hpp).
+struct ExcessPressure {
+  double b0 = 0, b1 = 0, b2 = 0, n_ref = 1;
+  double b0_stderr = 0, b1_stderr = 0, b2_stderr = 0;
+  bool fitted = false; // else the ideal fluid's
+  bool found = false;  // false: a summary of an older method, which has none
+};
+
 struct Coefficients {
   Coefficient viscosity, conductivity, heat_capacity_p, thermal_expansion;
-  double measured_temperature; // where the measured kappa and eta belong (NaN: not measured)
+  ExcessPressure excess_pressure; // whatever the source: the pressure is always measured
+  double measured_temperature;    // where the measured kappa and eta belong (NaN: not measured)
 };
 
 // `source`: "measured" or "estimated" (Transport/Source). A measured power law (Transport/

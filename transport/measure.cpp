@@ -1,8 +1,11 @@
 #include "transport/measure.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <vector>
+
+#include <Eigen/Dense>
 
 #include "particle/decomposition.hpp"
 #include "particle/seeds.hpp"
@@ -153,7 +156,69 @@ Measured measure(const particle::ParticleParameters& p, long steps, int diffusio
       m.temperature.mean * m.dp_dt.mean * m.dp_dt.mean / (rho * rho * m.dp_drho.mean);
   m.cp_minus_cv = {gap, std::fabs(gap) * std::hypot(2 * m.dp_dt.stderr_ / m.dp_dt.mean,
                                                     m.dp_drho.stderr_ / m.dp_drho.mean)};
+  m.excess_pressure = fit_excess_pressure({{rho, c.t.mean, c.p},
+                                           {rho, tp.t.mean, tp.p},
+                                           {rho, tm.t.mean, tm.p},
+                                           {rho * (1 + h), rp.t.mean, rp.p},
+                                           {rho * (1 - h), rm.t.mean, rm.p}},
+                                          rho);
   return m;
+}
+
+ExcessPressureFit fit_excess_pressure(const std::vector<PressurePoint>& points,
+                                      double reference_density) {
+  ExcessPressureFit f;
+  f.points = points;
+  f.reference_density = reference_density;
+  // Weighted least squares of y = b0 + b1 T + b2 (n - n_ref), y = (p - n T) / n^2, by the normal
+  // equations (Numerical Recipes, 3rd ed., sec. 15.4): the rows scaled by 1 / sigma_y.
+  const int k = static_cast<int>(points.size());
+  Eigen::MatrixXd A(k, 3);
+  Eigen::VectorXd y(k);
+  for (int i = 0; i < k; ++i) {
+    const auto& pt = points[i];
+    const double n2 = pt.density * pt.density, sigma = pt.pressure.stderr_ / n2;
+    A.row(i) << 1 / sigma, pt.temperature / sigma, (pt.density - reference_density) / sigma;
+    y(i) = (pt.pressure.mean - pt.density * pt.temperature) / n2 / sigma; // p = n T + n^2 B
+  }
+  f.dof = k - 3;
+  const Eigen::Matrix3d normal = A.transpose() * A;
+  const Eigen::FullPivLU<Eigen::Matrix3d> lu(normal);
+  if (f.dof < 0 || !lu.isInvertible()) {
+    f.b0 = f.b1 = f.b2 = f.b0_stderr = f.b1_stderr = f.b2_stderr = std::nan("");
+    return f;
+  }
+  const Eigen::Vector3d b = lu.solve(A.transpose() * y);
+  f.b0 = b(0), f.b1 = b(1), f.b2 = b(2);
+  const double chi2 = (A * b - y).squaredNorm();
+  f.chi2_per_dof = f.dof > 0 ? chi2 / f.dof : std::nan("");
+  const double scale = f.dof > 0 ? std::max(1.0, f.chi2_per_dof) : 1.0;
+  f.covariance = scale * lu.inverse();
+  f.b0_stderr = std::sqrt(f.covariance(0, 0));
+  f.b1_stderr = std::sqrt(f.covariance(1, 1));
+  f.b2_stderr = std::sqrt(f.covariance(2, 2));
+  return f;
+}
+
+io::Json ExcessPressureFit::json() const {
+  io::Json j = io::Json::object();
+  j["form"] = "p = n k T + n^2 (b0 + b1 k T + b2 (n - n_ref))";
+  j["n_ref"] = reference_density;
+  j["b0"] = b0, j["b0_stderr"] = b0_stderr;
+  j["b1"] = b1, j["b1_stderr"] = b1_stderr;
+  j["b2"] = b2, j["b2_stderr"] = b2_stderr;
+  j["covariance"] = io::Json::array();
+  for (int i = 0; i < 3; ++i)
+    j["covariance"].push_back({covariance(i, 0), covariance(i, 1), covariance(i, 2)});
+  j["chi2_per_dof"] = chi2_per_dof, j["dof"] = dof;
+  j["points"] = io::Json::array();
+  for (const auto& pt : points) {
+    io::Json q = io::Json::object();
+    q["density"] = pt.density, q["temperature"] = pt.temperature;
+    q["pressure"] = pt.pressure.mean, q["pressure_stderr"] = pt.pressure.stderr_;
+    j["points"].push_back(q);
+  }
+  return j;
 }
 
 io::Json Measured::json() const {
@@ -176,6 +241,7 @@ io::Json Measured::json() const {
   put("dp_dT", dp_dt);
   put("dp_drho", dp_drho);
   put("heat_capacity_cp_minus_cv", cp_minus_cv);
+  j["excess_pressure"] = excess_pressure.json();
   return j;
 }
 

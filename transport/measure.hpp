@@ -1,6 +1,8 @@
 #pragma once
 // Coefficients measured by short periodic particle runs at the case's state point.
 
+#include <Eigen/Core>
+
 #include <functional>
 #include <vector>
 
@@ -18,6 +20,29 @@ namespace twinflow::transport {
 particle::RunOutput run_on_every_rank(const particle::ParticleParameters& p,
                                       const particle::RunControl& control = {});
 
+// The excess pressure p - n k T = n^2 (b0 + b1 k T + b2 (n - n_ref)) fitted to bulk runs at a
+// few densities and temperatures around n_ref (weighted least squares in y = (p - n T) / n^2,
+// y's error p's over n^2: an upper bound, as p - n T_kinetic sheds the kinetic part's
+// fluctuation, so chi^2 / dof comes out below 1): the compressible twin's equation of state
+// (continuum/compressible_eos.hpp). A soft repulsion's B = y grows with n (3D, a0 = 25, n = 3:
+// ~4% over +-5% in n, against errors of 0.05%), barely with T. Errors scaled by
+// sqrt(chi^2 / dof) when that exceeds 1 (the points scatter more than stated).
+struct PressurePoint {
+  double density = 0, temperature = 0; // n, and the run's measured kinetic T
+  particle::Estimate pressure;
+};
+struct ExcessPressureFit {
+  double reference_density = 0;
+  double b0 = 0, b1 = 0, b2 = 0, b0_stderr = 0, b1_stderr = 0, b2_stderr = 0;
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero(); // of (b0, b1, b2)
+  double chi2_per_dof = 0;
+  int dof = 0;
+  std::vector<PressurePoint> points;
+  io::Json json() const;
+};
+ExcessPressureFit fit_excess_pressure(const std::vector<PressurePoint>& points,
+                                      double reference_density);
+
 struct Measured {
   particle::Estimate pressure, temperature;
   particle::Estimate diffusion;      // from the MSD slope, 2 d D, over independent repeats
@@ -25,13 +50,15 @@ struct Measured {
   particle::Estimate expansion;      // alpha = (dp/dT)_rho / (rho (dp/drho)_T)
   particle::Estimate dp_dt, dp_drho; // equation-of-state derivatives
   particle::Estimate cp_minus_cv;    // per particle, k = 1: 1 for the ideal gas
+  ExcessPressureFit excess_pressure; // over the five state points' runs
   std::string rdf_csv;
   std::vector<particle::Estimate> diffusion_repeats; // each run's D and its groups' error
   io::Json json() const;
 };
 
 // Periodic box at the state point of `p` (its density and temperature); `steps` sampled steps per
-// run. Five runs: the state point, T (1 +- h), rho (1 +- h); and D from `diffusion_repeats`
+// run. Five runs: the state point, T (1 +- h), rho (1 +- h) (the pressure's derivatives and its
+// excess fit); and D from `diffusion_repeats`
 // independent runs at the state point (the first of them the state point's run).
 Measured measure(const particle::ParticleParameters& p, long steps, int diffusion_repeats,
                  double h = 0.05);

@@ -155,6 +155,10 @@ TransportMeasurement measure_transport(const scene::SceneParameters& scene,
       m.expansion.stderr_);
   row("pressure_ideal_gas", p.density * p.temperature, p.density * p.temperature, m.pressure.mean,
       m.pressure.stderr_);
+  // p = n T + n^2 (b0 + b1 T + b2 (n - n_ref)): the compressible twin's equation of state
+  row("excess_pressure_b0", nan, nan, m.excess_pressure.b0, m.excess_pressure.b0_stderr);
+  row("excess_pressure_b1", nan, nan, m.excess_pressure.b1, m.excess_pressure.b1_stderr);
+  row("excess_pressure_b2", nan, nan, m.excess_pressure.b2, m.excess_pressure.b2_stderr);
   row("heat_capacity_cv_per_particle", ideal.heat_capacity_v, with_g.heat_capacity_v, nan, nan);
   row("heat_capacity_cp_per_particle", ideal.heat_capacity_p, with_g.heat_capacity_p, nan, nan);
   row("heat_capacity_cp_minus_cv_per_particle", ideal.heat_capacity_p - ideal.heat_capacity_v,
@@ -168,6 +172,21 @@ TransportMeasurement measure_transport(const scene::SceneParameters& scene,
   r["estimated_g1"] = ideal.json();
   r["estimated_measured_g"] = with_g.json();
   r["measured"] = m.json();
+  // The twins' equation of state (transport/coefficients.cpp): the ideal fluid's without a
+  // conservative force (exact; the fit's b0, b1 are then noise about 0), else the fit.
+  io::Json eos = io::Json::object();
+  const bool ideal_fluid = p.conservative == particle::ConservativeForce::None;
+  eos["form"] = "p = n k T + n^2 (b0 + b1 k T + b2 (n - n_ref))";
+  eos["n_ref"] = p.density;
+  eos["source"] = ideal_fluid ? "ideal DPDE fluid (no conservative force)"
+                              : "fit to the bulk runs (measured/excess_pressure)";
+  eos["b0"] = ideal_fluid ? 0.0 : m.excess_pressure.b0;
+  eos["b0_stderr"] = ideal_fluid ? 0.0 : m.excess_pressure.b0_stderr;
+  eos["b1"] = ideal_fluid ? 0.0 : m.excess_pressure.b1;
+  eos["b1_stderr"] = ideal_fluid ? 0.0 : m.excess_pressure.b1_stderr;
+  eos["b2"] = ideal_fluid ? 0.0 : m.excess_pressure.b2;
+  eos["b2_stderr"] = ideal_fluid ? 0.0 : m.excess_pressure.b2_stderr;
+  r["equation_of_state"] = eos;
   // The continuum twin reads "conductivity" and "viscosity" (transport/coefficients.cpp).
   if (t.kappa_from_walls || t.measure_flows) {
     r["measured"]["conductivity"] = kappa.mean;

@@ -19,10 +19,12 @@ struct TransportParameters {
 
 // The version of the measurement: part of its cache key and of its stage inputs in `run`, bumped
 // when a measurement changes (results of an older method are not reused).
-constexpr int kMeasurementMethod = 6; // 3: relaxation fit window from the noise (decay_fit.hpp);
+constexpr int kMeasurementMethod = 7; // 3: relaxation fit window from the noise (decay_fit.hpp);
                                       // 4: the wall run's slope and flux errors from the blockings;
                                       // 5: D over independent repeats;
                                       // 6: D's error the repeats' spread alone, their
-                                      //    seeds hashed (particle/seeds.hpp)
+                                      //    seeds hashed (particle/seeds.hpp);
+                                      // 7: the excess pressure's fit (the compressible
+                                      //    twin's equation of state)
 
 } // namespace twinflow::transport

@@ -163,6 +163,11 @@ void declare_continuum(Registry& r) {
             "2 eta S + (zeta - (2/d) eta) div u I. 0: none, the ideal gas's kinetic part; the "
             "DPD friction adds zeta_D = (1 + 2/d) eta_D where eta_D is the dissipative part of "
             "eta (central pair friction; Marsh, Backx & Ernst 1997).");
+  r.declare(c + "Excess pressure", "0, 0, 0", List(Double(), 3, 3),
+            "Compressible model: b0, b1, b2 of the equation of state p = n k T + n^2 (b0 + b1 k T "
+            "+ b2 (n - n0)), n0 the scene's density; 0, 0, 0: the ideal DPDE fluid. With Source = "
+            "transport, a fluid with a conservative force takes the transport stage's fit to its "
+            "bulk runs instead.");
   r.declare_positive(c + "Reference temperature", "1",
                      "T_ref of the buoyancy and of the power laws (units of T0), > 0.");
 
@@ -312,6 +317,8 @@ continuum::ContinuumParameters resolve_continuum(const Registry& r,
   c.thermal_expansion = r.get_double(k + "Thermal expansion");
   c.reference_temperature = r.get_positive(k + "Reference temperature");
   c.bulk_viscosity = r.get_double(k + "Bulk viscosity");
+  const std::vector<double> excess = r.get_doubles(k + "Excess pressure");
+  c.equation_of_state = {excess[0], excess[1], excess[2], scene.density};
 
   c.cells = cells_per_direction(r, s + "Mesh/Cells", scene);
   c.refinements = static_cast<int>(r.get_integer(s + "Mesh/Refinements"));

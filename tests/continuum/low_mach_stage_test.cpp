@@ -125,11 +125,16 @@ TEST(CompressibleStage, AutoPicksCompressibleAndBadInputExits2) {
   EXPECT_NE(bins.substr(0, bins.find('\n')).find(",n,"), std::string::npos) << bins;
   for (const std::string bad :
        {std::string("--set 'Continuum/Coefficients/Bulk viscosity=-1'"),
-        std::string("--set 'Continuum/Mesh/Refinements=0' --set 'Scene/Gravity=0, -0.2'")}) {
+        std::string("--set 'Continuum/Mesh/Refinements=0' --set 'Scene/Gravity=0, -0.2'"),
+        // dp/dn = T + 2 n B < 0 at the cold wall (0.5) from n = 0.5 / (2 * 0.2) = 1.25 < 3 n0
+        std::string("--set 'Continuum/Coefficients/Excess pressure=-0.2, 0, 0'"),
+        std::string("--set Continuum/Model=low-mach "
+                    "--set 'Continuum/Coefficients/Excess pressure=0.5, 0, 0'")}) {
     const fs::path none = twinflow::testing::fresh_dir("compressible_stage_test", "bad");
     const Result e = run_twinflow(base + " --out " + none.string() + " " + bad);
     EXPECT_EQ(e.code, 2) << e.output;
     EXPECT_EQ(std::count(e.output.begin(), e.output.end(), '\n'), 1) << e.output;
     EXPECT_FALSE(fs::exists(none / "continuum")) << bad;
+    std::printf("  %s: %s", bad.c_str(), e.output.c_str());
   }
 }

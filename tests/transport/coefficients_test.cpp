@@ -52,3 +52,24 @@ TEST(TransportCoefficients, APowerLawIsRescaledWithItsExponentsError) {
   EXPECT_DOUBLE_EQ(k.conductivity.stderr_, s * std::hypot(0.3, 18.0 * l * 0.1));
   EXPECT_EQ(k.viscosity.value, 1.2); // no law: unchanged
 }
+
+TEST(TransportCoefficients, TheEquationOfStateIsReadWhenPresent) {
+  const auto old = transport::read_coefficients(summary(false), "estimated", 0.8);
+  EXPECT_FALSE(old.excess_pressure.found); // an older summary: none
+  EXPECT_EQ(old.excess_pressure.b0, 0.0);
+  io::Json s = summary(false);
+  s["results"]["equation_of_state"] = {
+      {"b0", 2.5}, {"b0_stderr", 0.01}, {"b1", -0.1},  {"b1_stderr", 0.02},
+      {"b2", 0.1}, {"b2_stderr", 0.03}, {"n_ref", 3.0}};
+  const auto k = transport::read_coefficients(s, "estimated", 0.8); // the pressure is measured
+  EXPECT_TRUE(k.excess_pressure.found);
+  EXPECT_TRUE(k.excess_pressure.fitted);
+  EXPECT_EQ(k.excess_pressure.b0, 2.5);
+  EXPECT_EQ(k.excess_pressure.b1_stderr, 0.02);
+  EXPECT_EQ(k.excess_pressure.b2, 0.1);
+  EXPECT_EQ(k.excess_pressure.n_ref, 3.0);
+  s["results"]["equation_of_state"] = {{"b0", 0.0},        {"b0_stderr", 0.0}, {"b1", 0.0},
+                                       {"b1_stderr", 0.0}, {"b2", 0.0},        {"b2_stderr", 0.0},
+                                       {"n_ref", 3.0}};
+  EXPECT_FALSE(transport::read_coefficients(s, "measured", 0.8).excess_pressure.fitted);
+}

@@ -5,7 +5,7 @@
 //
 // The ideal fluid only (continuum::check refuses an excess pressure here): its energy equation
 // takes c_p constant and the ideal gas's dP/dt work; a non-ideal p(n, T) needs c_p(n, T) and
-// alpha_p T dP/dt there, and here n(P, T) from the quadratic p(n, T) = P. The compressible
+// alpha_p T dP/dt there, and here n(P, T) by solving p(n, T) = P. The compressible
 // model takes the fitted p(n, T) of a fluid with a conservative force.
 
 #include "continuum/parameters.hpp"

@@ -31,10 +31,15 @@ void take_coefficients(const transport::Coefficients& k, continuum::ContinuumPar
   take(p.conductivity, k.conductivity);
   p.heat_capacity = k.heat_capacity_p.value;
   p.thermal_expansion = k.thermal_expansion.value;
-  // The fluid's own p(n, T) where the twin has one (the low-Mach twin is ideal-gas only).
-  if (p.model == continuum::Model::Compressible)
+  // The fluid's own p(n, T) where the twin has one (the low-Mach twin is ideal-gas only), and
+  // the DPD friction's bulk viscosity zeta_D = (1 + 2/d) eta_D (Marsh, Backx & Ernst 1997; the
+  // kinetic part has none).
+  if (p.model == continuum::Model::Compressible) {
     p.equation_of_state = {k.excess_pressure.b0, k.excess_pressure.b1, k.excess_pressure.b2,
                            k.excess_pressure.n_ref};
+    if (std::isfinite(k.viscosity_dissipative))
+      p.bulk_viscosity = (1 + 2.0 / p.dim) * k.viscosity_dissipative;
+  }
 }
 
 namespace {
@@ -71,6 +76,10 @@ CoefficientErrors take_transport_coefficients(const fs::path& run_dir, const std
   say_law("kappa", p.conductivity, k.conductivity);
   say("c_p", k.heat_capacity_p);
   say("alpha", k.thermal_expansion);
+  if (p.model == continuum::Model::Compressible && std::isfinite(k.viscosity_dissipative))
+    std::cout << "continuum: bulk viscosity zeta = (1 + 2/d) eta_D = " << p.bulk_viscosity
+              << " (estimated: eta's dissipative part " << k.viscosity_dissipative << ", from "
+              << file.string() << ")\n";
   if (p.model == continuum::Model::Compressible && k.excess_pressure.fitted)
     std::cout << "continuum: p = n T + n^2 (b0 + b1 T + b2 (n - " << k.excess_pressure.n_ref
               << ")), b0 = " << k.excess_pressure.b0 << " +- " << k.excess_pressure.b0_stderr

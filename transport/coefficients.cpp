@@ -26,6 +26,8 @@ Coefficients read_coefficients(const io::Json& summary, const std::string& sourc
   k.viscosity = pick("viscosity", "viscosity");
   k.conductivity = pick("conductivity", "conductivity");
   k.heat_capacity_p = pick("heat_capacity_p_per_particle", nullptr);
+  k.viscosity_dissipative =
+      io::number(summary, {"results", "estimated_measured_g", "viscosity_dissipative"});
   k.thermal_expansion = pick("thermal_expansion", "thermal_expansion");
   // Measured kappa and eta carry errors, and with a temperature spread a power law.
   const auto with_law = [&](Coefficient& c, const std::string& key) {

@@ -29,7 +29,10 @@ struct ExcessPressure {
 struct Coefficients {
   Coefficient viscosity, conductivity, heat_capacity_p, thermal_expansion;
   ExcessPressure excess_pressure; // whatever the source: the pressure is always measured
-  double measured_temperature;    // where the measured kappa and eta belong (NaN: not measured)
+  // The dissipative part of eta's estimate (with the measured g(r)): the compressible twin's bulk
+  // viscosity (1 + 2/d) eta_D (Marsh, Backx & Ernst 1997). NaN: not in the summary.
+  double viscosity_dissipative = 0;
+  double measured_temperature; // where the measured kappa and eta belong (NaN: not measured)
 };
 
 // `source`: "measured" or "estimated" (Transport/Source). A measured power law (Transport/

@@ -162,7 +162,8 @@ void declare_continuum(Registry& r) {
             "Compressible model: bulk viscosity zeta (units of eta), constant; the stress is "
             "2 eta S + (zeta - (2/d) eta) div u I. 0: none, the ideal gas's kinetic part; the "
             "DPD friction adds zeta_D = (1 + 2/d) eta_D where eta_D is the dissipative part of "
-            "eta (central pair friction; Marsh, Backx & Ernst 1997).");
+            "eta (central pair friction; Marsh, Backx & Ernst 1997), which the twin takes from "
+            "the transport stage's estimate with Source = transport.");
   r.declare(c + "Excess pressure", "0, 0, 0", List(Double(), 3, 3),
             "Compressible model: b0, b1, b2 of the equation of state p = n k T + n^2 (b0 + b1 k T "
             "+ b2 (n - n0)), n0 the scene's density; 0, 0, 0: the ideal DPDE fluid. With Source = "

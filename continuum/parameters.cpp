@@ -116,6 +116,9 @@ void check(const ContinuumParameters& p) {
               "Kapitza conductances must be >= 0, and > 0 only in the Boussinesq and "
               "compressible models");
   }
+  const EquationOfState& eos = p.equation_of_state;
+  require(std::isfinite(eos.b0) && std::isfinite(eos.b1) && std::isfinite(eos.b2) && eos.n_ref > 0,
+          "Coefficients/Excess pressure: b0, b1, b2 must be finite (a failed fit gives NaN)");
   require(p.model == Model::Compressible || p.equation_of_state.ideal(),
           "Coefficients/Excess pressure: b0, b1, b2 != 0 need the compressible model (the "
           "low-Mach model takes the ideal fluid only); allowed here: 0, 0, 0");

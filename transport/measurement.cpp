@@ -173,7 +173,7 @@ TransportMeasurement measure_transport(const scene::SceneParameters& scene,
   r["estimated_measured_g"] = with_g.json();
   r["measured"] = m.json();
   // The twins' equation of state (transport/coefficients.cpp): the ideal fluid's without a
-  // conservative force (exact; the fit's b0, b1 are then noise about 0), else the fit.
+  // conservative force (exact; the fit's b0, b1, b2 are then noise about 0), else the fit.
   io::Json eos = io::Json::object();
   const bool ideal_fluid = p.conservative == particle::ConservativeForce::None;
   eos["form"] = "p = n k T + n^2 (b0 + b1 k T + b2 (n - n_ref))";

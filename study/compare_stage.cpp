@@ -67,8 +67,10 @@ Case calibrated_case(const Case& nominal, const fs::path& run_dir) {
       p.continuum.boundary[d].temperature[side] = std::stod(text);
     }
   if (p.twin.model_chosen_automatically) // the walls' epsilon may have moved past the threshold
-    p.continuum.model = automatic_model(p.scene, p.continuum.particle_mass,
-                                        p.twin.low_mach_threshold, p.twin.compressible_threshold);
+    p.continuum.model =
+        automatic_model(p.scene, p.continuum.particle_mass,
+                        p.particle.conservative != particle::ConservativeForce::None,
+                        p.twin.low_mach_threshold, p.twin.compressible_threshold);
   if (walls.effective_positions) {
     const auto [text, distance] = list([](const auto& w) { return w.position; }, 6);
     set("Continuum/Wall positions", text);

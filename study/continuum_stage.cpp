@@ -185,13 +185,16 @@ int continuum_stage(const Case& c, const RunOptions& options, const std::string&
     // Why auto chose this model (study::automatic_model's order: stratification, epsilon).
     const double stratification = parameters.scene.stratification(p.particle_mass);
     const double epsilon = parameters.scene.thermal_wall_epsilon();
+    const bool stratified = stratification > parameters.twin.compressible_threshold;
     std::cout << "continuum: Model = auto: " << model_name(p.model) << " (stratification g H / c^2 "
-              << stratification << (p.model == continuum::Model::Compressible ? " > " : " <= ")
+              << stratification << (stratified ? " > " : " <= ")
               << parameters.twin.compressible_threshold;
-    if (p.model != continuum::Model::Compressible)
+    if (!stratified)
       std::cout << ", the thermal walls' epsilon " << epsilon
-                << (p.model == continuum::Model::LowMach ? " > " : " <= ")
+                << (p.model == continuum::Model::Boussinesq ? " <= " : " > ")
                 << parameters.twin.low_mach_threshold;
+    if (!stratified && p.model == continuum::Model::Compressible)
+      std::cout << " with a conservative force, which the low-Mach twin's p = n k T leaves out";
     std::cout << ")\n";
   }
   if (root)

@@ -74,7 +74,8 @@ void declare_continuum(Registry& r) {
             "epsilon), else boussinesq.");
   r.declare(s + "Low-Mach threshold", "0.2", Double(0, 1),
             "Model = auto: the thermal walls' epsilon above which the twin is low-Mach (0.2: "
-            "walls at T0 (1 -+ 0.2), a temperature ratio of 1.5).");
+            "walls at T0 (1 -+ 0.2), a temperature ratio of 1.5); compressible instead for a "
+            "fluid with a conservative force (the low-Mach twin takes the ideal gas's p).");
   r.declare(s + "Compressible threshold", "0.1", Double(0),
             "Model = auto: the stratification g H / c^2 above which the twin is compressible "
             "(0.1: the density falls by ~10% from bottom to top, which the low-Mach and "
@@ -238,9 +239,9 @@ continuum::ContinuumParameters resolve_continuum(const Registry& r,
             : model == "compressible"  ? continuum::Model::Compressible
                                        : continuum::Model::Boussinesq;
   if (model == "auto")
-    c.model = study::automatic_model(scene, r.get_double("Particle/Mass"),
-                                     r.get_double(s + "Low-Mach threshold"),
-                                     r.get_double(s + "Compressible threshold"));
+    c.model = study::automatic_model(
+        scene, r.get_double("Particle/Mass"), r.get("Particle/Conservative force/Type") != "none",
+        r.get_double(s + "Low-Mach threshold"), r.get_double(s + "Compressible threshold"));
   c.gravity = scene.gravity;
   for (int d = 0; d < 3; ++d) {
     const auto& from = scene.boundary[d];

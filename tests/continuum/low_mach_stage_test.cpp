@@ -123,7 +123,7 @@ TEST(CompressibleStage, AutoPicksCompressibleAndBadInputExits2) {
       1e-12);
   const std::string bins = twinflow::io::read_file(out / "continuum" / "bins.csv");
   EXPECT_NE(bins.substr(0, bins.find('\n')).find(",n,"), std::string::npos) << bins;
-  for (const std::string bad :
+  for (const std::string& bad :
        {std::string("--set 'Continuum/Coefficients/Bulk viscosity=-1'"),
         std::string("--set 'Continuum/Mesh/Refinements=0' --set 'Scene/Gravity=0, -0.2'"),
         // dp/dn = T + 2 n B < 0 at the cold wall (0.5) from n = 0.5 / (2 * 0.2) = 1.25 < 3 n0
@@ -136,5 +136,27 @@ TEST(CompressibleStage, AutoPicksCompressibleAndBadInputExits2) {
     EXPECT_EQ(std::count(e.output.begin(), e.output.end(), '\n'), 1) << e.output;
     EXPECT_FALSE(fs::exists(none / "continuum")) << bad;
     std::printf("  %s: %s", bad.c_str(), e.output.c_str());
+  }
+}
+
+// Where the walls' epsilon alone would pick low-Mach, a fluid with a conservative force gets the
+// compressible twin (the low-Mach twin's p = n k T would leave its excess pressure out), and auto
+// says so; without the force, low-Mach.
+TEST(CompressibleStage, AutoPicksCompressibleForAConservativeForce) {
+  const std::string case_file =
+      std::string(TWINFLOW_SOURCE_DIR) + "/cases/conduction_column_repulsive_2d.prm";
+  for (const bool force : {true, false}) {
+    const fs::path out = twinflow::testing::fresh_dir("compressible_stage_test", "auto_force");
+    const Result r = run_twinflow("continuum " + case_file + " --out " + out.string() +
+                                  " --set Continuum/Model=auto --set 'Scene/Gravity=0, -0.001'" +
+                                  " --set 'Continuum/Mesh/Refinements=0'" +
+                                  (force ? "" : " --set 'Particle/Conservative force/Type=none'"));
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_NE(r.output.find(force ? "Model = auto: compressible (stratification g H / c^2 0.02 "
+                                    "<= 0.1, the thermal walls' epsilon 0.5 > 0.2 with a "
+                                    "conservative force"
+                                  : "Model = auto: low-Mach (stratification"),
+              std::string::npos)
+        << r.output;
   }
 }

@@ -76,20 +76,22 @@ CoefficientErrors take_transport_coefficients(const fs::path& run_dir, const std
   say_law("kappa", p.conductivity, k.conductivity);
   say("c_p", k.heat_capacity_p);
   say("alpha", k.thermal_expansion);
-  if (p.model == continuum::Model::Compressible && std::isfinite(k.viscosity_dissipative))
-    std::cout << "continuum: bulk viscosity zeta = (1 + 2/d) eta_D = " << p.bulk_viscosity
-              << " (estimated: eta's dissipative part " << k.viscosity_dissipative << ", from "
-              << file.string() << ")\n";
-  if (p.model == continuum::Model::Compressible && k.excess_pressure.fitted)
-    std::cout << "continuum: p = n T + n^2 (b0 + b1 T + b2 (n - " << k.excess_pressure.n_ref
-              << ")), b0 = " << k.excess_pressure.b0 << " +- " << k.excess_pressure.b0_stderr
-              << ", b1 = " << k.excess_pressure.b1 << " +- " << k.excess_pressure.b1_stderr
-              << ", b2 = " << k.excess_pressure.b2 << " +- " << k.excess_pressure.b2_stderr
-              << " (fitted to the bulk runs, from " << file.string() << ")\n";
-  if (p.model == continuum::Model::Compressible && !k.excess_pressure.found)
-    std::cout << "continuum: " << file.string()
-              << " has no equation of state (an older measurement): the twin takes the ideal "
-                 "fluid's\n";
+  if (p.model == continuum::Model::Compressible) { // what take_coefficients gave it besides
+    const transport::ExcessPressure& e = k.excess_pressure;
+    if (std::isfinite(k.viscosity_dissipative))
+      std::cout << "continuum: bulk viscosity zeta = (1 + 2/d) eta_D = " << p.bulk_viscosity
+                << " (estimated: eta's dissipative part " << k.viscosity_dissipative << ", from "
+                << file.string() << ")\n";
+    if (e.fitted)
+      std::cout << "continuum: p = n T + n^2 (b0 + b1 T + b2 (n - " << e.n_ref
+                << ")), b0 = " << e.b0 << " +- " << e.b0_stderr << ", b1 = " << e.b1 << " +- "
+                << e.b1_stderr << ", b2 = " << e.b2 << " +- " << e.b2_stderr
+                << " (fitted to the bulk runs, from " << file.string() << ")\n";
+    if (!e.found)
+      std::cout << "continuum: " << file.string()
+                << " has no equation of state (an older measurement): the twin takes the ideal "
+                   "fluid's\n";
+  }
   return {k.conductivity.stderr_, k.viscosity.stderr_};
 }
 

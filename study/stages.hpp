@@ -13,12 +13,12 @@
 
 namespace twinflow::study {
 
-// RUNDIR/particle. Exit code: 0, 4 (the run went unstable), 5 (interrupted, checkpoint written).
 // The particle stage's checkpoint in a run directory (what --restart continues from).
 inline std::filesystem::path particle_checkpoint(const std::filesystem::path& run_dir) {
   return run_dir / "particle" / "checkpoint.twfc";
 }
 
+// RUNDIR/particle. Exit code: 0, 4 (the run went unstable), 5 (interrupted, checkpoint written).
 int particle_stage(const Case& c, const RunOptions& options);
 // `twinflow particle`: the stage, its inputs recorded as `run` records them (a later `run` of
 // the same case reuses the results).

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <iostream>
 #include <sstream>
+#include <utility>
 
 #include "transport/estimates.hpp"
 #include "transport/measure.hpp"
@@ -180,12 +181,14 @@ TransportMeasurement measure_transport(const scene::SceneParameters& scene,
   eos["n_ref"] = p.density;
   eos["source"] = ideal_fluid ? "ideal DPDE fluid (no conservative force)"
                               : "fit to the bulk runs (measured/excess_pressure)";
-  eos["b0"] = ideal_fluid ? 0.0 : m.excess_pressure.b0;
-  eos["b0_stderr"] = ideal_fluid ? 0.0 : m.excess_pressure.b0_stderr;
-  eos["b1"] = ideal_fluid ? 0.0 : m.excess_pressure.b1;
-  eos["b1_stderr"] = ideal_fluid ? 0.0 : m.excess_pressure.b1_stderr;
-  eos["b2"] = ideal_fluid ? 0.0 : m.excess_pressure.b2;
-  eos["b2_stderr"] = ideal_fluid ? 0.0 : m.excess_pressure.b2_stderr;
+  const ExcessPressureFit& fit = m.excess_pressure;
+  for (const auto& [key, value] : {std::pair{"b0", fit.b0},
+                                   {"b0_stderr", fit.b0_stderr},
+                                   {"b1", fit.b1},
+                                   {"b1_stderr", fit.b1_stderr},
+                                   {"b2", fit.b2},
+                                   {"b2_stderr", fit.b2_stderr}})
+    eos[key] = ideal_fluid ? 0.0 : value;
   r["equation_of_state"] = eos;
   // The continuum twin reads "conductivity" and "viscosity" (transport/coefficients.cpp).
   if (t.kappa_from_walls || t.measure_flows) {

@@ -48,6 +48,9 @@ struct WallPair {
   std::array<double, 2> temperature{{1, 1}};
   bool no_slip = false;
   std::array<WallModel, 2> model{{WallModel::HalfSpace, WallModel::HalfSpace}};
+  // half-space walls: the wall material's heat-conduction strength for its pairs with the fluid,
+  // in units of the fluid's kappa0
+  std::array<double, 2> conduction{{1, 1}};
 };
 
 struct ParticleParameters {
@@ -99,9 +102,7 @@ struct ParticleParameters {
   std::array<WallPair, 3> walls;       // per direction
   double wall_a0 = 25, wall_range = 1; // seed 000's walls: repulsion and range
   double wall_density = 0;             // half-space walls: rho_w; 0: the fluid's density
-  double wall_conduction = 1; // half-space walls: the wall material's heat-conduction strength
-                              // for its pairs with the fluid, in units of the fluid's own
-  bool wall_diffuse = true;   // half-space thermal walls re-emit what hits them at T_w (diffuse)
+  bool wall_diffuse = true;            // half-space thermal walls re-emit what hits them at T_w
   std::array<double, 3> gravity{{0, 0, 0}};
   bool has_walls() const;
   bool has_wall_model(WallModel m) const; // some wall of the scene acts this way

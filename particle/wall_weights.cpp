@@ -96,7 +96,8 @@ HalfSpaceWall make_half_space_wall(const ParticleParameters& p) {
   w.friction_tangent = table(p.dissipation, WallMoment::TangentSq, p.dissipation.exponent);
   w.range = p.dissipation.cutoff;
   if (p.heat != HeatLaw::None && p.energy == EnergyModel::Dpde) {
-    w.heat = table(p.heat_weight, WallMoment::Volume, p.heat_weight.exponent, p.wall_conduction);
+    w.heat =
+        table(p.heat_weight, WallMoment::Volume, p.heat_weight.exponent); // per unit conduction
     w.range = std::max(w.range, p.heat_weight.cutoff);
   }
   if (p.conservative != ConservativeForce::None) {

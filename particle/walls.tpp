@@ -28,7 +28,10 @@ typename Simulation<M>::WallCoupling Simulation<M>::wall_coupling(int d, int sid
   c.half_space = true;
   c.normal = half_space_.friction_normal(h), c.sqrt_normal = std::sqrt(c.normal);
   c.tangent = half_space_.friction_tangent(h), c.sqrt_tangent = std::sqrt(c.tangent);
-  if constexpr (M::Heat::active) c.heat = half_space_.heat(h), c.sqrt_heat = std::sqrt(c.heat);
+  if constexpr (M::Heat::active) {
+    c.heat = p_.walls[d].conduction[side] * half_space_.heat(h);
+    c.sqrt_heat = std::sqrt(c.heat);
+  }
   return c;
 }
 

@@ -105,11 +105,13 @@ void declare_particle(Registry& r) {
   r.declare(p + "Walls/Density", "0", Double(0),
             "half-space walls: the wall material's number density rho_w; 0: the fluid's "
             "(Scene/Density). The walls' thermal coupling grows with it.");
-  r.declare(p + "Walls/Heat conduction", "1", Double(0),
+  r.declare(p + "Walls/Heat conduction", "1", List(Double(0), 1, 6),
             "half-space walls: the wall material's heat-conduction strength for its pairs with "
-            "the fluid, in units of the fluid's own (kappa0 x this). Most of a DPDE fluid's heat "
-            "flux is carried by diffusing particles, which stop at a wall: a wall that holds its "
-            "temperature conducts better than the fluid.");
+            "the fluid, in units of the fluid's own (kappa0 x this). A wall passes heat by "
+            "re-emitting the particles that reach it and by this conduction; beside a dilute hot "
+            "fluid the re-emission alone leaves a jump of several % of the walls' difference "
+            "(docs/case-files.md, Walls). One value for every wall, or one per wall in the order "
+            "x lower, x upper, y lower, ...");
   r.declare(p + "Walls/Diffuse reflection", "true", Bool(),
             "half-space thermal walls: a particle that reaches the plane comes back as one "
             "emitted by wall material at T_w (velocity from the flux-weighted Maxwell law, "
@@ -218,19 +220,23 @@ ParticleParameters resolve_particle(const Registry& r, const scene::SceneParamet
   p.wall_range = r.get_double(s + "Walls/Range");
   r.require(p.wall_range > 0, s + "Walls/Range", kPositive);
   p.wall_density = r.get_double(s + "Walls/Density");
-  p.wall_conduction = r.get_double(s + "Walls/Heat conduction");
   p.wall_diffuse = r.get_bool(s + "Walls/Diffuse reflection");
   const std::string models = r.get(s + "Walls/Model");
   std::vector<std::string> model = dealii::Utilities::split_string_list(models);
   r.require(model.size() == 1 || static_cast<int>(model.size()) == 2 * p.dim, s + "Walls/Model",
             "one value, or one per wall (2 x dimension)");
+  const std::vector<double> conduction = r.get_doubles(s + "Walls/Heat conduction");
+  r.require(conduction.size() == 1 || static_cast<int>(conduction.size()) == 2 * p.dim,
+            s + "Walls/Heat conduction", "one value, or one per wall (2 x dimension)");
   for (int d = 0; d < p.dim; ++d) {
     const auto& b = scene.boundary[d];
     p.walls[d] = WallPair{!b.periodic, b.thermal, b.temperature, b.no_slip};
-    for (int side = 0; side < 2; ++side)
-      p.walls[d].model[side] = model[model.size() == 1 ? 0 : 2 * d + side] == "seed000"
-                                   ? WallModel::Seed000
-                                   : WallModel::HalfSpace;
+    for (int side = 0; side < 2; ++side) {
+      const std::size_t k = 2 * d + side;
+      p.walls[d].model[side] =
+          model[model.size() == 1 ? 0 : k] == "seed000" ? WallModel::Seed000 : WallModel::HalfSpace;
+      p.walls[d].conduction[side] = conduction[conduction.size() == 1 ? 0 : k];
+    }
     p.gravity[d] = scene.gravity[d];
     r.require(!(b.periodic && scene.gravity[d] != 0), "Scene/Gravity",
               "no component along a periodic direction (its potential would jump at the wrap)");

@@ -116,3 +116,33 @@ TEST(Walls, EnergyBalanceClosesForEveryIntegrator) {
     EXPECT_LE(worst, 1e-12) << c.name;
   }
 }
+
+// Walls/Heat conduction is per wall: the hot wall's factor alone, 0 -> 10, raises the heat that
+// enters through it (bounce-back walls: no re-emission, so the pair conduction is the wall's
+// main heat path), leaves the cold wall's coupling alone, and the energy balance still closes.
+TEST(Walls, ConductionFactorActsOnItsOwnWall) {
+  auto inflows = [](std::array<double, 2> factor, double& residual) {
+    auto p = with_walls(cavity(0.01, true), kWallCases[1]);
+    p.energy_offset = true;
+    p.kappa0 = 5;
+    p.walls[0].conduction = factor;
+    Simulation<M> sim(model(p), p);
+    const double e0 = sim.total_energy();
+    residual = 0;
+    for (int s = 0; s < 2000; ++s) {
+      sim.step();
+      double inflow = 0;
+      for (const double q : sim.wall_energy_in()) inflow += q;
+      residual = std::max(residual, std::fabs(sim.total_energy() - e0 - inflow) / e0);
+    }
+    return std::array<double, 2>{sim.wall_energy_in()[0], sim.wall_energy_in()[1]};
+  };
+  double r0, r10;
+  const auto off = inflows({{0, 1}}, r0), ten = inflows({{10, 1}}, r10);
+  std::printf("heat in through the hot / cold wall over 2000 steps: factors 0, 1: %.2f / %.2f; "
+              "10, 1: %.2f / %.2f; balance residuals %.1e, %.1e\n",
+              off[0], off[1], ten[0], ten[1], r0, r10);
+  EXPECT_GT(ten[0], 2 * off[0]);
+  EXPECT_LT(std::fabs(ten[1] - off[1]), 0.2 * std::fabs(off[1])); // measured: 3%
+  EXPECT_LE(r10, 1e-12);
+}

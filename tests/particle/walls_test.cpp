@@ -56,6 +56,18 @@ const WallCase kWallCases[] = {
     {Integrator::Euler, WallModel::HalfSpace, true, "euler, half-space, diffuse"},
     {Integrator::Euler, WallModel::Seed000, false, "euler, seed000"},
 };
+// Steps the simulation; returns the largest |E(t) - E(0) - energy in through the walls| / E(0).
+double run_with_balance(Simulation<M>& sim, int steps) {
+  const double e0 = sim.total_energy();
+  double worst = 0;
+  for (int s = 0; s < steps; ++s) {
+    sim.step();
+    double inflow = 0;
+    for (const double q : sim.wall_energy_in()) inflow += q;
+    worst = std::max(worst, std::fabs(sim.total_energy() - e0 - inflow) / e0);
+  }
+  return worst;
+}
 ParticleParameters with_walls(ParticleParameters p, const WallCase& c) {
   p.integrator = c.integrator;
   if (c.integrator != Integrator::Shardlow) { // explicit friction and noise: a particle's kick
@@ -103,13 +115,9 @@ TEST(Walls, EnergyBalanceClosesForEveryIntegrator) {
     p.energy_offset = true;
     Simulation<M> sim(model(p), p);
     const double e0 = sim.total_energy();
-    double worst = 0, inflow = 0;
-    for (int s = 0; s < 1000; ++s) {
-      sim.step();
-      inflow = 0;
-      for (const double q : sim.wall_energy_in()) inflow += q;
-      worst = std::max(worst, std::fabs(sim.total_energy() - e0 - inflow) / e0);
-    }
+    const double worst = run_with_balance(sim, 1000);
+    double inflow = 0;
+    for (const double q : sim.wall_energy_in()) inflow += q;
     std::printf("%s: energy through walls %.4f (E0 = %.1f); worst balance residual %.2e\n", c.name,
                 inflow, e0, worst);
     EXPECT_GT(std::fabs(inflow), 1e-3) << c.name; // heat did flow
@@ -127,14 +135,7 @@ TEST(Walls, ConductionFactorActsOnItsOwnWall) {
     p.kappa0 = 5;
     p.walls[0].conduction = factor;
     Simulation<M> sim(model(p), p);
-    const double e0 = sim.total_energy();
-    residual = 0;
-    for (int s = 0; s < 2000; ++s) {
-      sim.step();
-      double inflow = 0;
-      for (const double q : sim.wall_energy_in()) inflow += q;
-      residual = std::max(residual, std::fabs(sim.total_energy() - e0 - inflow) / e0);
-    }
+    residual = run_with_balance(sim, 2000);
     return std::array<double, 2>{sim.wall_energy_in()[0], sim.wall_energy_in()[1]};
   };
   double r0, r10;

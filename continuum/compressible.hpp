@@ -11,8 +11,9 @@
 // (Landau & Lifshitz, Fluid Mechanics, secs. 15 and 49: the internal-energy equation with the
 // pressure work T (dp/dT)_n div u and the viscous heating tau : grad u; d the dimension of the
 // twin, the particle fluid's own; zeta the bulk viscosity, a parameter.) p(n, T) and c_V from
-// compressible_eos.hpp (ideal DPDE: p = n k T, c_V = c_p - k, 000:(3.20), (3.21)); eta(T),
-// kappa(T) the power laws of the other models; the full gravity m n g (no mean subtracted: the
+// compressible_eos.hpp (ideal DPDE: p = n k T, c_V = c_p - k, 000:(3.20), (3.21)); eta(n, T),
+// kappa(n, T) the power laws of the other models with their pair parts (parameters.hpp,
+// PowerLaw; zeta stays constant); the full gravity m n g (no mean subtracted: the
 // hydrostatic pressure gradient is part of the solution).
 //
 // Elements: Q2 velocity, Q1 density, Q2 temperature (Taylor-Hood in (u, n)). At the Mach numbers
@@ -103,6 +104,10 @@ public:
              }}};
   }
   double density(double n, double /*T*/) const { return n; }
+  double conductivity(double n, double T) const {
+    return this->prm_.conductivity.at(n, T, this->prm_.number_density,
+                                      this->prm_.reference_temperature);
+  }
   // Le Quere 2005's Nu normalisation, as low-Mach's: kappa(T_ref) dT / H.
   double nusselt_flux_scale() const {
     return (this->numbers_.temperature_difference > 0 ? 1.0 : -1.0) * reference_flux_;
@@ -253,6 +258,7 @@ void CompressibleModel<dim>::assemble_cell(const CellIterator<dim>& cell, const 
   }
   const auto& prm = this->prm_;
   const double m = prm.particle_mass, c_v = c_v_, T_ref = prm.reference_temperature;
+  const double n_ref = prm.number_density;
   const double zeta = prm.bulk_viscosity, two_over_d = 2.0 / dim;
   const bool with_jacobian = context.with_jacobian;
   const dealii::Tensor<1, dim>& g = context.gravity;
@@ -262,11 +268,15 @@ void CompressibleModel<dim>::assemble_cell(const CellIterator<dim>& cell, const 
   for (unsigned q = 0; q < v.n_q; ++q) {
     const PressureState s = pressure(prm.equation_of_state, n[q], T[q]);
     const PressureWork work = pressure_work(s, T[q]);
-    const double eta = prm.viscosity.at(T[q], T_ref);
-    const double deta = prm.viscosity.derivative(T[q], T_ref);
+    // eta(n, T), kappa(n, T), and d/dT, d/dn for the Jacobian.
+    const PowerLaw &eta_law = prm.viscosity, &kappa_law = prm.conductivity;
+    const double eta = eta_law.at(n[q], T[q], n_ref, T_ref);
+    const double kappa = kappa_law.at(n[q], T[q], n_ref, T_ref);
+    const double deta = eta_law.derivative_T(n[q], T[q], n_ref, T_ref);
+    const double dkappa = kappa_law.derivative_T(n[q], T[q], n_ref, T_ref);
+    const double deta_n = eta_law.derivative_n(n[q], T[q], n_ref, T_ref);
+    const double dkappa_n = kappa_law.derivative_n(n[q], T[q], n_ref, T_ref);
     const double lambda = zeta - two_over_d * eta, dlambda = -two_over_d * deta; // tau's I part
-    const double kappa = prm.conductivity.at(T[q], T_ref);
-    const double dkappa = prm.conductivity.derivative(T[q], T_ref);
     const double source = heat_source_density(prm, v.point(q));
     const dealii::SymmetricTensor<2, dim> eps_u = dealii::symmetrize(grad_u[q]);
     const double div_u = dealii::trace(grad_u[q]);
@@ -303,6 +313,7 @@ void CompressibleModel<dim>::assemble_cell(const CellIterator<dim>& cell, const 
       out.row(i) += phi_n[i] * JxW; // d(int n dV)/dx_i
       const double stress_u_i = 2 * (eps_u * eps_phi_u[i]) - two_over_d * div_u * div_phi_u[i];
       const double heating_T = 2 * deta * (eps_u * eps_u) + dlambda * div_u * div_u;
+      const double heating_n = deta_n * (2 * (eps_u * eps_u) - two_over_d * div_u * div_u);
       for (unsigned j = 0; j < v.n; ++j) {
         // Exact derivative of the residual above in direction (phi_u_j, phi_n_j, phi_T_j).
         const double div_j = div_phi_u[j];
@@ -310,20 +321,21 @@ void CompressibleModel<dim>::assemble_cell(const CellIterator<dim>& cell, const 
         double ddT_dt = phi_u[j] * grad_T[q] + u[q] * grad_phi_T[j];
         if (in_time) ddu_dt += a0 * phi_u[j], ddT_dt += a0 * phi_T[j];
         const double dn_j = phi_n[j], dT_j = phi_T[j];
-        const double momentum = m * dn_j * (du_dt * phi_u[i]) + m * n[q] * (ddu_dt * phi_u[i]) +
-                                2 * eta * (eps_phi_u[j] * eps_phi_u[i]) +
-                                lambda * div_j * div_phi_u[i] + dT_j * deta * stress_u_i -
-                                (s.p_n * dn_j + s.p_T * dT_j) * div_phi_u[i] -
-                                m * dn_j * (g * phi_u[i]);
+        const double momentum =
+            m * dn_j * (du_dt * phi_u[i]) + m * n[q] * (ddu_dt * phi_u[i]) +
+            2 * eta * (eps_phi_u[j] * eps_phi_u[i]) + lambda * div_j * div_phi_u[i] +
+            (dT_j * deta + dn_j * deta_n) * stress_u_i -
+            (s.p_n * dn_j + s.p_T * dT_j) * div_phi_u[i] - m * dn_j * (g * phi_u[i]);
         const double mass = (in_time ? a0 * dn_j * phi_n[i] : 0.0) -
                             grad_phi_n[i] * (dn_j * u[q] + n[q] * phi_u[j]);
-        const double dheating =
-            4 * eta * (eps_u * eps_phi_u[j]) + 2 * lambda * div_u * div_j + heating_T * dT_j;
+        const double dheating = 4 * eta * (eps_u * eps_phi_u[j]) + 2 * lambda * div_u * div_j +
+                                heating_T * dT_j + heating_n * dn_j;
         const double energy =
             (dn_j * c_v * dT_dt + n[q] * c_v * ddT_dt +
              (work.d_n * dn_j + work.d_T * dT_j) * div_u + work.value * div_j - dheating) *
                 phi_T[i] +
-            kappa * (grad_phi_T[j] * grad_phi_T[i]) + dkappa * dT_j * (grad_T[q] * grad_phi_T[i]);
+            kappa * (grad_phi_T[j] * grad_phi_T[i]) +
+            (dkappa * dT_j + dkappa_n * dn_j) * (grad_T[q] * grad_phi_T[i]);
         out.matrix(i, j) += (momentum + mass + energy) * JxW;
       }
     }

@@ -118,6 +118,10 @@ public:
   std::vector<NamedField> derived_fields() const { return {}; }
   // The number density at a point from s and T (the heat capacity per volume is c_p n).
   double density(double /*s*/, double /*T*/) const { return prm_.number_density; }
+  // kappa and eta at a point from s and T (the compressible twin's also depend on n).
+  double conductivity(double /*s*/, double T) const {
+    return prm_.conductivity.at(T, prm_.reference_temperature);
+  }
   // The heat flux per area that makes Nu (signed: Nu > 0 for heat from the lower to the upper
   // wall of the heated direction).
   double nusselt_flux_scale() const { return numbers_.conduction_flux; }

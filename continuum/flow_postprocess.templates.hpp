@@ -3,10 +3,10 @@
 // volume Nu with kinetic energy, max speed, mean T and particle count; wall Nu (gradient and
 // consistent flux); the mid-line velocity maxima; the stream function; derived fields for the
 // output. The model enters through its number density n(s, T) (heat capacity per volume c_p n,
-// mass density m n) and its Nu flux scale. VectorType: dealii::Vector or a ghosted Trilinos block
-// vector; each process integrates over its own cells and the sums are taken over the
-// triangulation's communicator (MPI_COMM_SELF for a serial mesh). Included only by the
-// instantiation units (through flow_problem.templates.hpp).
+// mass density m n), its conductivity kappa(s, T) and its Nu flux scale. VectorType: dealii::Vector
+// or a ghosted Trilinos block vector; each process integrates over its own cells and the sums are
+// taken over the triangulation's communicator (MPI_COMM_SELF for a serial mesh). Included only by
+// the instantiation units (through flow_problem.templates.hpp).
 
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/mpi_remote_point_evaluation.h>
@@ -83,7 +83,7 @@ FlowIntegrals flow_integrals(const dealii::DoFHandler<dim>& dofs, const VectorTy
       const double n = model.density(s[q], T[q]), JxW = fe_values.JxW(q);
       if (d >= 0)
         flux +=
-            (cp * n * u[q][d] * (T[q] - T_ref) - prm.conductivity.at(T[q], T_ref) * grad_T[q][d]) *
+            (cp * n * u[q][d] * (T[q] - T_ref) - model.conductivity(s[q], T[q]) * grad_T[q][d]) *
             JxW;
       kinetic += 0.5 * (n * m) * u[q].norm_square() * JxW; // (1/2) n m |u|^2
       max_speed = std::max(max_speed, u[q].norm());
@@ -108,10 +108,10 @@ FlowIntegrals flow_integrals(const dealii::DoFHandler<dim>& dofs, const VectorTy
 // (the conduction flux, or the model's), +-kappa n.grad T / q_cond with n the outward normal, on
 // both walls of the heated direction: the face average, and (on one process) the values at the
 // face quadrature points.
-template <int dim, class VectorType>
+template <int dim, class VectorType, class Model>
 std::vector<WallNusselt> wall_nusselt(const dealii::DoFHandler<dim>& dofs, const VectorType& x,
-                                      const ContinuumParameters& prm,
-                                      const DimensionlessNumbers& numbers, double flux_scale) {
+                                      const DimensionlessNumbers& numbers, const Model& model) {
+  const double flux_scale = model.nusselt_flux_scale();
   std::vector<WallNusselt> walls;
   const int d = numbers.heated_direction;
   if (d < 0) return walls;
@@ -122,8 +122,8 @@ std::vector<WallNusselt> wall_nusselt(const dealii::DoFHandler<dim>& dofs, const
       dofs.get_fe(), face_quadrature,
       dealii::update_values | dealii::update_gradients | dealii::update_normal_vectors |
           dealii::update_quadrature_points | dealii::update_JxW_values);
-  const dealii::FEValuesExtractors::Scalar temperature(dim + 1);
-  std::vector<double> T(face_quadrature.size());
+  const dealii::FEValuesExtractors::Scalar scalar(dim), temperature(dim + 1);
+  std::vector<double> s(face_quadrature.size()), T(face_quadrature.size());
   std::vector<dealii::Tensor<1, dim>> grad_T(face_quadrature.size());
   for (int side = 0; side < 2; ++side) {
     WallNusselt wall;
@@ -136,11 +136,11 @@ std::vector<WallNusselt> wall_nusselt(const dealii::DoFHandler<dim>& dofs, const
         if (!face->at_boundary() || face->boundary_id() != static_cast<unsigned>(2 * d + side))
           continue;
         fe_face_values.reinit(cell, face);
+        fe_face_values[scalar].get_function_values(x, s);
         fe_face_values[temperature].get_function_values(x, T);
         fe_face_values[temperature].get_function_gradients(x, grad_T);
         for (unsigned q = 0; q < face_quadrature.size(); ++q) {
-          const double nu = (side == 0 ? 1.0 : -1.0) *
-                            prm.conductivity.at(T[q], prm.reference_temperature) *
+          const double nu = (side == 0 ? 1.0 : -1.0) * model.conductivity(s[q], T[q]) *
                             (grad_T[q] * fe_face_values.normal_vector(q)) / flux_scale;
           if (keep_points) {
             std::array<double, 3> point{{0, 0, 0}};
@@ -267,7 +267,7 @@ consistent_wall_nusselt(const dealii::DoFHandler<dim>& dofs, const dealii::Vecto
         for (int k = 0; k < dim; ++k) x3[k] = fe_values.quadrature_point(q)[k];
         const double n = model.density(s[q], T[q]);
         Q += (prm.heat_capacity * n * (u[q] * grad_T[q]) * w[q] +
-              prm.conductivity.at(T[q], prm.reference_temperature) * (grad_T[q] * grad_w[q]) -
+              model.conductivity(s[q], T[q]) * (grad_T[q] * grad_w[q]) -
               heat_source_density(prm, x3) * w[q]) *
              fe_values.JxW(q);
       }

@@ -443,7 +443,7 @@ void FlowProblem<dim, Model, Backend>::postprocess(ContinuumResult& result) {
   result.kinetic_energy = flow.kinetic_energy;
   result.max_speed = flow.max_speed;
   result.temperature_mean = flow.temperature_mean;
-  result.walls = detail::wall_nusselt(dof_handler_, x, prm_, numbers_, model_.nusselt_flux_scale());
+  result.walls = detail::wall_nusselt(dof_handler_, x, numbers_, model_);
   detail::midline_maxima(dof_handler_, x, prm_, numbers_, result);
   std::vector<std::string> names;
   for (int d = 0; d < dim; ++d) names.push_back(std::string("u_") + "xyz"[d]);

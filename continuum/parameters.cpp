@@ -167,6 +167,9 @@ void check(const ContinuumParameters& p) {
           "eta and kappa must be > 0");
   require(p.viscosity.sutherland_temperature >= 0 && p.conductivity.sutherland_temperature >= 0,
           "Sutherland temperatures must be >= 0");
+  for (const PowerLaw* law : {&p.viscosity, &p.conductivity})
+    require(law->pair_fraction >= 0 && law->pair_fraction <= 1 && std::isfinite(law->pair_exponent),
+            "pair fractions in [0, 1] (the compressible twin's; the others leave them out)");
   require(p.reference_temperature > 0, "reference temperature must be > 0");
   require(p.refinements >= 0 && p.refinements <= 12, "refinements in [0, 12]");
   require(p.newton_tolerance > 0 && p.max_newton_iterations >= 1, "Newton tolerance > 0");

@@ -34,10 +34,18 @@ enum class LinearSolver { Automatic, Direct, Iterative };
 // (seed 000 uses kappa = kappa_0 (T/T_0)^-2.) With sutherland_temperature S > 0 Sutherland's law
 // instead: value_at_reference * (T/T_ref)^(3/2) (T_ref + S) / (T + S) (Sutherland 1893; the form
 // of Le Quere et al. 2005, anchored at T_ref instead of T* = 273 K: the same law).
+// The compressible twin also gives it a density dependence: a part f = pair_fraction (at n_ref,
+// T_ref) is carried by pair terms and goes as n^2 (DPD friction for eta, pair heat conduction
+// for kappa: both n^2 integrals, 000:(3.25), Marsh, Backx & Ernst 1997), with its own power of T;
+// the rest rides on moving particles, whose mean free path goes as 1/n, and does not depend on
+// n: coefficient(n, T) = (1 - f) at(T) + f value_at_reference (n/n_ref)^2 (T/T_ref)^pair_exponent.
+// n_ref is the box's mean density (the transport stage's).
 struct PowerLaw {
   double value_at_reference = 1.0;
   double exponent = 0.0;
   double sutherland_temperature = 0.0; // S in units of T0; 0: the power law above
+  double pair_fraction = 0.0;          // f in [0, 1]; 0: none (Boussinesq, low-Mach: unused)
+  double pair_exponent = 0.0;          // the pair part's power of T
 
   double at(double T, double T_ref) const {
     if (sutherland_temperature > 0.0) {
@@ -54,6 +62,24 @@ struct PowerLaw {
     return exponent == 0.0 ? 0.0 : exponent * at(T, T_ref) / T;
   }
   bool is_constant() const { return exponent == 0.0 && sutherland_temperature <= 0.0; }
+  // The value at (n, T) and its derivatives in T and n (the exact Newton Jacobian).
+  double at(double n, double T, double n_ref, double T_ref) const {
+    return (1.0 - pair_fraction) * at(T, T_ref) + pair(n, T, n_ref, T_ref);
+  }
+  double derivative_T(double n, double T, double n_ref, double T_ref) const {
+    return (1.0 - pair_fraction) * derivative(T, T_ref) +
+           pair_exponent * pair(n, T, n_ref, T_ref) / T;
+  }
+  double derivative_n(double n, double T, double n_ref, double T_ref) const {
+    return 2.0 * pair(n, T, n_ref, T_ref) / n;
+  }
+
+private:
+  double pair(double n, double T, double n_ref, double T_ref) const {
+    if (pair_fraction == 0.0) return 0.0;
+    const double r = n / n_ref;
+    return pair_fraction * value_at_reference * r * r * std::pow(T / T_ref, pair_exponent);
+  }
 };
 
 // Boundaries of one box direction: walls at x_d = 0 (side 0) and x_d = L_d (side 1), or periodic.

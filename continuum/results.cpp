@@ -19,6 +19,10 @@ io::Json power_law(const PowerLaw& law) {
   j["value_at_reference"] = law.value_at_reference;
   j["exponent"] = law.exponent;
   if (law.sutherland_temperature > 0) j["sutherland_temperature"] = law.sutherland_temperature;
+  if (law.pair_fraction > 0) {
+    j["pair_fraction"] = law.pair_fraction;
+    j["pair_exponent"] = law.pair_exponent;
+  }
   return j;
 }
 // Per direction: periodic, or the two walls (temperature or flux, Kapitza, slip).

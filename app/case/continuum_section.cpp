@@ -152,6 +152,14 @@ void declare_continuum(Registry& r) {
     r.declare(name + " exponent", "0", Double(), law.exponent_doc);
     r.declare(name + " Sutherland temperature", "0", Double(0), law.sutherland_doc,
               "a number >= 0 (0: off)");
+    r.declare(name + " pair fraction", "0", Double(0, 1),
+              "Compressible model: the part f of the value at the scene's density n0 carried by "
+              "pair terms, which go as n^2 (DPD friction, pair heat conduction); the value at n "
+              "is (1 - f) times the above + f value (n/n0)^2 (T/T_ref)^(pair exponent). 0: no "
+              "density dependence (the transport stage does not measure one yet).");
+    r.declare(name + " pair exponent", "0", Double(),
+              "Compressible model: the pair part's power of T (the exponent above is then the "
+              "rest's).");
   }
   r.declare_positive(
       c + "Heat capacity", "1",
@@ -309,7 +317,9 @@ continuum::ContinuumParameters resolve_continuum(const Registry& r,
   const std::string k = s + "Coefficients/";
   const auto law = [&](const std::string& name) {
     return continuum::PowerLaw{r.get_positive(k + name), r.get_double(k + name + " exponent"),
-                               r.get_double(k + name + " Sutherland temperature")};
+                               r.get_double(k + name + " Sutherland temperature"),
+                               r.get_double(k + name + " pair fraction"),
+                               r.get_double(k + name + " pair exponent")};
   };
   c.viscosity = law("Viscosity");
   c.conductivity = law("Conductivity");

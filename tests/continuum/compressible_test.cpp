@@ -249,15 +249,20 @@ struct ManufacturedForcing {
   void operator()(const dealii::Point<2>& x, double t, dealii::Vector<double>& f) const {
     const Manufactured s{a(t), da_dt(t)};
     const double c_v = p.heat_capacity - 1.0, T_ref = p.reference_temperature;
-    const auto eta = [&](double T) { return p.viscosity.at(T, T_ref); };
-    const auto kappa = [&](double T) { return p.conductivity.at(T, T_ref); };
+    const double n_ref = p.number_density;
+    const auto eta = [&](const dealii::Point<2>& y) { // eta(n, T)
+      return p.viscosity.at(s.n(y), s.T(y), n_ref, T_ref);
+    };
+    const auto kappa = [&](const dealii::Point<2>& y) {
+      return p.conductivity.at(s.n(y), s.T(y), n_ref, T_ref);
+    };
     const auto u = [&](const dealii::Point<2>& y, int i) { return i == 0 ? s.ux(y) : s.uy(y); };
     const auto grad_u = [&](const dealii::Point<2>& y, int i, int j) { // d u_i / d x_j
       return derivative([&](const dealii::Point<2>& z) { return u(z, i); }, y, j);
     };
     const auto div_u = [&](const dealii::Point<2>& y) { return grad_u(y, 0, 0) + grad_u(y, 1, 1); };
     const auto tau = [&](const dealii::Point<2>& y, int i, int j) {
-      const double e = eta(s.T(y));
+      const double e = eta(y);
       return e * (grad_u(y, i, j) + grad_u(y, j, i)) +
              (i == j ? (p.bulk_viscosity - e) * div_u(y) : 0.0); // 2 eta S + (zeta - (2/d) eta)
     };
@@ -287,7 +292,7 @@ struct ManufacturedForcing {
       energy += n * c_v * u(x, j) * derivative(T_of, x, j);
       for (int i = 0; i < 2; ++i) energy -= tau(x, i, j) * grad_u(x, i, j);
       energy -= derivative(
-          [&](const dealii::Point<2>& y) { return kappa(s.T(y)) * derivative(T_of, y, j); }, x, j);
+          [&](const dealii::Point<2>& y) { return kappa(y) * derivative(T_of, y, j); }, x, j);
     }
     f(3) = energy;
   }
@@ -307,9 +312,9 @@ ContinuumParameters manufactured_case(unsigned cells) {
   p.gravity = {{0, -1, 0}};
   p.number_density = 1.0; // int n dV of the manufactured n
   p.particle_mass = 1.0;
-  p.heat_capacity = 2.5; // c_V = 1.5
-  p.viscosity = PowerLaw{0.5, 0.7};
-  p.conductivity = PowerLaw{0.8, -1.0};
+  p.heat_capacity = 2.5;                               // c_V = 1.5
+  p.viscosity = PowerLaw{0.5, 0.7, 0.0, 0.4, -1.0};    // 40% of it going as n^2 T^-1
+  p.conductivity = PowerLaw{0.8, -1.0, 0.0, 0.6, 0.5}; // 60% as n^2 T^0.5
   p.bulk_viscosity = 0.3;
   p.equation_of_state = {0.3, 0.2, 0.5, 1.0}; // an excess pressure: p_n, p_T, p_nn, p_nT
   p.continuation_start_rayleigh = 1e30;
@@ -322,8 +327,8 @@ ContinuumParameters manufactured_case(unsigned cells) {
 
 TEST(Compressible, ManufacturedSolutionConvergesAtTheElementsOrder) {
   // Every term of the three equations is active (advection, div u != 0, viscous heating,
-  // pressure work, eta(T), kappa(T), bulk viscosity, gravity, the excess pressure). Expected L2
-  // orders: 3 in u and T (Q2), 2 in n (Q1).
+  // pressure work, eta(n, T), kappa(n, T), bulk viscosity, gravity, the excess pressure). Expected
+  // L2 orders: 3 in u and T (Q2), 2 in n (Q1).
   const ExactState exact = Manufactured{}.state();
   std::vector<Errors> e;
   for (const unsigned cells : {8u, 16u, 32u}) {
@@ -356,6 +361,9 @@ TEST(Compressible, ManufacturedSolutionInTimeConvergesAtSecondOrder) {
   const auto da_dt = [](double t) { return 1.5 * std::cos(3 * t); };
   const auto solve = [&](double dt) {
     ContinuumParameters p = manufactured_case(8);
+    // Without the density factors (the space test's): with them the dt = 0.1 pair is still
+    // pre-asymptotic in n (1.66, then 1.86, 2.00).
+    p.viscosity.pair_fraction = p.conductivity.pair_fraction = 0;
     p.mode = Mode::Transient;
     p.end_time = 1.0;
     p.time_step = dt;

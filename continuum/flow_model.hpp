@@ -118,7 +118,7 @@ public:
   std::vector<NamedField> derived_fields() const { return {}; }
   // The number density at a point from s and T (the heat capacity per volume is c_p n).
   double density(double /*s*/, double /*T*/) const { return prm_.number_density; }
-  // kappa and eta at a point from s and T (the compressible twin's also depend on n).
+  // kappa at a point from s and T (the compressible twin's also depends on n).
   double conductivity(double /*s*/, double T) const {
     return prm_.conductivity.at(T, prm_.reference_temperature);
   }

@@ -105,8 +105,9 @@ public:
   }
   double density(double n, double /*T*/) const { return n; }
   double conductivity(double n, double T) const {
-    return this->prm_.conductivity.at(n, T, this->prm_.number_density,
-                                      this->prm_.reference_temperature);
+    return this->prm_.conductivity
+        .at(n, T, this->prm_.number_density, this->prm_.reference_temperature)
+        .value;
   }
   // Le Quere 2005's Nu normalisation, as low-Mach's: kappa(T_ref) dT / H.
   double nusselt_flux_scale() const {
@@ -269,13 +270,8 @@ void CompressibleModel<dim>::assemble_cell(const CellIterator<dim>& cell, const 
     const PressureState s = pressure(prm.equation_of_state, n[q], T[q]);
     const PressureWork work = pressure_work(s, T[q]);
     // eta(n, T), kappa(n, T), and d/dT, d/dn for the Jacobian.
-    const PowerLaw &eta_law = prm.viscosity, &kappa_law = prm.conductivity;
-    const double eta = eta_law.at(n[q], T[q], n_ref, T_ref);
-    const double kappa = kappa_law.at(n[q], T[q], n_ref, T_ref);
-    const double deta = eta_law.derivative_T(n[q], T[q], n_ref, T_ref);
-    const double dkappa = kappa_law.derivative_T(n[q], T[q], n_ref, T_ref);
-    const double deta_n = eta_law.derivative_n(n[q], T[q], n_ref, T_ref);
-    const double dkappa_n = kappa_law.derivative_n(n[q], T[q], n_ref, T_ref);
+    const auto [eta, deta, deta_n] = prm.viscosity.at(n[q], T[q], n_ref, T_ref);
+    const auto [kappa, dkappa, dkappa_n] = prm.conductivity.at(n[q], T[q], n_ref, T_ref);
     const double lambda = zeta - two_over_d * eta, dlambda = -two_over_d * deta; // tau's I part
     const double source = heat_source_density(prm, v.point(q));
     const dealii::SymmetricTensor<2, dim> eps_u = dealii::symmetrize(grad_u[q]);

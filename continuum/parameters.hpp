@@ -63,22 +63,18 @@ struct PowerLaw {
   }
   bool is_constant() const { return exponent == 0.0 && sutherland_temperature <= 0.0; }
   // The value at (n, T) and its derivatives in T and n (the exact Newton Jacobian).
-  double at(double n, double T, double n_ref, double T_ref) const {
-    return (1.0 - pair_fraction) * at(T, T_ref) + pair(n, T, n_ref, T_ref);
-  }
-  double derivative_T(double n, double T, double n_ref, double T_ref) const {
-    return (1.0 - pair_fraction) * derivative(T, T_ref) +
-           pair_exponent * pair(n, T, n_ref, T_ref) / T;
-  }
-  double derivative_n(double n, double T, double n_ref, double T_ref) const {
-    return 2.0 * pair(n, T, n_ref, T_ref) / n;
-  }
-
-private:
-  double pair(double n, double T, double n_ref, double T_ref) const {
-    if (pair_fraction == 0.0) return 0.0;
+  struct AtState {
+    double value, d_T, d_n;
+  };
+  AtState at(double n, double T, double n_ref, double T_ref) const {
+    const double rest = 1.0 - pair_fraction;
+    AtState s{rest * at(T, T_ref), rest * derivative(T, T_ref), 0.0};
+    if (pair_fraction == 0.0) return s;
     const double r = n / n_ref;
-    return pair_fraction * value_at_reference * r * r * std::pow(T / T_ref, pair_exponent);
+    const double pair =
+        pair_fraction * value_at_reference * r * r * std::pow(T / T_ref, pair_exponent);
+    s.value += pair, s.d_T += pair_exponent * pair / T, s.d_n = 2.0 * pair / n;
+    return s;
   }
 };
 

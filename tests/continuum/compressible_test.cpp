@@ -251,10 +251,10 @@ struct ManufacturedForcing {
     const double c_v = p.heat_capacity - 1.0, T_ref = p.reference_temperature;
     const double n_ref = p.number_density;
     const auto eta = [&](const dealii::Point<2>& y) { // eta(n, T)
-      return p.viscosity.at(s.n(y), s.T(y), n_ref, T_ref);
+      return p.viscosity.at(s.n(y), s.T(y), n_ref, T_ref).value;
     };
     const auto kappa = [&](const dealii::Point<2>& y) {
-      return p.conductivity.at(s.n(y), s.T(y), n_ref, T_ref);
+      return p.conductivity.at(s.n(y), s.T(y), n_ref, T_ref).value;
     };
     const auto u = [&](const dealii::Point<2>& y, int i) { return i == 0 ? s.ux(y) : s.uy(y); };
     const auto grad_u = [&](const dealii::Point<2>& y, int i, int j) { // d u_i / d x_j

@@ -75,9 +75,10 @@ public:
 
   CompressibleModel(const ContinuumParameters& prm, const DimensionlessNumbers& numbers,
                     const dealii::FiniteElement<dim>& fe)
-      : FlowModel<dim>(prm, numbers), values_(fe, dealii::QGauss<dim>(3)), walls_(fe, prm),
-        c_v_(heat_capacity_v(prm.heat_capacity)), grad_n_(values_.n_q), history_u_(values_.n_q),
-        history_n_(values_.n_q), history_T_(values_.n_q), dofs_(fe.n_dofs_per_cell()) {
+      : FlowModel<dim>(prm, numbers), values_(fe, dealii::QGauss<dim>(3)),
+        walls_(fe, prm, /*density_field=*/true), c_v_(heat_capacity_v(prm.heat_capacity)),
+        grad_n_(values_.n_q), history_u_(values_.n_q), history_n_(values_.n_q),
+        history_T_(values_.n_q), dofs_(fe.n_dofs_per_cell()) {
     volume_ = 1;
     for (int d = 0; d < dim; ++d) volume_ *= prm.box[d];
     total_particles_ = prm.number_density * volume_; // N = n_mean |Omega|

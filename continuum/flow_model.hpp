@@ -233,14 +233,17 @@ template <int dim> struct CellValues {
 
 // The wall integrals every model shares: heat flux walls, - int_Gamma q phi_T; Kapitza (Robin)
 // walls, q(T) = h_K (T_wall - T) or its inverse law (DirectionBoundary::kapitza_flux), with the
-// Jacobian -q'(T) phi_T,j phi_T,i; Navier walls + int_Gamma (eta(T) / b) u . phi_u (the normal
-// part is constrained to zero).
+// Jacobian -q'(T) phi_T,j phi_T,i; Navier walls + int_Gamma beta u . phi_u (the normal part is
+// constrained to zero), beta = eta(T) / b or, with kinetic slip, the particle wall's own
+// beta(n, T). `density_field`: the scalar component is n (compressible), else n is n0.
 template <int dim> class WallTerms {
 public:
-  WallTerms(const dealii::FiniteElement<dim>& fe, const ContinuumParameters& prm)
-      : prm_(prm), quadrature_(3),
+  WallTerms(const dealii::FiniteElement<dim>& fe, const ContinuumParameters& prm,
+            bool density_field = false)
+      : prm_(prm), density_field_(density_field), quadrature_(3),
         fe_face_values_(fe, quadrature_, dealii::update_values | dealii::update_JxW_values),
-        n_(fe.n_dofs_per_cell()), T_(quadrature_.size()), u_(quadrature_.size()) {}
+        n_(fe.n_dofs_per_cell()), T_(quadrature_.size()), density_(quadrature_.size()),
+        u_(quadrature_.size()) {}
 
   template <class VectorType>
   void add(const CellIterator<dim>& cell, const VectorType& x, bool with_jacobian,
@@ -251,8 +254,7 @@ public:
       const auto& b = prm_.boundary[d];
       if (b.periodic) continue;
       const bool robin = b.robin(side);
-      if (b.navier(side))
-        add_navier_traction(cell, face, x, b.slip_length[side], with_jacobian, out);
+      if (b.navier(side)) add_navier_traction(cell, face, x, b, side, with_jacobian, out);
       if (!robin && (b.fixed_temperature[side] || b.heat_flux[side] == 0.0)) continue;
       fe_face_values_.reinit(cell, face);
       if (robin) fe_face_values_[temperature_].get_function_values(x, T_);
@@ -272,40 +274,50 @@ public:
   }
 
 private:
-  // Navier wall: residual + int (eta(T)/b) u . phi_u,i; Jacobian (eta/b) phi_u,j . phi_u,i +
-  // (eta'(T)/b) phi_T,j u . phi_u,i.
+  // Navier wall: residual + int beta u . phi_u,i; Jacobian beta phi_u,j . phi_u,i + (beta_T
+  // phi_T,j + beta_n phi_n,j) u . phi_u,i.
   template <class Face, class VectorType>
   void add_navier_traction(const CellIterator<dim>& cell, const Face& face, const VectorType& x,
-                           double slip_length, bool with_jacobian, CellSystem& out) {
+                           const DirectionBoundary& b, int side, bool with_jacobian,
+                           CellSystem& out) {
     fe_face_values_.reinit(cell, face);
     fe_face_values_[temperature_].get_function_values(x, T_);
     fe_face_values_[velocities_].get_function_values(x, u_);
+    const bool kinetic = b.kinetic_slip[side], with_density = kinetic && density_field_;
+    if (with_density) fe_face_values_[scalar_].get_function_values(x, density_);
     const double T_ref = prm_.reference_temperature;
     for (unsigned q = 0; q < quadrature_.size(); ++q) {
       const double JxW = fe_face_values_.JxW(q);
-      // Navier (1823): the wall's traction eta u_t / b, its friction per area eta / b
-      const double friction = prm_.viscosity.at(T_[q], T_ref) / slip_length;
-      const double dfriction = prm_.viscosity.derivative(T_[q], T_ref) / slip_length;
+      WallFriction::AtState f;
+      if (kinetic) // references.md, "Kinetic slip at a particle wall"
+        f = prm_.wall_friction.at(with_density ? density_[q] : prm_.number_density, T_[q],
+                                  b.temperature[side], prm_.particle_mass);
+      else // Navier (1823): the wall's traction eta u_t / b, its friction per area eta / b
+        f = {prm_.viscosity.at(T_[q], T_ref) / b.slip_length[side],
+             prm_.viscosity.derivative(T_[q], T_ref) / b.slip_length[side], 0.0};
       for (unsigned i = 0; i < n_; ++i) {
         const dealii::Tensor<1, dim> phi_i = fe_face_values_[velocities_].value(i, q);
-        out.rhs(i) -= friction * (u_[q] * phi_i) * JxW;
+        const double u_phi_i = u_[q] * phi_i;
+        out.rhs(i) -= f.value * u_phi_i * JxW;
         if (!with_jacobian) continue;
-        for (unsigned j = 0; j < n_; ++j)
-          out.matrix(i, j) +=
-              (friction * (fe_face_values_[velocities_].value(j, q) * phi_i) +
-               dfriction * fe_face_values_[temperature_].value(j, q) * (u_[q] * phi_i)) *
-              JxW;
+        for (unsigned j = 0; j < n_; ++j) {
+          double dj = f.value * (fe_face_values_[velocities_].value(j, q) * phi_i) +
+                      f.d_T * fe_face_values_[temperature_].value(j, q) * u_phi_i;
+          if (with_density) dj += f.d_n * fe_face_values_[scalar_].value(j, q) * u_phi_i;
+          out.matrix(i, j) += dj * JxW;
+        }
       }
     }
   }
 
   const ContinuumParameters& prm_;
+  const bool density_field_;
   const dealii::QGauss<dim - 1> quadrature_;
   dealii::FEFaceValues<dim> fe_face_values_;
   const unsigned n_;
   const dealii::FEValuesExtractors::Vector velocities_{0};
-  const dealii::FEValuesExtractors::Scalar temperature_{dim + 1};
-  std::vector<double> T_;
+  const dealii::FEValuesExtractors::Scalar scalar_{dim}, temperature_{dim + 1};
+  std::vector<double> T_, density_;
   std::vector<dealii::Tensor<1, dim>> u_;
 };
 

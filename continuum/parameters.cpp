@@ -101,6 +101,9 @@ void check(const ContinuumParameters& p) {
     if (!ok) throw std::invalid_argument("continuum parameters: " + what);
   };
   require(p.dim >= 1 && p.dim <= 3, "dim must be 1, 2 or 3");
+  for (const auto& b : p.boundary)
+    require(!(b.kinetic_slip[0] || b.kinetic_slip[1]) || has_robin_walls(p.model),
+            "kinetic wall slip needs the Boussinesq or compressible model");
   require(p.model == Model::HeatConduction || p.dim >= 2, "Boussinesq needs dim 2 or 3");
   for (int d = 0; d < p.dim; ++d) {
     require(p.box[d] > 0, "box lengths must be > 0");

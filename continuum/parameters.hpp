@@ -100,7 +100,10 @@ struct DirectionBoundary {
   // eta(T) u_t / b (Navier 1823; the particle wall's friction over its layer). Boussinesq and
   // compressible.
   std::array<double, 2> slip_length{{0.0, 0.0}};
-  bool navier(int side) const { return no_slip && slip_length[side] > 0; }
+  // Kinetic slip of a no-slip thermal wall (ContinuumParameters::wall_friction): the traction
+  // beta(n, T) u_t of the particle wall the twin stands for, instead of eta / b.
+  std::array<bool, 2> kinetic_slip{{false, false}};
+  bool navier(int side) const { return no_slip && (slip_length[side] > 0 || kinetic_slip[side]); }
   double kapitza_flux(int side, double T) const { // heat flux into the domain at fluid T
     const double h = kapitza_conductance[side], Tw = temperature[side];
     return kapitza_inverse ? h * Tw * Tw * (1 / T - 1 / Tw) : h * (Tw - T);
@@ -108,6 +111,29 @@ struct DirectionBoundary {
   double kapitza_flux_derivative(int side, double T) const { // d(kapitza_flux)/dT
     const double h = kapitza_conductance[side], Tw = temperature[side];
     return kapitza_inverse ? -h * Tw * Tw / (T * T) : -h;
+  }
+};
+
+// The friction per area of a particle wall that re-emits what reaches it diffusely (Maxwell's
+// wall) and pulls on the fluid beside it with the DPD friction of its half-space (references.md,
+// "Kinetic slip at a particle wall"): with the slip velocity u_s and the shear rate S at the wall,
+// eta S = beta u_s, beta(n, T) = 2 n [sqrt(m k T / 2 pi) + rho_w I_d gamma(T, T_w)].
+struct WallFriction {
+  double wall_density = 0;   // rho_w
+  double tangent_moment = 0; // I_d = int_{r.n > 0} (r.n) w_D(r) (e.t)^2 d^d r
+  // gamma(T, T_w) = gamma_constant + gamma_inverse (1/T + 1/T_w) (000:(2.37) at the pair's
+  // harmonic-mean temperature: gamma_inverse = sigma^2 / 4)
+  double gamma_constant = 0, gamma_inverse = 0;
+  struct AtState {
+    double value, d_T, d_n;
+  };
+  AtState at(double n, double T, double T_wall, double mass) const {
+    // Maxwell (1879): the momentum flux onto the wall per drift velocity, m n <v_n+>, over n
+    const double kinetic = std::sqrt(mass * T / (2 * M_PI));
+    const double pair =
+        wall_density * tangent_moment * (gamma_constant + gamma_inverse * (1 / T + 1 / T_wall));
+    const double d_pair = -wall_density * tangent_moment * gamma_inverse / (T * T);
+    return {2 * n * (kinetic + pair), 2 * n * (0.5 * kinetic / T + d_pair), 2 * (kinetic + pair)};
   }
 };
 
@@ -135,6 +161,7 @@ struct ContinuumParameters {
   double reference_temperature = 1.0; // T_ref of Boussinesq and of the power laws
   PowerLaw viscosity{1.0, 0.0};       // eta(T)
   PowerLaw conductivity{1.0, 0.0};    // kappa(T)
+  WallFriction wall_friction;         // of the walls with kinetic slip
   std::vector<HeatSlab> heat_slabs;
   // Low-Mach and compressible models: n(P, T) or p(n, T) (continuum/low_mach_eos.hpp,
   // compressible_eos.hpp). Non-ideal: compressible only; c_p above stays the ideal fluid's (the

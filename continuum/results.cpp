@@ -43,7 +43,10 @@ io::Json boundaries_json(const ContinuumParameters& p) {
           s["kapitza_conductance_stderr"] = b.kapitza_conductance_stderr[side];
         } else if (!b.fixed_temperature[side])
           s["heat_flux_in"] = b.heat_flux[side];
-        if (b.navier(side)) s["slip_length"] = b.slip_length[side];
+        if (b.kinetic_slip[side])
+          s["slip"] = "kinetic";
+        else if (b.navier(side))
+          s["slip_length"] = b.slip_length[side];
         w[side ? "upper" : "lower"] = s;
       }
       w["velocity"] = b.no_slip ? "no-slip" : "free-slip";
@@ -97,6 +100,15 @@ io::Json to_json(const ContinuumParameters& p) {
   }
   if (p.model == Model::Compressible) j["bulk_viscosity"] = p.bulk_viscosity;
   j["conductivity"] = power_law(p.conductivity);
+  bool kinetic = false;
+  for (const auto& b : p.boundary) kinetic = kinetic || b.kinetic_slip[0] || b.kinetic_slip[1];
+  if (kinetic)
+    j["wall_friction"] = {{"form", "beta = 2 n [sqrt(m k T / 2 pi) + rho_w I_d gamma(T, T_w)], "
+                                   "gamma = gamma_constant + gamma_inverse (1/T + 1/T_w)"},
+                          {"wall_density", p.wall_friction.wall_density},
+                          {"tangent_moment", p.wall_friction.tangent_moment},
+                          {"gamma_constant", p.wall_friction.gamma_constant},
+                          {"gamma_inverse", p.wall_friction.gamma_inverse}};
   j["heat_slabs"] = heat_slabs_json(p.heat_slabs);
   j["coarse_cells"] = cells_json(p.cells, p.dim);
   j["refinements"] = p.refinements;

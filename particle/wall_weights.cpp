@@ -79,6 +79,14 @@ double half_space_integral(int dim, double h, double rc, const std::function<dou
       h, rc);
 }
 
+double tangent_friction_moment(int dim, double cutoff, double exponent) {
+  // int_0^rc r^d w_D dr = rc^(d+1) B(d + 1, s + 1) times the angular part int (e.n) (e.t)^2
+  // over the half circle (2/3) or the half sphere (pi/4)
+  const double beta =
+      std::tgamma(dim + 1.0) * std::tgamma(exponent + 1) / std::tgamma(dim + exponent + 2);
+  return (dim == 3 ? M_PI / 4 : 2.0 / 3.0) * std::pow(cutoff, dim + 1) * beta;
+}
+
 HalfSpaceWall make_half_space_wall(const ParticleParameters& p) {
   HalfSpaceWall w;
   const double rho = p.wall_density > 0 ? p.wall_density : p.density;

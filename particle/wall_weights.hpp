@@ -47,6 +47,11 @@ enum class WallMoment {
 double half_space_integral(int dim, double h, double rc, const std::function<double(double)>& f,
                            WallMoment moment);
 
+// I_d = int_{r.n > 0} (r.n) w_D(r) (e.t)^2 d^d r for w_D = (1 - r/rc)^s: G_t / rho_w integrated
+// over the distance h from the plane, in closed form (references.md, "Kinetic slip at a particle
+// wall"): the wall friction per area on a fluid of density n moving along it is n rho_w gamma I_d.
+double tangent_friction_moment(int dim, double cutoff, double exponent);
+
 struct HalfSpaceWall {
   WallTable friction_normal, friction_tangent; // G_n, G_t
   WallTable heat;                              // W_H

@@ -71,6 +71,9 @@ Case calibrated_case(const Case& nominal, const fs::path& run_dir) {
         automatic_model(p.scene, p.continuum.particle_mass,
                         p.particle.conservative != particle::ConservativeForce::None,
                         p.twin.low_mach_threshold, p.twin.compressible_threshold);
+  // The measured slip lengths take the walls; a re-chosen low-Mach twin has no Navier walls.
+  if (walls.slip || !continuum::has_robin_walls(p.continuum.model))
+    for (auto& b : p.continuum.boundary) b.kinetic_slip = {{false, false}};
   if (walls.effective_positions) {
     const auto [text, distance] = list([](const auto& w) { return w.position; }, 6);
     set("Continuum/Wall positions", text);

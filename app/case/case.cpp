@@ -53,7 +53,7 @@ study::Case CaseFile::resolve(const std::string& filename) const {
   c.particle = resolve_particle(registry_, c.scene);
   c.checkpoint_interval_minutes = registry_.get_double("Particle/Checkpoint interval");
   resolve_transport_and_compare(registry_, c);
-  c.continuum = resolve_continuum(registry_, c.scene);
+  c.continuum = resolve_continuum(registry_, c.scene, c.particle);
   c.twin.coefficients_from_transport =
       registry_.get("Continuum/Coefficients/Source") == "transport";
   c.twin.model_chosen_automatically = registry_.get("Continuum/Model") == "auto";

@@ -39,7 +39,8 @@ scene::SceneParameters resolve_scene(const Registry&);
 void declare_particle(Registry&);
 particle::ParticleParameters resolve_particle(const Registry&, const scene::SceneParameters&);
 void declare_continuum(Registry&);
-continuum::ContinuumParameters resolve_continuum(const Registry&, const scene::SceneParameters&);
+continuum::ContinuumParameters resolve_continuum(const Registry&, const scene::SceneParameters&,
+                                                 const particle::ParticleParameters&);
 void declare_transport_and_compare(Registry&);
 void resolve_transport_and_compare(const Registry&, study::CaseParameters&);
 

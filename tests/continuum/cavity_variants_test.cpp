@@ -147,3 +147,45 @@ TEST(NavierSlip, PoiseuilleWithSlipIsExact) {
     EXPECT_NEAR(r.u_max_vertical_midline.position, 0.5, 1e-3) << "b = " << b;
   }
 }
+
+// Kinetic slip (references.md, "Kinetic slip at a particle wall") in the same flow: walls at T_w =
+// 1.5, conduction strong enough (kappa 1e6) that T and so n stay uniform under the compressible
+// twin's viscous heating, so the wall friction beta = 2 n [sqrt(m T / 2 pi) + rho_w I gamma(T,
+// T_w)] is uniform and the flow is Poiseuille's with slip length eta / beta, here from the
+// formula written out. The compressible twin's n enters beta (its density field).
+TEST(NavierSlip, KineticSlipIsNavierWithEtaOverBeta) {
+  for (const Model model : {Model::Boussinesq, Model::Compressible}) {
+    ContinuumParameters p;
+    p.dim = 2;
+    p.model = model;
+    p.box = {{1.0, 1.0, 1.0}};
+    p.cells = {{2, 4, 1}};
+    p.refinements = 1;
+    p.number_density = 4.0;
+    p.heat_capacity = 13.0;
+    p.reference_temperature = 1.0;
+    p.thermal_expansion = 1.0;
+    p.viscosity = {0.5, 0.0};
+    p.conductivity = {1e6, 0.0};
+    p.boundary[0] = {true, {{false, false}}, {{1, 1}}, {{0, 0}}, true};    // periodic x
+    p.boundary[1] = {false, {{true, true}}, {{1.5, 1.5}}, {{0, 0}}, true}; // walls, T = 1.5
+    p.boundary[1].kinetic_slip = {{true, true}};
+    p.wall_friction = {4.0, 1.0 / 45, 0.0, 2.25}; // rho_w, I_2 (s = 2), sigma^2 / 4 (sigma = 3)
+    p.boundary[2].periodic = true;
+    // the body force along +x: Boussinesq n m alpha (T - T_ref) |g| = 4, compressible m n g = 1
+    const bool boussinesq = model == Model::Boussinesq;
+    p.gravity = {{boussinesq ? -2.0 : 0.25, 0, 0}};
+    const double f = boussinesq ? 4.0 : 1.0;
+    p.bins = {{1, 4, 1}};
+    p.write_fields = false;
+    const ContinuumResult r = run(p, "");
+    const double T = 1.5, gamma = 9.0 / (2 * T), eta = 0.5; // gamma(T, T) = sigma^2 / 2T
+    const double beta = 2 * 4.0 * (std::sqrt(T / (2 * M_PI)) + 4.0 / 45 * gamma);
+    const double b = eta / beta, expected = f / (2 * eta) * (0.25 + b);
+    const double chi = 1e6 / (4.0 * 13.0); // u_max is reported in units of chi / H, H = 1
+    const double u_max = r.u_max_vertical_midline.value * chi;
+    std::printf("%s: kinetic slip length %.5f rc, u_max %.8f, exact %.8f\n",
+                boussinesq ? "Boussinesq" : "compressible", b, u_max, expected);
+    EXPECT_NEAR(u_max, expected, 1e-6 * expected);
+  }
+}

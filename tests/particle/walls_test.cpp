@@ -6,6 +6,7 @@
 
 #include "particle/run.hpp"
 #include "particle/simulation.hpp"
+#include "particle/wall_weights.hpp"
 
 using namespace twinflow::particle;
 
@@ -146,4 +147,32 @@ TEST(Walls, ConductionFactorActsOnItsOwnWall) {
   EXPECT_GT(ten[0], 2 * off[0]);
   EXPECT_LT(std::fabs(ten[1] - off[1]), 0.2 * std::fabs(off[1])); // measured: 3%
   EXPECT_LE(r10, 1e-12);
+}
+
+// The kinetic-slip twin's wall friction per area (references.md, "Kinetic slip at a particle wall")
+// takes the half-space's tangential friction weight integrated over the distance from the
+// plane in closed form; against the particle wall's own table (tanh-sinh integrals over the
+// half-space at each h), integrated over h by Simpson's rule.
+TEST(Walls, TangentFrictionMomentMatchesTheHalfSpaceTables) {
+  for (const int dim : {2, 3})
+    for (const double exponent : {0.5, 1.0, 2.0}) {
+      ParticleParameters p;
+      p.dim = dim;
+      p.density = 3;
+      p.dissipation = {1.3, exponent};
+      const HalfSpaceWall wall = make_half_space_wall(p);
+      const int intervals = 4000; // even
+      const double step = p.dissipation.cutoff / intervals;
+      double sum = 0;
+      for (int k = 0; k <= intervals; ++k) {
+        const double weight = (k == 0 || k == intervals) ? 1 : (k % 2 ? 4 : 2);
+        sum += weight * wall.friction_tangent(k * step);
+      }
+      const double tables = sum * step / 3 / p.density;
+      const double closed = tangent_friction_moment(dim, p.dissipation.cutoff, exponent);
+      std::printf("I_%d, s = %.1f: closed form %.8f, tables %.8f\n", dim, exponent, closed, tables);
+      EXPECT_NEAR(tables, closed, 1e-5 * closed) << "dim " << dim << ", s = " << exponent;
+    }
+  EXPECT_NEAR(tangent_friction_moment(2, 1, 2), 1.0 / 45, 1e-15);   // (2/3) B(3, 3)
+  EXPECT_NEAR(tangent_friction_moment(3, 1, 2), M_PI / 240, 1e-15); // (pi/4) B(4, 3)
 }

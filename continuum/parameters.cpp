@@ -96,6 +96,19 @@ double heat_source_density(const ContinuumParameters& p, const std::array<double
   return q;
 }
 
+int take_kinetic_slip(ContinuumParameters& p) {
+  if (!has_robin_walls(p.model)) return 0;
+  int taken = 0;
+  for (int d = 0; d < p.dim; ++d)
+    for (int side = 0; side < 2; ++side) {
+      auto& b = p.boundary[d];
+      if (b.periodic || !b.no_slip || b.slip_length[side] > 0) continue;
+      b.kinetic_slip[side] = p.wall_friction.diffuse[d][side];
+      taken += b.kinetic_slip[side];
+    }
+  return taken;
+}
+
 void check(const ContinuumParameters& p) {
   auto require = [](bool ok, const std::string& what) {
     if (!ok) throw std::invalid_argument("continuum parameters: " + what);

@@ -124,6 +124,9 @@ struct WallFriction {
   // gamma(T, T_w) = gamma_constant + gamma_inverse (1/T + 1/T_w) (000:(2.37) at the pair's
   // harmonic-mean temperature: gamma_inverse = sigma^2 / 4)
   double gamma_constant = 0, gamma_inverse = 0;
+  // The particle walls this holds for: no-slip thermal half-space walls with diffuse reflection
+  // (per direction, lower and upper); take_kinetic_slip turns them on.
+  std::array<std::array<bool, 2>, 3> diffuse{};
   struct AtState {
     double value, d_T, d_n;
   };
@@ -228,6 +231,11 @@ struct ContinuumParameters {
   double mass_density() const { return number_density * particle_mass; }
   double heat_capacity_per_volume() const { return number_density * heat_capacity; }
 };
+
+// Kinetic slip at the twin's no-slip walls that stand for diffuse particle walls
+// (WallFriction::diffuse), where the model has Navier walls and no slip length is given;
+// returns how many walls took it.
+int take_kinetic_slip(ContinuumParameters& p);
 
 // Dimensionless groups of the scene, at the reference temperature.
 struct DimensionlessNumbers {

@@ -123,6 +123,7 @@ int run_all(Case c, const RunOptions& options) {
   if (!chooses_coefficient_source(c.settings)) { // the user's own --set wins
     p.twin.coefficients_from_transport = true;
     c.record_value("Continuum/Coefficients/Source", "transport");
+    if (p.twin.kinetic_slip_automatically) continuum::take_kinetic_slip(p.continuum);
   }
   // From here on rank 0 alone: the twins, the comparison, the report.
   return rank_zero_runs([&] {

@@ -1,5 +1,6 @@
 #include "app/case/case.hpp"
 
+#include <algorithm>
 #include <filesystem>
 
 namespace twinflow::app {
@@ -57,6 +58,10 @@ study::Case CaseFile::resolve(const std::string& filename) const {
   c.twin.coefficients_from_transport =
       registry_.get("Continuum/Coefficients/Source") == "transport";
   c.twin.model_chosen_automatically = registry_.get("Continuum/Model") == "auto";
+  const std::vector<double> slips = registry_.get_doubles("Continuum/Slip lengths");
+  c.twin.kinetic_slip_automatically =
+      registry_.get("Continuum/Wall slip") == "auto" &&
+      std::none_of(slips.begin(), slips.end(), [](double b) { return b > 0; });
   c.twin.low_mach_threshold = registry_.get_double("Continuum/Low-Mach threshold");
   c.twin.compressible_threshold = registry_.get_double("Continuum/Compressible threshold");
   out.record = registry_.resolved_json();

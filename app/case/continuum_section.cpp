@@ -57,32 +57,18 @@ std::vector<std::array<double, 3>> points(const Registry& r, const std::string& 
   return out;
 }
 
-// Continuum/Wall slip: which no-slip walls take the particle wall's own friction.
+// Continuum/Wall slip. The wall friction of the particle walls is always worked out (`run`
+// turns auto's kinetic slip on once its twin takes the transport stage's coefficients).
 void resolve_wall_slip(const Registry& r, const particle::ParticleParameters& particle,
                        bool slip_lengths_given, continuum::ContinuumParameters& c) {
-  const std::string choice = r.get(s + "Wall slip");
-  const bool navier_model = continuum::has_robin_walls(c.model);
-  if (choice == "no-slip" || slip_lengths_given || (choice == "auto" && !navier_model)) {
-    r.require(choice != "kinetic" || !slip_lengths_given, s + "Wall slip",
-              "no-slip or auto when Slip lengths are given (they take the walls)");
-    return;
-  }
-  r.require(navier_model, s + "Wall slip",
-            "no-slip or auto unless Continuum/Model = boussinesq or compressible");
-  int kinetic = 0;
+  auto& f = c.wall_friction;
   for (int d = 0; d < c.dim; ++d)
     for (int side = 0; side < 2; ++side) {
       const auto& wall = particle.walls[d];
-      const bool diffuse = wall.present && wall.no_slip && wall.thermal[side] &&
+      f.diffuse[d][side] = wall.present && wall.no_slip && wall.thermal[side] &&
                            wall.model[side] == particle::WallModel::HalfSpace &&
                            particle.wall_diffuse;
-      c.boundary[d].kinetic_slip[side] = diffuse && c.boundary[d].no_slip;
-      kinetic += c.boundary[d].kinetic_slip[side];
     }
-  r.require(choice != "kinetic" || kinetic > 0, s + "Wall slip",
-            "auto or no-slip when no wall is a no-slip thermal half-space wall with diffuse "
-            "reflection");
-  auto& f = c.wall_friction;
   f.wall_density = particle.wall_density > 0 ? particle.wall_density : particle.density;
   f.tangent_moment = particle::tangent_friction_moment(c.dim, particle.dissipation.cutoff,
                                                        particle.dissipation.exponent);
@@ -91,6 +77,22 @@ void resolve_wall_slip(const Registry& r, const particle::ParticleParameters& pa
     f.gamma_inverse = 0.25 * particle.sigma * particle.sigma; // 000:(2.37)
   else
     f.gamma_constant = particle.gamma;
+
+  const std::string choice = r.get(s + "Wall slip");
+  if (choice == "no-slip") return;
+  r.require(!slip_lengths_given || choice == "auto", s + "Wall slip",
+            "no-slip or auto when Slip lengths are given (they take the walls)");
+  if (choice == "auto") {
+    // a twin that stands for the particle fluid: it takes the transport stage's coefficients
+    if (r.get(s + "Coefficients/Source") == "transport" && !slip_lengths_given)
+      continuum::take_kinetic_slip(c);
+    return;
+  }
+  r.require(continuum::has_robin_walls(c.model), s + "Wall slip",
+            "no-slip or auto unless Continuum/Model = boussinesq or compressible");
+  r.require(continuum::take_kinetic_slip(c) > 0, s + "Wall slip",
+            "auto or no-slip when no wall is a no-slip thermal half-space wall with diffuse "
+            "reflection");
 }
 } // namespace
 
@@ -142,15 +144,18 @@ void declare_continuum(Registry& r) {
             "calibrated twin "
             "sets them from the particle walls' measured friction (Compare/Wall slip); 0 or "
             "absent: no slip.");
-  r.declare(s + "Wall slip", "auto", Selection("auto|no-slip|kinetic"),
-            "Velocity at the twin's no-slip walls where no Slip lengths are given. kinetic: at "
-            "each no-slip thermal wall of half-space particle walls with diffuse reflection, the "
-            "particle wall's own friction per area beta(n, T) = 2 n [sqrt(m k T / 2 pi) + rho_w "
-            "I_d gamma(T, T_w)] (Maxwell's diffuse wall and the wall material's DPD friction, "
-            "docs/references.md \"Kinetic slip at a particle wall\"; slip length eta / beta, about "
-            "0.1-0.3 rc), no slip at the others (bounce-back: no kinetic slip); Boussinesq and "
-            "compressible. auto: kinetic where Model is Boussinesq or compressible, else no-slip. "
-            "`run`'s calibrated twin takes the measured slip lengths instead.");
+  r.declare(
+      s + "Wall slip", "auto", Selection("auto|no-slip|kinetic"),
+      "Velocity at the twin's no-slip walls where no Slip lengths are given. kinetic: at "
+      "each no-slip thermal wall of half-space particle walls with diffuse reflection, the "
+      "particle wall's own friction per area beta(n, T) = 2 n [sqrt(m k T / 2 pi) + rho_w "
+      "I_d gamma(T, T_w)] (Maxwell's diffuse wall and the wall material's DPD friction, "
+      "docs/references.md \"Kinetic slip at a particle wall\"; slip length eta / beta, about "
+      "0.1-0.3 rc), no slip at the others (bounce-back: no kinetic slip); Boussinesq and "
+      "compressible. auto: kinetic where the twin stands for the particle fluid (it takes the "
+      "transport stage's coefficients: `run`, `sweep`, Coefficients/Source = transport) "
+      "and Model is Boussinesq or compressible, else no-slip (a continuum case of its "
+      "own). `run`'s calibrated twin takes the measured slip lengths instead.");
   r.declare(s + "Kapitza law", "linear", Selection("linear|inverse"),
             "The heat flux into the fluid at a Kapitza wall: linear, h_K (T_wall - T); inverse, "
             "h_K T_wall^2 (1/T - 1/T_wall), the particle wall's own law (physics.md: the "

@@ -90,7 +90,8 @@ void resolve_wall_slip(const Registry& r, const particle::ParticleParameters& pa
   }
   r.require(continuum::has_robin_walls(c.model), s + "Wall slip",
             "no-slip or auto unless Continuum/Model = boussinesq or compressible");
-  r.require(continuum::take_kinetic_slip(c) > 0, s + "Wall slip",
+  const int kinetic_walls = continuum::take_kinetic_slip(c);
+  r.require(kinetic_walls > 0, s + "Wall slip",
             "auto or no-slip when no wall is a no-slip thermal half-space wall with diffuse "
             "reflection");
 }

@@ -169,18 +169,17 @@ Comparison compare_twins(const ParticleRecord& run, const std::vector<TwinRecord
     const double q_in = flux(hot, "heat_flux_in"), q_out = -flux(1 - hot, "heat_flux_in");
     const double se =
         std::hypot(flux(hot, "heat_flux_in_stderr"), flux(1 - hot, "heat_flux_in_stderr"));
-    // The stated error: each wall's largest over its blockings (1, 2, 4 blocks merged), as for
-    // the wall temperatures (a roll slower than a block makes the 20-block error too small).
-    const double se_stated =
-        std::hypot(particle::wall_heat_flux_stderr(presults, scene::wall_name(heated, hot)),
-                   particle::wall_heat_flux_stderr(presults, scene::wall_name(heated, 1 - hot)));
+    // The stated error: the largest over the blockings (1, 2, 4 blocks merged) of the one
+    // series across the pair, as for the wall temperatures (a roll slower than a block makes
+    // the 20-block error too small).
+    const double se_stated = particle::wall_pair_heat_flux(presults, heated).stderr_;
     q_particle = 0.5 * (q_in + q_out);
     particle["heat_flux_hot_wall"] = q_in;
     particle["heat_flux_cold_wall"] = q_out;
     particle["heat_flux"] = q_particle;
-    particle["heat_flux_stderr"] = 0.5 * se_stated;
+    particle["heat_flux_stderr"] = se_stated;
     particle["nusselt"] = q_particle / q0;
-    particle["nusselt_stderr"] = 0.5 * se_stated / q0;
+    particle["nusselt_stderr"] = se_stated / q0;
     particle["nusselt_stderr_20_blocks"] = 0.5 * se / q0;
     // In a steady state the two walls carry the same flow; their difference is the fluid
     // still heating or cooling.
@@ -188,7 +187,7 @@ Comparison compare_twins(const ParticleRecord& run, const std::vector<TwinRecord
     particle["nusselt_cold_wall"] = q_out / q0;
     particle["wall_imbalance_over_stderr"] = (q_in - q_out) / se;
     table["nusselt_particle"] = q_particle / q0;
-    table["nusselt_particle_stderr"] = 0.5 * se_stated / q0;
+    table["nusselt_particle_stderr"] = se_stated / q0;
   }
   // The fluid's temperature at each thermal wall, and the jump from the wall's own.
   const BinnedState final_state = run.final_state();

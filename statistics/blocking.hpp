@@ -19,19 +19,26 @@ struct Estimate {
   double mean = 0, stderr_ = 0;
 };
 
+// The means of `blocks` equal consecutive blocks (empty when a block would hold no sample).
+inline std::vector<double> block_means(const std::vector<double>& series, int blocks) {
+  const std::size_t per = series.size() / blocks;
+  if (per == 0) return {};
+  std::vector<double> means(blocks, 0.0);
+  for (int b = 0; b < blocks; ++b) {
+    for (std::size_t k = 0; k < per; ++k) means[b] += series[b * per + k];
+    means[b] /= per;
+  }
+  return means;
+}
+
 // Mean of the whole series and the standard error from `blocks` equal blocks (a remainder of
 // fewer than `blocks` samples at the end is left out of the blocks, not of the mean).
 inline Estimate block_average(const std::vector<double>& series, int blocks) {
   Estimate e;
   if (series.empty()) return e;
   e.mean = std::accumulate(series.begin(), series.end(), 0.0) / series.size();
-  const std::size_t per = series.size() / blocks;
-  if (per == 0) return e;
-  std::vector<double> means(blocks, 0.0);
-  for (int b = 0; b < blocks; ++b) {
-    for (std::size_t k = 0; k < per; ++k) means[b] += series[b * per + k];
-    means[b] /= per;
-  }
+  const std::vector<double> means = block_means(series, blocks);
+  if (means.empty()) return e;
   const double m = std::accumulate(means.begin(), means.end(), 0.0) / blocks;
   double var = 0;
   for (const double b : means) var += (b - m) * (b - m);

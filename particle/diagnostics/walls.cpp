@@ -4,6 +4,7 @@
 #include "particle/diagnostics/plugins.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include "statistics/blocking.hpp"
 #include "statistics/line_fit.hpp"
@@ -16,6 +17,23 @@ namespace {
 const char* wall_name(int wall) {
   static const char* names[6] = {"x_lower", "x_upper", "y_lower", "y_upper", "z_lower", "z_upper"};
   return names[wall];
+}
+
+// The correlation coefficient of two series' block means, with the upper wall's inflow taken
+// as an outflow (+1: the two walls' flows rise and fall together).
+double block_correlation(const std::vector<double>& lower_in, const std::vector<double>& upper_in,
+                         int blocks) {
+  const std::vector<double> a = statistics::block_means(lower_in, blocks),
+                            b = statistics::block_means(upper_in, blocks);
+  if (a.size() < 2) return std::nan("");
+  double ma = 0, mb = 0;
+  for (std::size_t k = 0; k < a.size(); ++k) ma += a[k] / a.size(), mb -= b[k] / b.size();
+  double saa = 0, sbb = 0, sab = 0;
+  for (std::size_t k = 0; k < a.size(); ++k) {
+    const double da = a[k] - ma, db = -b[k] - mb;
+    saa += da * da, sbb += db * db, sab += da * db;
+  }
+  return sab / std::sqrt(saa * sbb);
 }
 
 // Per wall, over the interval since the last sample: pressure (momentum in per time and area) and
@@ -62,6 +80,27 @@ public:
       j["heat_flux_in_stderr_blocking"] = statistics::blocking_errors(heat_flux_[w], p_.blocks);
     }
     out.summary["walls"] = walls;
+    // The heat flow across each pair of walls with a thermal one, from lower to upper. Its
+    // error comes from the block means of the one series: the two walls' block fluxes are
+    // correlated (a stronger roll feeds both), so adding their errors in quadrature is wrong.
+    io::Json pairs = io::Json::object();
+    for (int d = 0; d < D; ++d) {
+      const WallPair& pair = p_.walls[d];
+      if (!pair.present || !(pair.thermal[0] || pair.thermal[1])) continue;
+      const std::vector<double>&lo = heat_flux_[2 * d], &up = heat_flux_[2 * d + 1];
+      std::vector<double> across(lo.size());
+      for (std::size_t k = 0; k < lo.size(); ++k) across[k] = 0.5 * (lo[k] - up[k]);
+      const statistics::Estimate e = statistics::block_average(across, p_.blocks);
+      const std::vector<double> levels = statistics::blocking_errors(across, p_.blocks);
+      io::Json& j = pairs[std::string(1, "xyz"[d])];
+      j["heat_flux"] = e.mean;
+      double stderr_ = e.stderr_; // the largest over the blockings, as for one wall
+      for (const double x : levels) stderr_ = std::max(stderr_, x);
+      j["heat_flux_stderr"] = stderr_;
+      j["heat_flux_stderr_blocking"] = levels;
+      j["wall_block_correlation"] = block_correlation(lo, up, p_.blocks);
+    }
+    out.summary["wall_pairs"] = pairs;
     out.summary["wall_reflections"] = crossings_;
   }
   template <class A> void archive(A& a) {

@@ -6,6 +6,7 @@
 
 #include "particle/run.hpp"
 #include "particle/simulation.hpp"
+#include "particle/wall_summary.hpp"
 #include "particle/wall_weights.hpp"
 
 using namespace twinflow::particle;
@@ -147,6 +148,35 @@ TEST(Walls, ConductionFactorActsOnItsOwnWall) {
   EXPECT_GT(ten[0], 2 * off[0]);
   EXPECT_LT(std::fabs(ten[1] - off[1]), 0.2 * std::fabs(off[1])); // measured: 3%
   EXPECT_LE(r10, 1e-12);
+}
+
+// The heat flow across a pair of thermal walls: the mean of the two walls' flows, its error
+// from the blocks of the one series across the pair (wall_pairs); a summary without it (runs
+// from before it) gives the same mean and the two walls' errors in quadrature.
+TEST(Walls, HeatFlowAcrossAPairTakesItsErrorFromOneSeries) {
+  ParticleParameters p = with_walls(cavity(0.01, true), kWallCases[0]);
+  p.steps = 2000, p.sample_interval = 10, p.blocks = 8;
+  const RunOutput out = run_particles(p);
+  const auto& r = out.summary;
+  const double lo = r.at("walls").at("x_lower").at("heat_flux_in").get<double>();
+  const double up = r.at("walls").at("x_upper").at("heat_flux_in").get<double>();
+  ASSERT_TRUE(r.at("wall_pairs").contains("x"));
+  EXPECT_FALSE(r.at("wall_pairs").contains("y")); // adiabatic: nothing to carry
+  const HeatFlowAcross across = wall_pair_heat_flux(r, 0);
+  EXPECT_NEAR(across.mean, 0.5 * (lo - up), 1e-12 * std::fabs(lo - up));
+  EXPECT_GT(across.stderr_, 0);
+  const double correlation = r.at("wall_pairs").at("x").at("wall_block_correlation");
+  EXPECT_LE(std::fabs(correlation), 1 + 1e-12);
+
+  auto older = r;
+  older.erase("wall_pairs");
+  const HeatFlowAcross quadrature = wall_pair_heat_flux(older, 0);
+  EXPECT_NEAR(quadrature.mean, across.mean, 1e-12 * std::fabs(lo - up));
+  EXPECT_DOUBLE_EQ(quadrature.stderr_, 0.5 * std::hypot(wall_heat_flux_stderr(r, "x_lower"),
+                                                        wall_heat_flux_stderr(r, "x_upper")));
+  std::printf("heat flow across %.4g: +- %.3g from one series, +- %.3g in quadrature; walls' "
+              "block correlation %.2f\n",
+              across.mean, across.stderr_, quadrature.stderr_, correlation);
 }
 
 // The kinetic-slip twin's wall friction per area (references.md, "Kinetic slip at a particle wall")

@@ -1,10 +1,11 @@
 // Error bars that hold over seeds (label validation): for the periodic heat-slab kappa, the
-// self-diffusion coefficient D and the temperature jumps at thermal walls, independent runs
-// (seeds) on shrunken scenes scatter as their stated errors say. The check: chi^2 of the values
-// about their weighted mean, per degree of freedom, inside the central 95% of the chi^2
-// distribution with n - 1 degrees of freedom; for D, whose stated errors have 3 degrees of
-// freedom each, the pooled form against F (pooled_ratio). An error estimate must hold at any size,
-// so the scenes are small; their block lengths outlast the slowest profile mode (stated per test).
+// self-diffusion coefficient D and the temperature jumps at thermal walls and the heat flow between
+// them, independent runs (seeds) on shrunken scenes scatter as their stated errors say. The check:
+// chi^2 of the values about their weighted mean, per degree of freedom, inside the central 95% of
+// the chi^2 distribution with n - 1 degrees of freedom; for D, whose stated errors have 3 degrees
+// of freedom each, the pooled form against F (pooled_ratio). An error estimate must hold at any
+// size, so the scenes are small; their block lengths outlast the slowest profile mode (stated per
+// test).
 #include "scene_run.hpp"
 
 #include <boost/math/distributions/chi_squared.hpp>
@@ -210,9 +211,9 @@ TEST(SeedScatter, SelfDiffusion) {
 // wall_profile jumps' errors came out 1.9x too small, chi^2/dof 4.3 and 3.3). Two jumps per wall
 // and run: the particle summary's (wall_profile: the interior line's value at the wall) and
 // compare's (wall_temperature_jumps: T_kinetic extrapolated from the first bins beyond the 1.0 wall
-// layer), each against its own stated error.
+// layer), each against its own stated error; and the heat flow across the pair.
 TEST(SeedScatter, WallJumps) {
-  std::vector<Valued> line_lower, line_upper, extrapolated_lower, extrapolated_upper;
+  std::vector<Valued> line_lower, line_upper, extrapolated_lower, extrapolated_upper, across;
   for (int seed = 1; seed <= 8; ++seed) {
     std::filesystem::path dir;
     const auto r = run_case("slab_conduction_walls",
@@ -226,6 +227,8 @@ TEST(SeedScatter, WallJumps) {
         {number(r, "wall_profile.jump_lower"), number(r, "wall_profile.jump_lower_stderr")});
     line_upper.push_back(
         {number(r, "wall_profile.jump_upper"), number(r, "wall_profile.jump_upper_stderr")});
+    across.push_back(
+        {number(r, "wall_pairs.x.heat_flux"), number(r, "wall_pairs.x.heat_flux_stderr")});
     compare::ParticleRecord run;
     run.fields = twinflow::io::FieldFile::read(dir / "particle" / "fields.h5");
     ASSERT_FALSE(run.fields.snapshots.empty());
@@ -238,6 +241,9 @@ TEST(SeedScatter, WallJumps) {
     const auto hi = compare::wall_fluid_temperature(state, interior, 0, 1);
     extrapolated_lower.push_back({1.2 - lo.value, lo.stderr_});
     extrapolated_upper.push_back({0.8 - hi.value, hi.stderr_});
+    std::printf("seed %d: heat flux across %.5g +- %.2g (walls' block correlation %.2f)\n", seed,
+                across.back().value, across.back().stderr_,
+                number(r, "wall_pairs.x.wall_block_correlation"));
     std::printf("seed %d: line jumps %.4g +- %.2g, %.4g +- %.2g; extrapolated %.4g +- %.2g, "
                 "%.4g +- %.2g\n",
                 seed, line_lower.back().value, line_lower.back().stderr_, line_upper.back().value,
@@ -249,4 +255,7 @@ TEST(SeedScatter, WallJumps) {
   check("wall_profile jump, upper wall", line_upper);
   check("wall_temperature_jumps, lower wall", extrapolated_lower);
   check("wall_temperature_jumps, upper wall", extrapolated_upper);
+  // The heat flow across the slab (one series across the pair; the cavity's Nu takes its error
+  // the same way).
+  check("heat flux across the walls", across);
 }

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "io/json.hpp"
+#include "statistics/blocking.hpp"
 
 namespace twinflow::particle {
 
@@ -23,10 +24,7 @@ inline double wall_heat_flux_stderr(const io::Json& results, const std::string& 
 // the upper one, and its error. From the run's one series across the pair ("wall_pairs"); runs
 // from before it: the two walls' means, their errors added in quadrature (as if independent,
 // which understates it when the walls' flows rise and fall together).
-struct HeatFlowAcross {
-  double mean = 0, stderr_ = 0;
-};
-inline HeatFlowAcross wall_pair_heat_flux(const io::Json& results, int axis) {
+inline statistics::Estimate wall_pair_heat_flux(const io::Json& results, int axis) {
   const std::string axis_name(1, "xyz"[axis]);
   if (const io::Json* pair = io::find(results, {"wall_pairs", axis_name}))
     return {io::number(*pair, {"heat_flux"}), io::number(*pair, {"heat_flux_stderr"})};

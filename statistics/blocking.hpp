@@ -31,6 +31,21 @@ inline std::vector<double> block_means(const std::vector<double>& series, int bl
   return means;
 }
 
+// Pearson's correlation coefficient of two series' block means (NaN below two blocks).
+inline double block_correlation(const std::vector<double>& a, const std::vector<double>& b,
+                                int blocks) {
+  const std::vector<double> x = block_means(a, blocks), y = block_means(b, blocks);
+  if (x.size() < 2 || y.size() != x.size()) return std::nan("");
+  const double mx = std::accumulate(x.begin(), x.end(), 0.0) / x.size(),
+               my = std::accumulate(y.begin(), y.end(), 0.0) / y.size();
+  double sxx = 0, syy = 0, sxy = 0;
+  for (std::size_t k = 0; k < x.size(); ++k) {
+    const double dx = x[k] - mx, dy = y[k] - my;
+    sxx += dx * dx, syy += dy * dy, sxy += dx * dy;
+  }
+  return sxy / std::sqrt(sxx * syy);
+}
+
 // Mean of the whole series and the standard error from `blocks` equal blocks (a remainder of
 // fewer than `blocks` samples at the end is left out of the blocks, not of the mean).
 inline Estimate block_average(const std::vector<double>& series, int blocks) {

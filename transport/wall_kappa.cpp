@@ -47,7 +47,7 @@ WallKappa kappa_from_walls(const scene::SceneParameters& scene,
   const auto lower = scene::wall_name(heated, 0), upper = scene::wall_name(heated, 1);
   const double q_lo = io::number(out.summary, {"walls", lower.c_str(), "heat_flux_in"});
   const double q_up = io::number(out.summary, {"walls", upper.c_str(), "heat_flux_in"});
-  const particle::HeatFlowAcross pair = particle::wall_pair_heat_flux(out.summary, heated);
+  const statistics::Estimate pair = particle::wall_pair_heat_flux(out.summary, heated);
   const double se_q = pair.stderr_;
   const double q = pair.mean; // from the lower wall to the upper one
   // Steady: both walls carry the same flow. Else the profile is still forming.

@@ -4,7 +4,6 @@
 #include "particle/diagnostics/plugins.hpp"
 
 #include <algorithm>
-#include <cmath>
 
 #include "statistics/blocking.hpp"
 #include "statistics/line_fit.hpp"
@@ -17,23 +16,6 @@ namespace {
 const char* wall_name(int wall) {
   static const char* names[6] = {"x_lower", "x_upper", "y_lower", "y_upper", "z_lower", "z_upper"};
   return names[wall];
-}
-
-// The correlation coefficient of two series' block means, with the upper wall's inflow taken
-// as an outflow (+1: the two walls' flows rise and fall together).
-double block_correlation(const std::vector<double>& lower_in, const std::vector<double>& upper_in,
-                         int blocks) {
-  const std::vector<double> a = statistics::block_means(lower_in, blocks),
-                            b = statistics::block_means(upper_in, blocks);
-  if (a.size() < 2) return std::nan("");
-  double ma = 0, mb = 0;
-  for (std::size_t k = 0; k < a.size(); ++k) ma += a[k] / a.size(), mb -= b[k] / b.size();
-  double saa = 0, sbb = 0, sab = 0;
-  for (std::size_t k = 0; k < a.size(); ++k) {
-    const double da = a[k] - ma, db = -b[k] - mb;
-    saa += da * da, sbb += db * db, sab += da * db;
-  }
-  return sab / std::sqrt(saa * sbb);
 }
 
 // Per wall, over the interval since the last sample: pressure (momentum in per time and area) and
@@ -98,7 +80,9 @@ public:
       for (const double x : levels) stderr_ = std::max(stderr_, x);
       j["heat_flux_stderr"] = stderr_;
       j["heat_flux_stderr_blocking"] = levels;
-      j["wall_block_correlation"] = block_correlation(lo, up, p_.blocks);
+      // the upper wall's inflow taken as an outflow: +1, the two walls' flows rise and fall
+      // together
+      j["wall_block_correlation"] = -statistics::block_correlation(lo, up, p_.blocks);
     }
     out.summary["wall_pairs"] = pairs;
     out.summary["wall_reflections"] = crossings_;

@@ -162,7 +162,7 @@ TEST(Walls, HeatFlowAcrossAPairTakesItsErrorFromOneSeries) {
   const double up = r.at("walls").at("x_upper").at("heat_flux_in").get<double>();
   ASSERT_TRUE(r.at("wall_pairs").contains("x"));
   EXPECT_FALSE(r.at("wall_pairs").contains("y")); // adiabatic: nothing to carry
-  const HeatFlowAcross across = wall_pair_heat_flux(r, 0);
+  const twinflow::statistics::Estimate across = wall_pair_heat_flux(r, 0);
   EXPECT_NEAR(across.mean, 0.5 * (lo - up), 1e-12 * std::fabs(lo - up));
   EXPECT_GT(across.stderr_, 0);
   const double correlation = r.at("wall_pairs").at("x").at("wall_block_correlation");
@@ -170,7 +170,7 @@ TEST(Walls, HeatFlowAcrossAPairTakesItsErrorFromOneSeries) {
 
   auto older = r;
   older.erase("wall_pairs");
-  const HeatFlowAcross quadrature = wall_pair_heat_flux(older, 0);
+  const twinflow::statistics::Estimate quadrature = wall_pair_heat_flux(older, 0);
   EXPECT_NEAR(quadrature.mean, across.mean, 1e-12 * std::fabs(lo - up));
   EXPECT_DOUBLE_EQ(quadrature.stderr_, 0.5 * std::hypot(wall_heat_flux_stderr(r, "x_lower"),
                                                         wall_heat_flux_stderr(r, "x_upper")));

@@ -66,8 +66,9 @@ BinnedDiagnostic<D> make_slab_profile(const ParticleParameters& p, const RunFact
 io::Json poiseuille_fit(const ParticleParameters& p, const BinnedFields& fields);
 
 // Thermal walls at different temperatures along `direction`, fields binned along it only
-// ("wall_profile"): a line through T_internal in the central 60% and the jump
-// T_wall - T_line(wall) at each wall (Kapitza).
+// ("wall_profile"): parabolas through T_internal (kappa(T) bends the profile): the slope at the
+// centre from the central 60%, and the jump T_wall - T_bulk(wall) at each wall (Kapitza), the
+// bulk fitted beyond one cutoff from the walls.
 io::Json wall_profile_fit(const ParticleParameters& p, int direction, const BinnedFields& fields);
 // The direction such a fit applies to, or -1.
 int wall_profile_direction(const ParticleParameters& p);

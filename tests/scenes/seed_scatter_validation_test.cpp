@@ -209,7 +209,7 @@ TEST(SeedScatter, SelfDiffusion) {
 // in L^2 / (pi^2 chi) ~ 15 tau (chi = kappa / (rho c_v) ~ 0.25); 60 tau to steady state, then
 // 400 tau in 20 blocks of 20 tau, merged up to 80 tau (5 decay times; with 200 tau sampled the
 // wall_profile jumps' errors came out 1.9x too small, chi^2/dof 4.3 and 3.3). Two jumps per wall
-// and run: the particle summary's (wall_profile: the interior line's value at the wall) and
+// and run: the particle summary's (wall_profile: the bulk parabola's value at the wall) and
 // compare's (wall_temperature_jumps: T_kinetic extrapolated from the first bins beyond the 1.0 wall
 // layer), each against its own stated error; and the heat flow across the pair.
 TEST(SeedScatter, WallJumps) {
@@ -244,12 +244,13 @@ TEST(SeedScatter, WallJumps) {
     std::printf("seed %d: heat flux across %.5g +- %.2g (walls' block correlation %.2f)\n", seed,
                 across.back().value, across.back().stderr_,
                 number(r, "wall_pairs.x.wall_block_correlation"));
-    std::printf("seed %d: line jumps %.4g +- %.2g, %.4g +- %.2g; extrapolated %.4g +- %.2g, "
-                "%.4g +- %.2g\n",
-                seed, line_lower.back().value, line_lower.back().stderr_, line_upper.back().value,
-                line_upper.back().stderr_, extrapolated_lower.back().value,
-                extrapolated_lower.back().stderr_, extrapolated_upper.back().value,
-                extrapolated_upper.back().stderr_);
+    std::printf(
+        "seed %d: wall_profile jumps %.4g +- %.2g, %.4g +- %.2g; extrapolated %.4g +- %.2g, "
+        "%.4g +- %.2g\n",
+        seed, line_lower.back().value, line_lower.back().stderr_, line_upper.back().value,
+        line_upper.back().stderr_, extrapolated_lower.back().value,
+        extrapolated_lower.back().stderr_, extrapolated_upper.back().value,
+        extrapolated_upper.back().stderr_);
   }
   check("wall_profile jump, lower wall", line_lower);
   check("wall_profile jump, upper wall", line_upper);

@@ -92,3 +92,19 @@ TEST(Statistics, LineThroughExactPoints) {
   // Four points of error 0.1: var(slope) = 0.01 / sum (x - <x>)^2 = 0.01 / 8.75
   EXPECT_NEAR(fit.slope_stderr(), 0.1 / std::sqrt(8.75), 1e-14);
 }
+
+TEST(Statistics, ParabolaThroughExactPoints) {
+  QuadraticFit fit(2.0);
+  for (double x : {0.0, 1.0, 2.5, 4.0, 5.0}) fit.add(x, 1 + 0.3 * x - 0.05 * x * x, 0.1);
+  EXPECT_NEAR(fit.value(0), 1, 1e-12);
+  EXPECT_NEAR(fit.slope(3), 0.3 - 0.1 * 3, 1e-12);
+  EXPECT_NEAR(fit.curvature(), -0.1, 1e-12);
+  // Three points fix the parabola: it passes through each, with that point's own error there,
+  // and its slope between two is their chord's (x = 0, 2: the midpoint x = 1).
+  QuadraticFit three;
+  three.add(0, 1, 0.1), three.add(2, 2, 0.2), three.add(4, 0, 0.3);
+  for (const auto& [x, se] : {std::pair{0.0, 0.1}, {2.0, 0.2}, {4.0, 0.3}})
+    EXPECT_NEAR(three.value_stderr(x), se, 1e-12);
+  EXPECT_NEAR(three.slope(1), 0.5, 1e-12);
+  EXPECT_NEAR(three.slope_stderr(1), std::hypot(0.1, 0.2) / 2, 1e-12);
+}

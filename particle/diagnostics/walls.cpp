@@ -181,25 +181,27 @@ io::Json wall_profile_fit(const ParticleParameters& p, int direction, const Binn
     const statistics::QuadraticFit b = parabola(block, layer, length - layer);
     block_lower.push_back(b.value(0)), block_upper.push_back(b.value(length));
   }
-  const auto blocked = [](double fit_se, const std::vector<double>& per_block) {
-    for (const double se : statistics::merged_blocking_errors(per_block))
-      fit_se = std::max(fit_se, se);
+  const auto largest = [](double fit_se, const std::vector<double>& levels) {
+    for (const double se : levels) fit_se = std::max(fit_se, se);
     return fit_se;
   };
+  const std::vector<double> slope_levels = statistics::merged_blocking_errors(block_slopes);
   io::Json j = io::Json::object();
   j["direction"] = d;
   j["fit_from"] = lo, j["fit_to"] = hi;
   j["slope"] = middle.slope(centre);
-  j["slope_stderr"] = blocked(middle.slope_stderr(centre), block_slopes);
+  j["slope_stderr"] = largest(middle.slope_stderr(centre), slope_levels);
   j["slope_stderr_fit"] = middle.slope_stderr(centre);
-  j["slope_stderr_blocking"] = statistics::merged_blocking_errors(block_slopes);
+  j["slope_stderr_blocking"] = slope_levels;
   j["temperature_at_centre"] = middle.value(centre);
   j["curvature"] = middle.curvature(), j["curvature_stderr_fit"] = middle.curvature_stderr();
   j["jump_fit_from"] = layer, j["jump_fit_to"] = length - layer;
   j["jump_lower"] = w.temperature[0] - bulk.value(0);
   j["jump_upper"] = w.temperature[1] - bulk.value(length);
-  j["jump_lower_stderr"] = blocked(bulk.value_stderr(0), block_lower);
-  j["jump_upper_stderr"] = blocked(bulk.value_stderr(length), block_upper);
+  j["jump_lower_stderr"] =
+      largest(bulk.value_stderr(0), statistics::merged_blocking_errors(block_lower));
+  j["jump_upper_stderr"] =
+      largest(bulk.value_stderr(length), statistics::merged_blocking_errors(block_upper));
   j["jump_lower_stderr_fit"] = bulk.value_stderr(0);
   j["jump_upper_stderr_fit"] = bulk.value_stderr(length);
   return j;

@@ -239,6 +239,8 @@ int main(int argc, char** argv) {
       if (cl.jobs < 1)
         throw io::InputError("--jobs " + std::to_string(cl.jobs) + ": allowed: >= 1");
     }
+    if (study::rank_count() > 1 && study::on_rank_zero()) // how this run is spread, first
+      std::cout << "twinflow: " << study::ranks_and_threads() << std::endl;
     return command->run(cl);
   } catch (const po::error& e) {
     std::cerr << "twinflow: error: " << e.what() << " (twinflow --help)\n";

@@ -10,6 +10,7 @@
 #include <fstream>
 #include <iomanip>
 #include <sstream>
+#include <thread>
 
 #include "io/version.hpp"
 
@@ -101,11 +102,29 @@ std::string version_line() {
          kBuildType + ")";
 }
 
+// The host's CPU model (/proc/cpuinfo's first "model name"; "unknown" elsewhere) and its cores.
+Json host_record() {
+  std::string model = "unknown";
+  std::ifstream cpuinfo("/proc/cpuinfo");
+  for (std::string line; std::getline(cpuinfo, line);)
+    if (line.rfind("model name", 0) == 0 && line.find(':') != std::string::npos) {
+      model = line.substr(line.find(':') + 1);
+      model.erase(0, model.find_first_not_of(' '));
+      break;
+    }
+  Json j = Json::object();
+  j["cpu_model"] = model;
+  j["cores"] = static_cast<long>(std::thread::hardware_concurrency());
+  return j;
+}
+
 Json provenance() {
   Json j = Json::object();
   j["twinflow_git_revision"] = kGitRevision;
   j["compiler"] = kCompiler;
   j["build_type"] = kBuildType;
+  j["version"] = version_line();
+  j["host"] = host_record();
   return j;
 }
 

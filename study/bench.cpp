@@ -27,6 +27,7 @@
 #include "particle/decomposition.hpp"
 #include "particle/run.hpp"
 #include "study/bench.hpp"
+#include "study/ranks.hpp"
 
 namespace twinflow::study {
 
@@ -263,6 +264,7 @@ int bench(const RunOptions& cl, const std::vector<std::string>& settings) {
   io::Json summary = io::Json::object();
   summary["stage"] = "bench";
   summary["provenance"] = io::provenance();
+  summary["ranks"] = rank_count(); // the threads: per row
   // How idle threads waited: the front end's default (app/main.cpp) or the user's choice.
   io::Json wait = io::Json::object();
   for (const char* name : {"OMP_WAIT_POLICY", "GOMP_SPINCOUNT"})

@@ -1,3 +1,4 @@
+#include <chrono>
 #include <cstdlib>
 #include <iomanip>
 #include <iostream>
@@ -7,6 +8,7 @@
 #include "compare/metrics.hpp"
 #include "continuum/twin_walls.hpp"
 #include "io/files.hpp"
+#include "study/ranks.hpp"
 #include "study/stages.hpp"
 
 namespace twinflow::study {
@@ -121,13 +123,17 @@ void write_report(const fs::path& dir) {
 }
 
 int compare_stage(const Case& c, const fs::path& run_dir) {
+  const auto started = std::chrono::steady_clock::now();
   const CaseParameters& p = c.parameters;
   const compare::ParticleRecord run = compare::read_particle_record(run_dir, p.scene);
   const std::vector<compare::TwinRecord> twins = compare::read_twins(run_dir, run.fields.grid);
   const io::StageDirectory stage(run_dir, "compare", true); // derived, cheap: always rewritten
   stage.create();
-  const compare::Comparison result = compare::compare_twins(
+  compare::Comparison result = compare::compare_twins(
       run, twins, p.scene, p.compare, twin_facts(p.continuum, std::nan("")), p.name);
+  result.metrics["execution"] = execution_record(p.particle.dim);
+  result.metrics["stage_wall_time_s"] =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   std::cout << result.log.str();
   io::write_file_atomically(stage.file("bins.csv"), result.bins_csv);
   io::write_file_atomically(stage.file("profiles.csv"), result.profiles_csv);

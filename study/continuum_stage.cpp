@@ -238,6 +238,8 @@ int continuum_stage(const Case& c, const RunOptions& options, const std::string&
   summary["case"] = parameters.name;
   summary["case_file"] = c.file;
   summary["provenance"] = io::provenance();
+  summary["execution"] = execution_record(p.dim);
+  summary["execution"]["continuum_processes"] = n_processes;
   summary["case_parameters"] = c.record;
   summary["continuum_parameters"] = continuum::to_json(p);
   const io::Json measured = continuum::to_json(result);

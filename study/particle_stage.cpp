@@ -12,6 +12,7 @@
 #include "particle/run.hpp"
 #include "particle/simulation.hpp"
 #include "study/inputs.hpp"
+#include "study/ranks.hpp"
 #include "study/stages.hpp"
 #include "transport/estimates.hpp"
 
@@ -66,7 +67,8 @@ std::string local_time_now() {
 }
 
 // Every result file, summary.json last; returns the convection estimates it printed.
-io::Json write_results(const Case& c, const io::StageDirectory& stage, particle::RunOutput& out) {
+io::Json write_results(const Case& c, const io::StageDirectory& stage, particle::RunOutput& out,
+                       double stage_seconds) {
   const CaseParameters& p = c.parameters;
   io::write_file_atomically(stage.file("thermo.csv"), out.thermo_csv);
   io::write_file_atomically(stage.file("histograms.csv"), out.histograms_csv);
@@ -91,6 +93,8 @@ io::Json write_results(const Case& c, const io::StageDirectory& stage, particle:
   summary["case"] = p.name;
   summary["case_file"] = fs::absolute(c.file).string();
   summary["provenance"] = io::provenance();
+  summary["execution"] = execution_record(p.particle.dim);
+  summary["stage_wall_time_s"] = stage_seconds; // the run's own time: results/wall_seconds
   summary["results"] = out.summary;
   summary["parameters"] = c.record;
   io::write_file_atomically(stage.file("summary.json"), io::dump(summary)); // last: complete
@@ -184,7 +188,9 @@ int particle_stage(const Case& c, const RunOptions& options) {
   }
   io::Json convection;
   try {
-    convection = write_results(c, stage, out);
+    convection = write_results(
+        c, stage, out,
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count());
   } catch (const io::OutputError& e) {
     if (!fs::exists(checkpoint_path)) throw;
     throw io::OutputError(

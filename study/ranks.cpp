@@ -5,6 +5,8 @@
 #endif
 #include <mpi.h>
 
+#include <omp.h>
+
 #include <chrono>
 #include <exception>
 #include <filesystem>
@@ -33,6 +35,23 @@ bool on_rank_zero() {
   int rank = 0;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
   return rank == 0;
+}
+
+io::Json execution_record(int dimension) {
+  const int ranks = particle::Slabs::world_size();
+  io::Json j = io::Json::object();
+  j["ranks"] = ranks;
+  j["threads_per_rank"] = omp_get_max_threads();
+  const char* axis = dimension == 3 ? "z" : "y"; // the particle slabs' axis: the last one
+  j["decomposition"] =
+      ranks == 1 ? std::string("1 rank") : std::to_string(ranks) + " slabs along " + axis;
+  return j;
+}
+
+std::string ranks_and_threads() {
+  const int ranks = particle::Slabs::world_size();
+  return std::to_string(ranks) + (ranks == 1 ? " rank x " : " ranks x ") +
+         std::to_string(omp_get_max_threads()) + " threads";
 }
 
 int exit_code_of(const std::exception_ptr& error) {

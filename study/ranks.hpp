@@ -8,6 +8,8 @@
 #include <functional>
 #include <string>
 
+#include "io/json.hpp"
+
 namespace twinflow::study {
 
 // MPI_COMM_WORLD's size (1 without MPI), as the code running sees it: inside rank_zero_runs'
@@ -29,6 +31,12 @@ int every_rank_runs(const std::function<int()>& work);
 
 // Rank 0's `text` on every rank (a decision only rank 0 can take: a file it read).
 std::string from_rank_zero(const std::string& text);
+
+// How a stage ran, for its summary.json ("execution"): MPI ranks, OpenMP threads per rank and
+// the particle decomposition ("1 rank" or "R slabs along <axis>").
+io::Json execution_record(int dimension);
+// "R ranks x T threads", the first console line of a multi-rank run.
+std::string ranks_and_threads();
 
 // The exit code main gives an exception (docs/usage.md, "Exit codes").
 int exit_code_of(const std::exception_ptr& error);

@@ -1,4 +1,5 @@
 #include <algorithm>
+#include <chrono>
 #include <cstdlib>
 #include <iostream>
 #include <optional>
@@ -16,6 +17,11 @@ namespace twinflow::study {
 namespace fs = std::filesystem;
 
 namespace {
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
 // What the transport stage's outputs depend on: the fluid (the Particle section, less the scene's
 // run lengths and walls), the dimension, the state point and the measurement settings; not the
 // scene's box, walls or gravity (with kappa from walls its box and walls, never its gravity); the
@@ -127,7 +133,8 @@ const char* kCachedFiles[] = {"coefficients.csv", "rdf.csv", "summary.json"};
 
 // Copies a cached result into the stage, with this case's name and parameters. False: no entry
 // (or an unreadable one: the cache is a convenience, never a reason to fail).
-bool restore_from_cache(const fs::path& entry, const io::StageDirectory& stage, const Case& c) {
+bool restore_from_cache(const fs::path& entry, const io::StageDirectory& stage, const Case& c,
+                        const Clock::time_point started) {
   for (const char* f : kCachedFiles)
     if (!fs::exists(entry / f)) return false;
   io::Json summary;
@@ -178,6 +185,8 @@ bool restore_from_cache(const fs::path& entry, const io::StageDirectory& stage, 
   summary.erase("cache_files");
   summary["case"] = c.parameters.name;
   summary["provenance"] = io::provenance();
+  summary["execution"] = execution_record(c.parameters.particle.dim);
+  summary["stage_wall_time_s"] = seconds_since(started);
   summary["parameters"] = c.record;
   stage.create();
   io::write_file_atomically(stage.file("coefficients.csv"),
@@ -189,7 +198,8 @@ bool restore_from_cache(const fs::path& entry, const io::StageDirectory& stage, 
 // The measurement's files in the stage, its cache entry, its table on the console.
 int write_measurement(const Case& c, const io::StageDirectory& stage,
                       const transport::TransportMeasurement& m, const std::string& key,
-                      const io::Json& key_inputs, const fs::path& cache) {
+                      const io::Json& key_inputs, const fs::path& cache,
+                      const Clock::time_point started) {
   const CaseParameters& cp = c.parameters;
   io::write_file_atomically(stage.file("coefficients.csv"), m.coefficients_csv);
   io::write_file_atomically(stage.file("rdf.csv"), m.rdf_csv);
@@ -197,6 +207,8 @@ int write_measurement(const Case& c, const io::StageDirectory& stage,
   summary["stage"] = "transport";
   summary["case"] = cp.name;
   summary["provenance"] = io::provenance();
+  summary["execution"] = execution_record(cp.particle.dim);
+  summary["stage_wall_time_s"] = seconds_since(started);
   summary["parameters"] = c.record;
   summary["results"] = m.results;
   summary["measurement_key"] = key;
@@ -226,6 +238,7 @@ int write_measurement(const Case& c, const io::StageDirectory& stage,
 } // namespace
 
 int transport_stage(const Case& c, const RunOptions& options) {
+  const Clock::time_point started = Clock::now();
   const CaseParameters& cp = c.parameters;
   const fs::path run_dir = run_directory(options, cp.name);
   const particle::ParticleParameters bulk =
@@ -240,7 +253,7 @@ int transport_stage(const Case& c, const RunOptions& options) {
   if (const int rc = rank_zero_runs([&] {
         stage.emplace(run_dir, "transport", options.force);
         // --force measures again (and refreshes the entry).
-        restored = !cache.empty() && !options.force && restore_from_cache(cache, *stage, c);
+        restored = !cache.empty() && !options.force && restore_from_cache(cache, *stage, c, started);
         if (restored)
           std::cout << console_table(io::read_file(stage->file("coefficients.csv")))
                     << "transport: measurements reused from the cache (" << cache.string()
@@ -258,7 +271,7 @@ int transport_stage(const Case& c, const RunOptions& options) {
         return 0;
       }))
     return rc;
-  return rank_zero_runs([&] { return write_measurement(c, *stage, m, key, key_inputs, cache); });
+  return rank_zero_runs([&] { return write_measurement(c, *stage, m, key, key_inputs, cache, started); });
 }
 
 } // namespace twinflow::study

@@ -454,6 +454,38 @@ TEST(Cli, RunReusesAParticleStageRunOnItsOwn) {
   EXPECT_NE(all.output.find("run: particle: inputs unchanged"), std::string::npos) << all.output;
 }
 
+// A run says how it ran: summary.json records the ranks, threads per rank, decomposition, the
+// host and the version; under mpirun the first console line is "R ranks x T threads".
+TEST(Cli, SummarySaysHowTheRunRan) {
+  const std::string tiny = tiny_cavity(100, 200, 0);
+  const auto check = [](const fs::path& dir, int ranks) {
+    const auto summary = twinflow::io::read_json(dir / "particle" / "summary.json");
+    EXPECT_EQ(twinflow::io::number(summary, {"execution", "ranks"}), ranks);
+    EXPECT_EQ(twinflow::io::number(summary, {"execution", "threads_per_rank"}), 1);
+    EXPECT_EQ(twinflow::io::text(summary, {"execution", "decomposition"}),
+              ranks == 1 ? "1 rank" : std::to_string(ranks) + " slabs along y");
+    EXPECT_FALSE(twinflow::io::text(summary, {"provenance", "host", "cpu_model"}).empty());
+    EXPECT_GE(twinflow::io::number(summary, {"provenance", "host", "cores"}), 1);
+    EXPECT_EQ(twinflow::io::text(summary, {"provenance", "version"}).rfind("twinflow ", 0), 0u);
+    EXPECT_GT(twinflow::io::number(summary, {"stage_wall_time_s"}), 0);
+  };
+  const fs::path one = fresh_dir("execution_one");
+  const Result r1 = run("particle " + tiny + " --out " + one.string());
+  ASSERT_EQ(r1.code, 0) << r1.output;
+  check(one, 1);
+#ifdef TWINFLOW_MPIEXEC
+  const fs::path two = fresh_dir("execution_two");
+  const Result r2 = run_command(
+      "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 "
+      "OMPI_MCA_rmaps_base_oversubscribe=1 TWINFLOW_CACHE=off " +
+      std::string(TWINFLOW_MPIEXEC) + " -np 2 --bind-to none " + TWINFLOW_BINARY + " particle " +
+      tiny + " --out " + two.string());
+  ASSERT_EQ(r2.code, 0) << r2.output;
+  EXPECT_EQ(r2.output.rfind("twinflow: 2 ranks x 1 threads\n", 0), 0u) << r2.output;
+  check(two, 2);
+#endif
+}
+
 // Idle OpenMP threads spin briefly, then sleep (app/main.cpp): twinflow sets GOMP_SPINCOUNT=1000
 // for itself unless the user chose how threads wait; bench records which way they waited.
 TEST(Cli, IdleThreadsSpinBrieflyUnlessTheUserChose) {

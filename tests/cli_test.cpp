@@ -475,11 +475,10 @@ TEST(Cli, SummarySaysHowTheRunRan) {
   check(one, 1);
 #ifdef TWINFLOW_MPIEXEC
   const fs::path two = fresh_dir("execution_two");
-  const Result r2 = run_command(
-      "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 "
-      "OMPI_MCA_rmaps_base_oversubscribe=1 TWINFLOW_CACHE=off " +
-      std::string(TWINFLOW_MPIEXEC) + " -np 2 --bind-to none " + TWINFLOW_BINARY + " particle " +
-      tiny + " --out " + two.string());
+  const Result r2 = run_command("OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 "
+                                "OMPI_MCA_rmaps_base_oversubscribe=1 TWINFLOW_CACHE=off " +
+                                std::string(TWINFLOW_MPIEXEC) + " -np 2 --bind-to none " +
+                                TWINFLOW_BINARY + " particle " + tiny + " --out " + two.string());
   ASSERT_EQ(r2.code, 0) << r2.output;
   EXPECT_EQ(r2.output.rfind("twinflow: 2 ranks x 1 threads\n", 0), 0u) << r2.output;
   check(two, 2);

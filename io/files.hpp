@@ -46,8 +46,8 @@ private:
   std::filesystem::path path_;
 };
 
-// Fields every stage's summary.json carries. What made a result: the git revision, compiler, build type, --version's line and the host
-// (CPU model, cores).
+// Fields every stage's summary.json carries. What made a result: the git revision, compiler, build
+// type, --version's line and the host (CPU model, cores).
 Json provenance();
 // "twinflow 0.1.0 (git REV, COMPILER, BUILD TYPE)" and "HDF5 1.10.8": for --version.
 std::string version_line();

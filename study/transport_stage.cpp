@@ -253,7 +253,8 @@ int transport_stage(const Case& c, const RunOptions& options) {
   if (const int rc = rank_zero_runs([&] {
         stage.emplace(run_dir, "transport", options.force);
         // --force measures again (and refreshes the entry).
-        restored = !cache.empty() && !options.force && restore_from_cache(cache, *stage, c, started);
+        restored =
+            !cache.empty() && !options.force && restore_from_cache(cache, *stage, c, started);
         if (restored)
           std::cout << console_table(io::read_file(stage->file("coefficients.csv")))
                     << "transport: measurements reused from the cache (" << cache.string()
@@ -271,7 +272,8 @@ int transport_stage(const Case& c, const RunOptions& options) {
         return 0;
       }))
     return rc;
-  return rank_zero_runs([&] { return write_measurement(c, *stage, m, key, key_inputs, cache, started); });
+  return rank_zero_runs(
+      [&] { return write_measurement(c, *stage, m, key, key_inputs, cache, started); });
 }
 
 } // namespace twinflow::study

@@ -6,6 +6,7 @@
 #include "app/case/case.hpp"
 #include "io/files.hpp"
 #include "study/bench.hpp"
+#include "study/stability_limits.hpp"
 #include "study/stages.hpp"
 #include "study/sweeps.hpp"
 
@@ -45,6 +46,9 @@ int check_case(const CommandLine& cl) {
   std::cout << "# " << cl.target << ": valid (case '" << c.parameters.name << "', "
             << c.parameters.scene.dim << "D, " << c.parameters.particle.particle_count()
             << " particles)\n";
+  for (const auto& warning :
+       study::stiff_choice_warnings(c.parameters.particle, study::stability_limits()))
+    std::cout << "# " << warning << "\n";
   file.registry().print_resolved(std::cout);
   return 0;
 }

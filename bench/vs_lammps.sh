@@ -14,7 +14,7 @@
 #   thermo  N = 6000, 10 tau equilibration + 10 tau sampled: energy drift, T_kinetic,
 #           T_internal (harmonic mean of theta), pressure, ours beside LAMMPS
 # env: TWINFLOW (default build/app/twinflow), LMP (default /opt/lammps-dpd/build/lmp_dpd, built by
-#      ../shared/peers/lammps/build-lammps-dpd.sh; this script builds nothing), SIZES (default
+#      as docs/performance.md "Building the LAMMPS peer" says; this script builds nothing), SIZES (default
 #      "6000 48000 384000"), REPS (default 3), PS (particle-steps per timed run, default 6e6),
 #      OUT (default bench/runs), OMP_WAIT_POLICY / GOMP_SPINCOUNT (default: twinflow's, see
 #      below), NOISES (ours' pair noises, default "gaussian uniform": Particle/Noise; LAMMPS
@@ -38,7 +38,7 @@ HAVE_LMP=1
 if [ ! -x "$LMP" ]; then
   HAVE_LMP=0
   echo "LAMMPS: not installed at $LMP -- LAMMPS columns skipped (build it with"
-  echo "        ../shared/peers/lammps/build-lammps-dpd.sh, or set LMP)"
+  echo "        as docs/performance.md, \"Building the LAMMPS peer\", says, or set LMP)"
 fi
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 # Ours runs with twinflow's own default of how idle threads wait (a short spin, then sleep:

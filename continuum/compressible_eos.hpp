@@ -1,7 +1,7 @@
 #pragma once
 // Equation of state of the compressible model (continuum/compressible.hpp): the pressure p(n, T)
 // with the derivatives the exact Newton Jacobian needs, and the heat capacity per particle at
-// constant volume c_V = (de/dT)_n. Particle units, k = 1 (physics.md).
+// constant volume c_V = (de/dT)_n. Particle units, k = 1 (docs/theory.md).
 //
 // p = n k T + n^2 B, B = b0 + b1 k T + b2 (n - n_ref): the ideal DPDE fluid at B = 0
 // (000:(3.20)); with a conservative force, the transport stage's fit to its bulk runs
@@ -45,10 +45,10 @@ inline PressureWork pressure_work(const PressureState& s, double T) {
 }
 
 // c_V per particle, (de/dT)_n: the ideal DPDE fluid's c_v + k + (d/2) k (000:(3.21)), which is
-// c_p - k of the ideal fluid (physics.md: c_p adds k); the excess pressure adds none (above).
+// c_p - k of the ideal fluid (docs/theory.md: c_p adds k); the excess pressure adds none (above).
 // `ideal_heat_capacity_p` is the case's c_p, the ideal fluid's.
 inline double heat_capacity_v(double ideal_heat_capacity_p) {
-  return ideal_heat_capacity_p - 1.0; // c_V = c_p - k, k = 1 (physics.md)
+  return ideal_heat_capacity_p - 1.0; // c_V = c_p - k, k = 1 (docs/theory.md)
 }
 
 } // namespace twinflow::continuum

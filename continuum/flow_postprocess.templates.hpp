@@ -57,7 +57,7 @@ FlowIntegrals flow_integrals(const dealii::DoFHandler<dim>& dofs, const VectorTy
                              const ContinuumParameters& prm, const DimensionlessNumbers& numbers,
                              const Model& model) {
   // Nu = (1/|Omega|) int (n c_p u_d (T - T_ref) - kappa dT/dx_d) / q_cond: the mean heat flux
-  // across planes x_d = const over the conduction flux (build-notes; de Vahl Davis 1983 eq. 7
+  // across planes x_d = const over the conduction flux (docs/build.md; de Vahl Davis 1983 eq. 7
   // averaged over x). In a steady state div(n c_p u (T - T_ref) - kappa grad T) = c_p (T - T_ref)
   // div(n u) = 0 (no sources), so this mean is the wall heat flux.
   const int d = numbers.heated_direction;

@@ -1,6 +1,6 @@
 #pragma once
 // FlowProblem<dim, Model, Backend>: included by the instantiation units only (one dimension per
-// unit: compile memory, build-notes). Newton's method on the weak residual with its exact
+// unit: compile memory, docs/build.md). Newton's method on the weak residual with its exact
 // Jacobian and a backtracking line search (step-57); the residual is the model's.
 
 #include <deal.II/base/function_parser.h>

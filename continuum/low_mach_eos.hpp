@@ -1,7 +1,7 @@
 #pragma once
 // Equation of state of the low-Mach model: number density n(P, T) at the thermodynamic pressure P
 // and temperature T, with the derivatives the exact Newton Jacobian needs. Particle units, k = 1
-// (physics.md), so the mass density is m n.
+// (docs/theory.md), so the mass density is m n.
 //
 // The ideal fluid only (continuum::check refuses an excess pressure here): its energy equation
 // takes c_p constant and the ideal gas's dP/dt work; a non-ideal p(n, T) needs c_p(n, T) and
@@ -22,7 +22,7 @@ struct DensityState {
 
 inline DensityState number_density(double P, double T) {
   DensityState s;
-  // n = P / (k T), k = 1 (physics.md: p = rho k T for the ideal DPDE fluid)
+  // n = P / (k T), k = 1 (docs/theory.md: p = rho k T for the ideal DPDE fluid)
   s.n = P / T;
   s.n_T = -P / (T * T);
   s.n_TT = 2 * P / (T * T * T);

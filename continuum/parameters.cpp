@@ -29,7 +29,7 @@ DimensionlessNumbers dimensionless_numbers(const ContinuumParameters& p) {
   g = std::sqrt(g);
   const double H = n.height;
   // Ra = g alpha dT H^3 / (nu chi) (de Vahl Davis 1983, eq. 5); the low-Mach ideal gas has
-  // alpha = 1/T_ref (physics.md), which makes this Le Quere et al. 2005's Ra at T0 = T_ref.
+  // alpha = 1/T_ref (docs/theory.md), which makes this Le Quere et al. 2005's Ra at T0 = T_ref.
   const double alpha = p.model == Model::LowMach || p.model == Model::Compressible
                            ? 1.0 / T_ref
                            : p.thermal_expansion;
@@ -127,9 +127,9 @@ void check(const ContinuumParameters& p) {
                   p.boundary[d].temperature[side] > 0,
               "wall temperatures must be > 0");
     for (int side = 0; side < 2; ++side)
-      require(p.boundary[d].kapitza_conductance[side] >= 0 &&
+      require(std::isfinite(p.boundary[d].kapitza_conductance[side]) &&
                   (has_robin_walls(p.model) || p.boundary[d].kapitza_conductance[side] == 0),
-              "Kapitza conductances must be >= 0, and > 0 only in the Boussinesq and "
+              "Kapitza conductances must be finite, and != 0 only in the Boussinesq and "
               "compressible models");
   }
   const EquationOfState& eos = p.equation_of_state;

@@ -44,10 +44,42 @@ struct PowerLaw {
   double value_at_reference = 1.0;
   double exponent = 0.0;
   double sutherland_temperature = 0.0; // S in units of T0; 0: the power law above
-  double pair_fraction = 0.0;          // f in [0, 1]; 0: none (Boussinesq, low-Mach: unused)
+  double pair_fraction = 0.0;          // f in [0, 1] at (n_ref, T_ref); 0: none
   double pair_exponent = 0.0;          // the pair part's power of T
 
+  // The coefficient at the reference density n_ref (Boussinesq, low-Mach, heat conduction, and
+  // the compressible twin's Nu scale): its particles' part and its pair part.
   double at(double T, double T_ref) const {
+    if (pair_fraction == 0.0) return particles_part(T, T_ref);
+    return (1.0 - pair_fraction) * particles_part(T, T_ref) + pair_part(T, T_ref);
+  }
+  // d coefficient / dT at n_ref, for the exact Newton Jacobian.
+  double derivative(double T, double T_ref) const {
+    const double particles = particles_derivative(T, T_ref);
+    if (pair_fraction == 0.0) return particles;
+    return (1.0 - pair_fraction) * particles + pair_exponent * pair_part(T, T_ref) / T;
+  }
+  bool is_constant() const {
+    return exponent == 0.0 && sutherland_temperature <= 0.0 &&
+           (pair_fraction == 0.0 || pair_exponent == 0.0);
+  }
+  // The value at (n, T) and its derivatives in T and n (the exact Newton Jacobian).
+  struct AtState {
+    double value, d_T, d_n;
+  };
+  AtState at(double n, double T, double n_ref, double T_ref) const {
+    const double rest = 1.0 - pair_fraction;
+    AtState s{rest * particles_part(T, T_ref), rest * particles_derivative(T, T_ref), 0.0};
+    if (pair_fraction == 0.0) return s;
+    const double r = n / n_ref;
+    const double pair = r * r * pair_part(T, T_ref);
+    s.value += pair, s.d_T += pair_exponent * pair / T, s.d_n = 2.0 * pair / n;
+    return s;
+  }
+
+private:
+  // value_at_reference (T/T_ref)^exponent, or Sutherland's law.
+  double particles_part(double T, double T_ref) const {
     if (sutherland_temperature > 0.0) {
       const double S = sutherland_temperature;
       return value_at_reference * std::pow(T / T_ref, 1.5) * (T_ref + S) / (T + S);
@@ -55,26 +87,14 @@ struct PowerLaw {
     return exponent == 0.0 ? value_at_reference
                            : value_at_reference * std::pow(T / T_ref, exponent);
   }
-  // d coefficient / dT, for the exact Newton Jacobian.
-  double derivative(double T, double T_ref) const {
+  double particles_derivative(double T, double T_ref) const {
     if (sutherland_temperature > 0.0)
-      return at(T, T_ref) * (1.5 / T - 1.0 / (T + sutherland_temperature));
-    return exponent == 0.0 ? 0.0 : exponent * at(T, T_ref) / T;
+      return particles_part(T, T_ref) * (1.5 / T - 1.0 / (T + sutherland_temperature));
+    return exponent == 0.0 ? 0.0 : exponent * particles_part(T, T_ref) / T;
   }
-  bool is_constant() const { return exponent == 0.0 && sutherland_temperature <= 0.0; }
-  // The value at (n, T) and its derivatives in T and n (the exact Newton Jacobian).
-  struct AtState {
-    double value, d_T, d_n;
-  };
-  AtState at(double n, double T, double n_ref, double T_ref) const {
-    const double rest = 1.0 - pair_fraction;
-    AtState s{rest * at(T, T_ref), rest * derivative(T, T_ref), 0.0};
-    if (pair_fraction == 0.0) return s;
-    const double r = n / n_ref;
-    const double pair =
-        pair_fraction * value_at_reference * r * r * std::pow(T / T_ref, pair_exponent);
-    s.value += pair, s.d_T += pair_exponent * pair / T, s.d_n = 2.0 * pair / n;
-    return s;
+  // f value_at_reference (T/T_ref)^pair_exponent: the pair part at n_ref.
+  double pair_part(double T, double T_ref) const {
+    return pair_fraction * value_at_reference * std::pow(T / T_ref, pair_exponent);
   }
 };
 
@@ -85,12 +105,15 @@ struct DirectionBoundary {
   std::array<double, 2> temperature{{1.0, 1.0}};       // of a fixed-temperature wall
   std::array<double, 2> heat_flux{{0.0, 0.0}};         // into the domain, of a flux wall
   bool no_slip = true;                                 // else free slip (no normal flux)
-  // Kapitza (Robin) condition of a fixed-temperature wall: with h > 0 the heat flux into the
+  // Kapitza (Robin) condition of a fixed-temperature wall: with h != 0 the heat flux into the
   // domain is h (T_wall - T) instead of T = T_wall (the particle walls' temperature jump).
-  // Boussinesq and compressible. (Last: aggregate initialisers of the fields above stay valid.)
+  // Boussinesq and compressible. h < 0 (the nominal twin's walls from theory, wall_layer.hpp):
+  // a wall that holds the fluid of its layer at T_wall, so that the bulk's profile reaches T_wall
+  // kappa / |h| inside the domain (docs/theory.md, "The wall layer"). (Last: aggregate
+  // initialisers of the fields above stay valid.)
   std::array<double, 2> kapitza_conductance{{0.0, 0.0}};
-  bool robin(int side) const { return fixed_temperature[side] && kapitza_conductance[side] > 0; }
-  // Inverse law (the particle wall's own, physics.md): q = h T_wall^2 (1/T - 1/T_wall), the
+  bool robin(int side) const { return fixed_temperature[side] && kapitza_conductance[side] != 0; }
+  // Inverse law (the particle wall's own, docs/theory.md): q = h T_wall^2 (1/T - 1/T_wall), the
   // same h at T = T_wall, larger where the fluid is colder. Else linear: q = h (T_wall - T).
   bool kapitza_inverse = false;
   // The conductances' standard errors (not used by the solver: the continuum stage moves each

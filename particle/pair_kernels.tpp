@@ -168,7 +168,7 @@ template <class M> void Simulation<M>::conservative_blocks() {
 }
 
 // All pair forces at the current state (ec-verlet): F^C + F^D + F^R along e_ij, potentials and
-// heat rates q_ij (physics.md; 002:(3), (7)); the same algebra as pair_force.
+// heat rates q_ij (docs/theory.md; 002:(3), (7)); the same algebra as pair_force.
 template <class M> void Simulation<M>::force_blocks(const PairNoise& noise) {
   const auto cons = model_.conservative;
   const auto fr = model_.friction;
@@ -212,7 +212,7 @@ template <class M> void Simulation<M>::force_blocks(const PairNoise& noise) {
       if constexpr (M::Heat::active) {
         double rate, amplitude;
         heat.eval_w(wh[k], swh[k], th_i, th_j, rate, amplitude);
-        qk[k] = rate + amplitude * zeta[k] * inv_sqrt_dt; // q_ij, physics.md
+        qk[k] = rate + amplitude * zeta[k] * inv_sqrt_dt; // q_ij, docs/theory.md
       }
     }
     for (std::size_t k = 0; k < n; ++k) {

@@ -1,7 +1,7 @@
 #pragma once
 // The physics of one pair, as small value types with their parameters reduced once per run.
 // An absent term is an empty type with `active = false`; `if constexpr` removes it from the loop.
-// Notation and equations: shared/docs/physics.md; k = 1.
+// Notation and equations: docs/theory.md; k = 1.
 
 #include <algorithm>
 #include <cmath>
@@ -179,7 +179,7 @@ private:
   bool uniform_;
 };
 
-// ---- conservative force F^C = a_ij w_C e_ij, phi = a_ij rc/2 (1 - r/rc)^2 (physics.md)
+// ---- conservative force F^C = a_ij w_C e_ij, phi = a_ij rc/2 (1 - r/rc)^2 (docs/theory.md)
 struct NoConservative {
   static constexpr bool active = false;
 };
@@ -276,7 +276,7 @@ struct IsothermalFriction { // seed 001: fixed T in the FDT, no internal energy
   static double harmonic(double, double) { return 1; }
 };
 
-// ---- heat conduction q_ij = rate + amplitude zeta/sqrt(dt) (heat into i; physics.md)
+// ---- heat conduction q_ij = rate + amplitude zeta/sqrt(dt) (heat into i; docs/theory.md)
 struct NoHeat {
   static constexpr bool active = false;
 };
@@ -297,7 +297,7 @@ struct InverseConstantHeat {
     amplitude = std::sqrt(2 * kappa0) * sqrt_wh;
   }
   // Against a wall partner of infinite heat capacity at th_w: the Ito drift is 1/2 d/du_i
-  // Lambda^2 alone (physics.md), zero here.
+  // Lambda^2 alone (docs/theory.md), zero here.
   void eval_wall(double wh, double sqrt_wh, double th_i, double th_w, double& rate,
                  double& amplitude) const {
     eval_w(wh, sqrt_wh, th_i, th_w, rate, amplitude);

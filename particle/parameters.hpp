@@ -35,10 +35,10 @@ struct HeatSlab {
 };
 
 // How a wall acts on a particle at distance h. Seed000: like one particle of infinite mass and
-// heat capacity at rest at the nearest point, within Particle/Walls/Range (physics.md, "External
-// fields and boundaries"; seed 000 section 3.1). HalfSpace: like the half-space of wall material
-// at density rho_w beyond the plane, every pair term integrated over it (wall_weights.hpp): the
-// coupling of the fluid's own neighbours.
+// heat capacity at rest at the nearest point, within Particle/Walls/Range (docs/theory.md, "Walls";
+// seed 000 section 3.1). HalfSpace: like the half-space of wall material at density rho_w beyond
+// the plane, every pair term integrated over it (wall_weights.hpp): the coupling of the fluid's own
+// neighbours.
 enum class WallModel { HalfSpace, Seed000 };
 
 // Walls at x_d = 0 and x_d = L_d of a non-periodic direction; nothing crosses them.

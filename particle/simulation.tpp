@@ -248,7 +248,7 @@ Simulation<M>::pair_force(const PairNoise& noise, std::size_t i, std::size_t j, 
     ev *= inv_r;
     const double big_theta = fr.harmonic(th_i, th_j);
     // Noise amplitude at the pre-point, so the friction carries 003:(18)'s drift correction
-    // (a no-op for constant sigma). F^D + F^R along e_ij (physics.md; 002:(3)).
+    // (a no-op for constant sigma). F^D + F^R along e_ij (docs/theory.md; 002:(3)).
     const double gamma = fr.ito_gamma(th_i, th_j);
     pf.dissipative_random = -gamma * wd * ev + fr.sigma_of(big_theta) * wr * xi * inv_sqrt_dt_;
   }
@@ -256,7 +256,7 @@ Simulation<M>::pair_force(const PairNoise& noise, std::size_t i, std::size_t j, 
     if (r < model_.heat.w.rc) {
       double rate, amplitude;
       model_.heat.eval(r, th_i, th_j, rate, amplitude);
-      pf.heat = rate + amplitude * zeta * inv_sqrt_dt_; // q_ij, physics.md
+      pf.heat = rate + amplitude * zeta * inv_sqrt_dt_; // q_ij, docs/theory.md
     }
   }
   return pf;
@@ -472,7 +472,7 @@ template <class M> void Simulation<M>::step_euler() {
             double rel = 0; // e_ij . (vbar_i - vbar_j)
             for (int d = 0; d < D; ++d)
               rel += dx[d] * inv_r * 0.5 * (v_old_[d][i] + v[d][i] - v_old_[d][j] - v[d][j]);
-            const double work = pf.dissipative_random * dt_ * rel; // dK of the pair, physics.md
+            const double work = pf.dissipative_random * dt_ * rel; // dK of the pair, docs/theory.md
             du[i] -= 0.5 * work;
             du[j] -= 0.5 * work;
           });

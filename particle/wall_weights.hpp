@@ -1,8 +1,8 @@
 #pragma once
-// A wall of material (physics.md, "Why seed 000's wall holds its temperature badly, and the usual
-// remedy"): the half-space beyond the wall plane filled with wall particles at density rho_w,
-// at rest, at the wall's temperature. A fluid particle at distance h from the plane sees the sum
-// of its pair terms with all of them, here integrated once into functions of h:
+// A wall of material (docs/theory.md, "Walls"): the half-space beyond the wall plane filled with
+// wall particles at density rho_w, at rest, at the wall's temperature. A fluid particle at distance
+// h from the plane sees the sum of its pair terms with all of them, here integrated once into
+// functions of h:
 //   friction and noise: Gamma(h) = gamma(Theta) G(h), G = rho_w int w_D e e^T dV, diagonal for a
 //     flat wall: G_n (normal) and G_t (each tangent); the noise the sum of independent pair
 //     noises, covariance 2 k Theta gamma G dt (000:(2.37) pair by pair, so the FDT holds);
@@ -13,7 +13,7 @@
 //     most of the fluid's heat flux is carried by diffusing particles, which no wall can take
 //     over, so a wall that holds its temperature conducts better than the fluid;
 //   repulsion: a(theta_i, T_w) F(h) along the inward normal, F = rho_w int w_C (e.n) dV, with the
-//     potential a Phi(h), Phi = rho_w int rc/2 w_C^2 dV (the pair potential of physics.md).
+//     potential a Phi(h), Phi = rho_w int rc/2 w_C^2 dV (the pair potential of docs/theory.md).
 
 #include <functional>
 #include <vector>

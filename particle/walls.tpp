@@ -35,7 +35,7 @@ typename Simulation<M>::WallCoupling Simulation<M>::wall_coupling(int d, int sid
   return c;
 }
 
-// The wall's heat rate into particle i (rate and noise amplitude; heat into i), q of physics.md
+// The wall's heat rate into particle i (rate and noise amplitude; heat into i), q of docs/theory.md
 // with theta_j = T_w.
 template <class M>
 void Simulation<M>::wall_heat(const WallCoupling& c, double th_i, double th_wall, double& rate,
@@ -56,7 +56,7 @@ double Simulation<M>::wall_gamma(const WallCoupling& c, double th_i, double th_w
 }
 
 // Wall repulsion along the inward normal and its potential: seed 000's a_w (1 - h/range) with
-// a_w range/2 (1 - h/range)^2 (the pair force of physics.md against one wall particle), or the
+// a_w range/2 (1 - h/range)^2 (the pair force of docs/theory.md against one wall particle), or the
 // fluid's own conservative force integrated over the wall material; gravity m g with potential
 // -m g.x; the reverse Poiseuille force. Forces times `scale` into carried f (ec-verlet and
 // shardlow: forces; euler: impulses); potentials into carried potential if `potentials`.
@@ -154,7 +154,8 @@ template <class M> void Simulation<M>::wall_sweep(const PairNoise& noise) {
                   wall_s1(state_.v[t][i], c.tangent, c.sqrt_tangent, gamma, th_i, th_wall, g[k++]);
         }
         if constexpr (M::has_energy) {
-          // Thermal wall: it keeps half the work (physics.md); adiabatic: the particle all of it.
+          // Thermal wall: it keeps half the work (docs/theory.md); adiabatic: the particle all of
+          // it.
           const double to_particle = thermal ? 0.5 * dk : dk;
           state_.u[i] -= to_particle;
           tally_.add(index, dk - to_particle);
@@ -166,7 +167,7 @@ template <class M> void Simulation<M>::wall_sweep(const PairNoise& noise) {
 }
 
 // The wall's heat into particle i over one step (index: the wall, 2 d + side; g: its Gaussian),
-// Metropolis-adjusted: the explicit step of physics.md's q with theta_j = T_w is proposed and
+// Metropolis-adjusted: the explicit step of docs/theory.md's q with theta_j = T_w is proposed and
 // accepted with the probability that keeps, exactly, the law u^{c_v} exp(-u/T_w) (k = 1;
 // 000:(2.4)) of a particle in equilibrium with the wall (detailed balance of the proposal's
 // Gaussians both ways). A step that would leave u <= 0, or is rejected, exchanges nothing: a

@@ -48,7 +48,7 @@ double SceneParameters::stratification(double particle_mass) const {
     if (std::fabs(gravity[d]) > g) g = std::fabs(gravity[d]), up = d;
   if (up < 0) return 0;
   const double T = thermal_wall_mean() > 0 ? thermal_wall_mean() : temperature;
-  return g * box[up] * particle_mass / T; // g H / c^2, c^2 = k T / m, k = 1 (physics.md)
+  return g * box[up] * particle_mass / T; // g H / c^2, c^2 = k T / m, k = 1 (docs/theory.md)
 }
 
 std::string wall_name(int direction, int side) {

@@ -42,7 +42,7 @@ struct SceneParameters {
   double thermal_wall_epsilon() const;
   // The mean temperature of the thermal walls; 0 without any.
   double thermal_wall_mean() const;
-  // Stratification g H / c^2 (physics.md, "What a convection scene costs"): g the largest
+  // Stratification g H / c^2 (docs/theory.md, "What a convection scene costs"): g the largest
   // gravity component, H the box along it, c^2 = k T / m the ideal DPDE fluid's isothermal sound
   // speed at the thermal walls' mean temperature (else the scene's); 0 without gravity.
   double stratification(double particle_mass) const;

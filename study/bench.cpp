@@ -44,8 +44,8 @@ const Scene all_scenes[] = {{"ideal", false, false},
                             {"a0=15", true, false},
                             {"a0=15+heat", true, true}};
 
-// LAMMPS's DPDE system (shared/peers/lammps): rho = 3, rc = 1, sigma = 3, c_v = 200, kappa = 40,
-// w_C = w_R = 1 - r, w_D = w_H = (1 - r)^2 (LAMMPS's single weight w = 1 - r), inverse heat law
+// LAMMPS's DPDE system (bench/in.dpde_bench.lmp): rho = 3, rc = 1, sigma = 3, c_v = 200, kappa =
+// 40, w_C = w_R = 1 - r, w_D = w_H = (1 - r)^2 (LAMMPS's single weight w = 1 - r), inverse heat law
 // with constant kappa, dt = 0.005.
 ParticleParameters bench_case(int dim, std::array<double, 3> box, const Scene& s, Integrator i) {
   ParticleParameters p;

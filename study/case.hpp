@@ -28,6 +28,8 @@ struct TwinChoice {
   bool coefficients_from_transport = false; // RUNDIR/transport/summary.json, else the case's
   bool model_chosen_automatically = false;  // Continuum/Model = auto
   bool kinetic_slip_automatically = false;  // Continuum/Wall slip = auto, no Slip lengths
+  bool wall_jumps_automatically = false;    // Continuum/Wall jump = auto, no Kapitza given
+  bool wall_jumps_from_theory = false;      // the twin's thermal walls from the wall layer
   double low_mach_threshold = 0.2;          // its threshold on the walls' epsilon
   double compressible_threshold = 0.1;      // its threshold on the stratification g H / c^2
 };

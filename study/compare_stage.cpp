@@ -31,6 +31,7 @@ std::string as_text(double x, int digits) {
 Case calibrated_case(const Case& nominal, const fs::path& run_dir) {
   Case out = nominal;
   CaseParameters& p = out.parameters;
+  p.twin.wall_jumps_from_theory = false; // its walls are the measured ones
   const compare::ParticleRecord run = compare::read_particle_record(run_dir, p.scene);
   double viscosity = std::nan("");
   if (p.compare.wall_slip && continuum::has_robin_walls(p.continuum.model))

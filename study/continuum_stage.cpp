@@ -14,6 +14,7 @@
 #include "study/ranks.hpp"
 #include "study/stages.hpp"
 #include "study/twin_coefficients.hpp"
+#include "study/twin_wall_theory.hpp"
 #include "transport/coefficients.hpp"
 
 namespace twinflow::study {
@@ -26,6 +27,8 @@ void take_coefficients(const transport::Coefficients& k, continuum::ContinuumPar
     if (!std::isfinite(c.exponent)) return;
     law.exponent = c.exponent;
     law.sutherland_temperature = 0; // the measured law replaces any Sutherland law of the case
+    law.pair_fraction = c.pair_fraction;
+    law.pair_exponent = c.pair_exponent;
   };
   take(p.viscosity, k.viscosity);
   take(p.conductivity, k.conductivity);
@@ -50,8 +53,9 @@ struct CoefficientErrors {
 
 // The transport stage's coefficients at the twin's reference temperature (one reader:
 // transport/coefficients.hpp), with the errors of the measured ones.
-CoefficientErrors take_transport_coefficients(const fs::path& run_dir, const std::string& source,
+CoefficientErrors take_transport_coefficients(const fs::path& run_dir, const CaseParameters& c,
                                               continuum::ContinuumParameters& p) {
+  const std::string& source = c.transport.source;
   const fs::path file = run_dir / "transport" / "summary.json";
   const io::Json summary =
       io::read_json(file, "Continuum/Coefficients/Source = transport needs `twinflow transport "
@@ -92,6 +96,7 @@ CoefficientErrors take_transport_coefficients(const fs::path& run_dir, const std
                 << " has no equation of state (an older measurement): the twin takes the ideal "
                    "fluid's\n";
   }
+  if (c.twin.wall_jumps_from_theory) take_wall_jumps(c, k, p);
   return {k.conductivity.stderr_, k.viscosity.stderr_};
 }
 
@@ -162,7 +167,7 @@ int continuum_stage(const Case& c, const RunOptions& options, const std::string&
   continuum::ContinuumParameters p = parameters.continuum;
   CoefficientErrors coefficient_errors;
   if (parameters.twin.coefficients_from_transport)
-    coefficient_errors = take_transport_coefficients(run_dir, parameters.transport.source, p);
+    coefficient_errors = take_transport_coefficients(run_dir, parameters, p);
   // Under mpirun only the distributed (iterative) path shares the work; rank 0 writes the
   // summary and tables, the HDF5 fields are written collectively. Inside `run` under mpirun the
   // twin runs on rank 0 alone (the other ranks only took part in the particle runs).

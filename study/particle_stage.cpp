@@ -13,6 +13,7 @@
 #include "particle/simulation.hpp"
 #include "study/inputs.hpp"
 #include "study/ranks.hpp"
+#include "study/stability_limits.hpp"
 #include "study/stages.hpp"
 #include "transport/estimates.hpp"
 
@@ -141,6 +142,8 @@ int particle_stage(const Case& c, const RunOptions& options) {
   std::signal(SIGTERM, on_stop_signal);
   std::signal(SIGUSR1, on_stop_signal); // what a launcher passes on to its ranks (grid.cpp)
   if (root) {
+    for (const auto& warning : stiff_choice_warnings(p.particle, stability_limits()))
+      std::cerr << "particle: " << warning << "\n";
     stage.create();
     if (!options.restart) fs::remove(checkpoint_path); // a fresh run leaves no old one behind
   }

@@ -124,6 +124,7 @@ int run_all(Case c, const RunOptions& options) {
     p.twin.coefficients_from_transport = true;
     c.record_value("Continuum/Coefficients/Source", "transport");
     if (p.twin.kinetic_slip_automatically) continuum::take_kinetic_slip(p.continuum);
+    if (p.twin.wall_jumps_automatically) p.twin.wall_jumps_from_theory = true;
   }
   // From here on rank 0 alone: the twins, the comparison, the report.
   return rank_zero_runs([&] {

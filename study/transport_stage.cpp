@@ -48,6 +48,12 @@ io::Json measurement_inputs(const Case& c, const particle::ParticleParameters& p
     j["temperature_spread"] = t.temperature_spread;
   }
   j["method"] = transport::kMeasurementMethod;
+  if (t.measure_flows && t.kappa_from_slabs && c.parameters.scene.heated_direction() >= 0) {
+    // the heat slabs take the scene's box and its walls' temperatures, not its gravity
+    for (const auto& [path, value] : resolved.items())
+      if (path.rfind("Scene/", 0) == 0 && path != "Scene/Gravity") j[path] = value;
+    j["kappa_from_slabs"] = true;
+  }
   if (t.kappa_from_walls) { // the scene and the particle walls enter the wall run
     // Not its gravity: a conduction run must not convect, and the wall run has none
     // (transport/wall_kappa.cpp). Else each --rayleigh point would measure again, with other

@@ -100,7 +100,9 @@ TEST(Sweep, FailedPointsAreRecordedOthersFinishRerunSkipsChangedGridRefused) {
   EXPECT_EQ(text(r[0], "Particle/Time step"), "0.01");
   EXPECT_EQ(text(r[0], "Scene/Reverse Poiseuille force"), "0");
   EXPECT_GT(number(r[0], "rayleigh"), 0);
-  EXPECT_GT(number(r[0], "nusselt_nominal"), 0.9);
+  // Conduction and a weak roll; the twin's walls from the wall model's theory pass less heat
+  // than fixed wall temperatures would in this dilute (n = 1) box: their layers are ~1 rc.
+  EXPECT_GT(number(r[0], "nusselt_nominal"), 0.5);
   EXPECT_GT(number(r[0], "wall_seconds"), 0);
   for (const std::size_t rejected : {1u, 3u}) {
     EXPECT_EQ(text(r[rejected], "status"), "failed");

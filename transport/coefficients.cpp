@@ -50,8 +50,30 @@ Coefficients read_coefficients(const io::Json& summary, const std::string& sourc
     e.fitted = e.b0 != 0 || e.b1 != 0 || e.b2 != 0;
     e.found = true;
   }
-  with_law(k.viscosity, "viscosity");
-  with_law(k.conductivity, "conductivity");
+  // The law c(n, T) = K (T/T0)^a + P (n/n0)^2 (T/T0)^b (laws.hpp) where the stage fitted one.
+  const auto with_state_law = [&](Coefficient& c, const std::string& key) {
+    const io::Json* law = io::find(summary, {"results", "measured", key + "_law"});
+    if (!c.measured || !law) return false;
+    const auto at = [&](const char* name) { return io::number(*law, {name}); };
+    const double t = reference_temperature / at("T0");
+    const double kinetic = at("K") * std::pow(t, at("a")), pair = at("P") * std::pow(t, at("b"));
+    c.value = kinetic + pair;
+    c.stderr_ = at("K_stderr") * std::pow(t, at("a"));
+    c.exponent = at("a");
+    c.pair_fraction = pair / c.value;
+    c.pair_exponent = at("b");
+    return true;
+  };
+  k.state_density = io::number(summary, {"results", "state_point", "density"});
+  k.state_temperature = io::number(summary, {"results", "state_point", "temperature"});
+  k.diffusion = measured("self_diffusion");
+  if (!std::isfinite(k.diffusion))
+    k.diffusion = io::number(summary, {"results", "estimated_measured_g", "self_diffusion"});
+  k.diffusion_exponent = measured("self_diffusion_exponent");
+  k.conductivity_pair =
+      io::number(summary, {"results", "estimated_measured_g", "conductivity_pair_conduction"});
+  if (!with_state_law(k.viscosity, "viscosity")) with_law(k.viscosity, "viscosity");
+  if (!with_state_law(k.conductivity, "conductivity")) with_law(k.conductivity, "conductivity");
   return k;
 }
 

@@ -15,6 +15,9 @@ struct Coefficient {
   double stderr_;   // NaN for an estimate
   double exponent;  // of a measured power law value (T / T_ref)^n; NaN: none
   bool measured = false;
+  // A measured law c(n, T) (transport/laws.hpp) at the requested temperature T_ref: the pair
+  // part's fraction there and its power of T (the rest goes as T^exponent and not with n).
+  double pair_fraction = 0, pair_exponent = 0;
 };
 
 // p = n k T + n^2 (b0 + b1 k T + b2 (n - n_ref)): the ideal fluid (all 0) or the fit of a fluid
@@ -33,10 +36,17 @@ struct Coefficients {
   // viscosity (1 + 2/d) eta_D (Marsh, Backx & Ernst 1997). NaN: not in the summary.
   double viscosity_dissipative = 0;
   double measured_temperature; // where the measured kappa and eta belong (NaN: not measured)
+  // D at the state point (measured, else the estimate) and its power of T (NaN: not measured),
+  // at the state point's density and temperature: what the wall layer's theory takes.
+  double diffusion = 0, diffusion_exponent = 0, state_density = 0, state_temperature = 0;
+  // The pair part of kappa at the state point (theory with the measured g) and its power of T.
+  double conductivity_pair = 0;
 };
 
-// `source`: "measured" or "estimated" (Transport/Source). A measured power law (Transport/
-// Temperature spread) is rescaled from the measured temperature to `reference_temperature`, its
+// `source`: "measured" or "estimated" (Transport/Source). A measured law c(n, T)
+// (conductivity_law, viscosity_law) is evaluated at the reference temperature and the state
+// point's density, its error K's. Else a measured power law (Transport/Temperature spread) is
+// rescaled from the measured temperature to `reference_temperature`, its
 // error with the exponent's: sigma^2 = s^2 [sigma_c^2 + c^2 ln^2(T_ref / T_m) sigma_n^2].
 // Throws io::InputError when the summary lacks the estimates.
 Coefficients read_coefficients(const io::Json& summary, const std::string& source,

@@ -42,6 +42,17 @@ double weight(double l, double n) {
 }
 } // namespace
 
+double pair_conductance(const particle::ParticleParameters& p, double T) {
+  using namespace particle;
+  if (p.energy == EnergyModel::Dpde && p.heat == HeatLaw::Inverse)
+    return (p.heat_coefficient == HeatCoefficient::Constant ? p.kappa0
+                                                            : p.kappa0 * p.cv * p.cv * T * T) /
+           (T * T); // kappa_ij w_H / T^2
+  if (p.energy == EnergyModel::Dpde && p.heat == HeatLaw::Linear)
+    return p.cv * p.kappa0 * (1 + p.linear_noise_factor / (2 * p.cv)); // with the Ito drift
+  return 0;
+}
+
 Estimates estimate(const particle::ParticleParameters& p, double T, const PairDistribution& g) {
   using namespace particle;
   Estimates e;
@@ -67,14 +78,7 @@ Estimates estimate(const particle::ParticleParameters& p, double T, const PairDi
   e.viscosity_dissipative = gamma * rho * rho / (2 * d * (d + 2)) * moment(2, rd, nd); // 002:(26)
   e.viscosity = e.viscosity_kinetic + e.viscosity_dissipative;
 
-  // lambda_eff: coefficient of (theta_j - theta_i) at equal temperatures, per w_H
-  double lambda = 0;
-  if (p.energy == EnergyModel::Dpde && p.heat == HeatLaw::Inverse)
-    lambda = (p.heat_coefficient == HeatCoefficient::Constant ? p.kappa0
-                                                              : p.kappa0 * p.cv * p.cv * T * T) /
-             (T * T); // kappa_ij w_H / T^2
-  if (p.energy == EnergyModel::Dpde && p.heat == HeatLaw::Linear)
-    lambda = p.cv * p.kappa0 * (1 + p.linear_noise_factor / (2 * p.cv)); // with the Ito drift
+  const double lambda = pair_conductance(p, T);
   const double cv = p.energy == EnergyModel::Dpde ? p.cv : 0.0;
   e.conductivity_diffusion = rho * cv * e.diffusion;                            // 002:(21)
   e.conductivity_conduction = rho * rho / (2 * d) * lambda * moment(2, rh, nh); // 000:(3.25)
@@ -92,7 +96,7 @@ Estimates estimate(const particle::ParticleParameters& p, double T, const PairDi
         M_PI * rho * rho * lambda * std::pow(rh, 5) * e.i1_002 + e.conductivity_diffusion;
   }
   e.expansion = 1 / T;                       // ideal gas, 000:(4.2)
-  e.heat_capacity_v = cv + 1 + 0.5 * d;      // physics.md: c_v + k + (d/2) k
+  e.heat_capacity_v = cv + 1 + 0.5 * d;      // docs/theory.md: c_v + k + (d/2) k
   e.heat_capacity_p = e.heat_capacity_v + 1; // + k
   e.kinematic_viscosity = e.viscosity / (rho * m);
   e.diffusivity = e.conductivity / (rho * e.heat_capacity_p);
@@ -105,7 +109,7 @@ Estimates estimate(const particle::ParticleParameters& p, double T, const PairDi
 
 double rayleigh(const Estimates& e, double gravity, double delta_t, double height) {
   return gravity * e.expansion * delta_t * std::pow(height, 3) /
-         (e.kinematic_viscosity * e.diffusivity); // physics.md
+         (e.kinematic_viscosity * e.diffusivity); // docs/theory.md
 }
 
 io::Json convection_numbers(const particle::ParticleParameters& p, double max_speed) {
@@ -135,7 +139,7 @@ io::Json convection_numbers(const particle::ParticleParameters& p, double max_sp
   j["delta_T"] = dt;
   j["delta_T_over_T"] = dt / t_mean;
   j["alpha_delta_T"] = e.expansion * dt;
-  j["stratification_g_H_over_c2"] = g * height / c2; // physics.md
+  j["stratification_g_H_over_c2"] = g * height / c2; // docs/theory.md
   j["sound_speed"] = std::sqrt(c2);
   j["rayleigh"] = rayleigh(e, g, dt, length); // on the distance between the thermal walls
   j["prandtl"] = e.prandtl;

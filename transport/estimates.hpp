@@ -1,6 +1,6 @@
 #pragma once
 // Theory estimates of the DPDE fluid's transport coefficients at density rho and temperature T
-// (physics.md, "Transport coefficients"; seed 002 sections III.D-E; seed 000 section 3.1).
+// (docs/theory.md, "Transport coefficients"; seed 002 sections III.D-E; seed 000 section 3.1).
 
 #include <string>
 #include <vector>
@@ -42,6 +42,10 @@ struct Estimates {
   io::Json json() const;
 };
 
+// lambda_eff: a pair's heat rate per unit temperature difference per unit w_H, linearised at
+// equal temperatures T (docs/theory.md, "Heat conduction between particles"); 0 without heat.
+double pair_conductance(const particle::ParticleParameters& p, double T);
+
 Estimates estimate(const particle::ParticleParameters& p, double temperature,
                    const PairDistribution& g);
 
@@ -49,7 +53,7 @@ Estimates estimate(const particle::ParticleParameters& p, double temperature,
 double rayleigh(const Estimates& e, double gravity, double delta_t, double height);
 
 // A convection scene's dimensionless numbers from the estimates at the mean wall temperature
-// (physics.md, "What a convection scene costs"): stratification g H / c^2, dT/T, Ra, Pr and a
+// (docs/theory.md, "What a convection scene costs"): stratification g H / c^2, dT/T, Ra, Pr and a
 // free-fall Mach number. Null when the scene has no gravity or no pair of thermal walls at
 // different temperatures. max_speed > 0 adds the Mach number of that measured speed.
 io::Json convection_numbers(const particle::ParticleParameters& p, double max_speed = 0);

@@ -11,6 +11,7 @@
 #include "particle/seeds.hpp"
 #include "statistics/blocking.hpp"
 #include "statistics/line_fit.hpp"
+#include "transport/jobs.hpp"
 
 namespace twinflow::transport {
 
@@ -110,44 +111,76 @@ Point run_at(particle::ParticleParameters p, double density, double temperature,
 
 Repeated measure_diffusion(const particle::ParticleParameters& p, long steps, int repeats,
                            const std::string& first_correlations) {
-  std::vector<Estimate> d;
+  std::vector<Estimate> d(static_cast<std::size_t>(repeats));
+  std::vector<Job> jobs;
   for (int r = 0; r < repeats; ++r) {
     if (r == 0 && !first_correlations.empty()) {
-      d.push_back(diffusion_from_msd(first_correlations, p.dim));
+      d[0] = diffusion_from_msd(first_correlations, p.dim);
       continue;
     }
-    particle::ParticleParameters q = p;
-    q.seed = particle::derived_seed(p.seed, particle::SeedPurpose::DiffusionRepeat,
-                                    static_cast<std::uint64_t>(r));
-    d.push_back(diffusion_from_msd(run_at(q, p.density, p.temperature, steps).corr, p.dim));
+    jobs.push_back(
+        {1, [&, r] {
+           particle::ParticleParameters q = p;
+           q.seed = particle::derived_seed(p.seed, particle::SeedPurpose::DiffusionRepeat,
+                                           static_cast<std::uint64_t>(r));
+           d[r] = diffusion_from_msd(run_at(q, p.density, p.temperature, steps).corr, p.dim);
+         }});
   }
+  run_jobs(std::move(jobs));
   return summarise_repeats(d, RepeatError::Spread);
 }
 
-Measured measure(const particle::ParticleParameters& p, long steps, int diffusion_repeats,
-                 double h) {
+Measured measure(const particle::ParticleParameters& p, long steps, int diffusion_repeats, double h,
+                 double diffusion_spread) {
   Measured m;
   const double rho = p.density, T = p.temperature;
-  const Point c = run_at(p, rho, T, steps);
+  // Every run is independent: the state point, T (1 +- h), rho (1 +- h), D's repeats and D at
+  // T (1 +- diffusion_spread), spread over the cores (jobs.hpp).
+  Point c, tp, tm, rp, rm, dp, dm;
+  std::vector<Estimate> d(static_cast<std::size_t>(std::max(diffusion_repeats, 1)));
+  std::vector<Job> jobs{{1, [&] { c = run_at(p, rho, T, steps); }},
+                        {1, [&] { tp = run_at(p, rho, T * (1 + h), steps); }},
+                        {1, [&] { tm = run_at(p, rho, T * (1 - h), steps); }},
+                        {1, [&] { rp = run_at(p, rho * (1 + h), T, steps); }},
+                        {1, [&] { rm = run_at(p, rho * (1 - h), T, steps); }}};
+  for (int r = 1; r < diffusion_repeats; ++r)
+    jobs.push_back({1, [&, r] {
+                      particle::ParticleParameters q = p;
+                      q.seed =
+                          particle::derived_seed(p.seed, particle::SeedPurpose::DiffusionRepeat,
+                                                 static_cast<std::uint64_t>(r));
+                      d[r] = diffusion_from_msd(run_at(q, rho, T, steps).corr, p.dim);
+                    }});
+  if (diffusion_spread > 0) {
+    jobs.push_back({1, [&] { dp = run_at(p, rho, T * (1 + diffusion_spread), steps); }});
+    jobs.push_back({1, [&] { dm = run_at(p, rho, T * (1 - diffusion_spread), steps); }});
+  }
+  run_jobs(std::move(jobs));
   m.pressure = c.p;
   m.temperature = c.t;
   m.rdf_csv = c.rdf;
   // D's error from independent runs: within one run the groups of tracked particles share the
   // box's collective flows (in 2D runs scattered 1.3x wider over seeds than the groups said,
   // docs/notebook/2026-11-25-seed-errors.md).
-  const Repeated d = measure_diffusion(p, steps, diffusion_repeats, c.corr);
-  m.diffusion = d.value;
-  m.diffusion_dof = d.dof;
-  m.diffusion_repeats = d.repeats;
-  const Point tp = run_at(p, rho, T * (1 + h), steps), tm = run_at(p, rho, T * (1 - h), steps);
-  const Point rp = run_at(p, rho * (1 + h), T, steps), rm = run_at(p, rho * (1 - h), T, steps);
+  d[0] = diffusion_from_msd(c.corr, p.dim);
+  const Repeated dr = summarise_repeats(d, RepeatError::Spread);
+  m.diffusion = dr.value;
+  m.diffusion_dof = dr.dof;
+  m.diffusion_repeats = dr.repeats;
+  if (diffusion_spread > 0) { // D(T) ~ T^a_D through the three temperatures (the runs' own)
+    const Estimate d_plus = diffusion_from_msd(dp.corr, p.dim),
+                   d_minus = diffusion_from_msd(dm.corr, p.dim);
+    const PowerLawFit law =
+        fit_power_law({dm.t.mean, c.t.mean, dp.t.mean}, {d_minus, m.diffusion, d_plus}, c.t.mean);
+    m.diffusion_exponent = {law.exponent, law.exponent_stderr};
+  }
   // Central differences against the measured temperatures (an NVE run's T is an outcome).
   const double dtemp = tp.t.mean - tm.t.mean;
   m.dp_dt = {(tp.p.mean - tm.p.mean) / dtemp,
              std::hypot(tp.p.stderr_, tm.p.stderr_) / std::fabs(dtemp)};
   m.dp_drho = {(rp.p.mean - rm.p.mean) / (2 * h * rho),
                std::hypot(rp.p.stderr_, rm.p.stderr_) / (2 * h * rho)};
-  const double alpha = m.dp_dt.mean / (rho * m.dp_drho.mean); // physics.md
+  const double alpha = m.dp_dt.mean / (rho * m.dp_drho.mean); // docs/theory.md
   m.expansion = {alpha, std::fabs(alpha) * std::hypot(m.dp_dt.stderr_ / m.dp_dt.mean,
                                                       m.dp_drho.stderr_ / m.dp_drho.mean)};
   // c_p - c_v = T V alpha_p^2 / (N kappa_T) = T (dp/dT)^2 / (rho^2 (dp/drho)) per particle
@@ -231,6 +264,7 @@ io::Json Measured::json() const {
   put("temperature_kinetic", temperature);
   put("self_diffusion", diffusion);
   j["self_diffusion_stderr_dof"] = diffusion_dof;
+  if (std::isfinite(diffusion_exponent.mean)) put("self_diffusion_exponent", diffusion_exponent);
   j["self_diffusion_repeats"] = io::Json::array();
   for (const auto& e : diffusion_repeats) {
     io::Json r = io::Json::object();
@@ -324,7 +358,7 @@ PowerLawFit fit_power_law(const std::vector<double>& temperatures,
 RelaxationCoefficients
 measure_relaxation(particle::ParticleParameters p, const Estimates& estimate, double cp,
                    int repeats,
-                   const std::function<void(int, const RelaxationCoefficients&)>& report) {
+                   const std::function<void(int, const RelaxationCoefficients&, int)>& report) {
   p.box[0] *= 2;
   p.temperature_perturbation = 0.2;
   // One thermal speed: the mode stands above its thermal noise down to ~10% (seed 002's fluid:
@@ -342,29 +376,50 @@ measure_relaxation(particle::ParticleParameters p, const Estimates& estimate, do
   RelaxationCoefficients out;
   out.particles = p.particle_count();
   out.steps = p.steps;
-  std::vector<Estimate> kappa, eta, temperature;
-  const std::uint64_t seed = p.seed;
-  for (int r = 0; r < repeats; ++r) {
-    p.seed = seed + 7919 * static_cast<std::uint64_t>(r);
-    const auto run = run_on_every_rank(p);
-    auto fitted = [&](const char* fit, const char* key, double scale) -> Estimate {
-      const std::string stderr_key = std::string(key) + "_stderr";
-      return {scale * io::number(run.summary, {fit, key}),
-              scale * io::number(run.summary, {fit, stderr_key})};
-    };
-    kappa.push_back(fitted("relaxation", "chi", p.density * cp)); // kappa = rho c_p chi
-    eta.push_back(fitted("shear_relaxation", "viscosity", 1));    // eta = n m nu, by the fit
-    // The run's own mean temperature: the decaying shear mode's kinetic energy, U^2 k T / 4 per
-    // particle, ends as heat (+2% of T at c_v = 10 in 2D), and an NVE start settles on its own.
-    // T_internal = 1/<1/theta> leaves the flow's kinetic energy out (the heat mode biases it low
-    // by ~A^2/2 at the start, ~0.3% over the run).
-    temperature.push_back(
-        {io::number(run.summary, {"T_internal"}), io::number(run.summary, {"T_internal_stderr"})});
-    out.conductivity = summarise_repeats(kappa);
-    out.viscosity = summarise_repeats(eta);
-    out.temperature = summarise_repeats(temperature);
-    if (report) report(r + 1, out);
-  }
+  const auto n = static_cast<std::size_t>(repeats);
+  std::vector<Estimate> kappa(n), eta(n), temperature(n);
+  std::vector<char> done(n, 0);
+  std::vector<Job> jobs;
+  for (int r = 0; r < repeats; ++r)
+    jobs.push_back(
+        {1, [&, r] {
+           particle::ParticleParameters q = p;
+           q.seed = p.seed + 7919 * static_cast<std::uint64_t>(r);
+           const auto run = run_on_every_rank(q);
+           auto fitted = [&](const char* fit, const char* key, double scale) -> Estimate {
+             const std::string stderr_key = std::string(key) + "_stderr";
+             return {scale * io::number(run.summary, {fit, key}),
+                     scale * io::number(run.summary, {fit, stderr_key})};
+           };
+           kappa[r] = fitted("relaxation", "chi", p.density * cp); // kappa = rho c_p chi
+           eta[r] = fitted("shear_relaxation", "viscosity", 1);    // eta = n m nu, by the fit
+           // The run's own mean temperature: the decaying shear mode's kinetic energy,
+           // U^2 k T / 4 per particle, ends as heat (+2% of T at c_v = 10 in 2D), and an
+           // NVE start settles on its own. T_internal = 1/<1/theta> leaves the flow's
+           // kinetic energy out (the heat mode biases it low by ~A^2/2 at the start,
+           // ~0.3% over the run).
+           temperature[r] = {io::number(run.summary, {"T_internal"}),
+                             io::number(run.summary, {"T_internal_stderr"})};
+#pragma omp critical(relaxation_report)
+           {
+             done[r] = 1;
+             if (report) { // what has ended so far, in repeat order
+               std::vector<Estimate> k, e, t;
+               for (std::size_t i = 0; i < n; ++i)
+                 if (done[i])
+                   k.push_back(kappa[i]), e.push_back(eta[i]), t.push_back(temperature[i]);
+               RelaxationCoefficients so_far = out;
+               so_far.conductivity = summarise_repeats(k);
+               so_far.viscosity = summarise_repeats(e);
+               so_far.temperature = summarise_repeats(t);
+               report(static_cast<int>(k.size()), so_far, r);
+             }
+           }
+         }});
+  run_jobs(std::move(jobs));
+  out.conductivity = summarise_repeats(kappa);
+  out.viscosity = summarise_repeats(eta);
+  out.temperature = summarise_repeats(temperature);
   return out;
 }
 

@@ -3,6 +3,8 @@
 
 #include <Eigen/Core>
 
+#include <cmath>
+
 #include <functional>
 #include <vector>
 
@@ -45,12 +47,13 @@ ExcessPressureFit fit_excess_pressure(const std::vector<PressurePoint>& points,
 
 struct Measured {
   particle::Estimate pressure, temperature;
-  particle::Estimate diffusion;      // from the MSD slope, 2 d D, over independent repeats
-  int diffusion_dof = 0;             // its error's degrees of freedom (repeats - 1)
-  particle::Estimate expansion;      // alpha = (dp/dT)_rho / (rho (dp/drho)_T)
-  particle::Estimate dp_dt, dp_drho; // equation-of-state derivatives
-  particle::Estimate cp_minus_cv;    // per particle, k = 1: 1 for the ideal gas
-  ExcessPressureFit excess_pressure; // over the five state points' runs
+  particle::Estimate diffusion; // from the MSD slope, 2 d D, over independent repeats
+  particle::Estimate diffusion_exponent{NAN, NAN}; // a_D in D ~ T^a_D (diffusion_spread > 0)
+  int diffusion_dof = 0;                           // its error's degrees of freedom (repeats - 1)
+  particle::Estimate expansion;                    // alpha = (dp/dT)_rho / (rho (dp/drho)_T)
+  particle::Estimate dp_dt, dp_drho;               // equation-of-state derivatives
+  particle::Estimate cp_minus_cv;                  // per particle, k = 1: 1 for the ideal gas
+  ExcessPressureFit excess_pressure;               // over the five state points' runs
   std::string rdf_csv;
   std::vector<particle::Estimate> diffusion_repeats; // each run's D and its groups' error
   io::Json json() const;
@@ -58,10 +61,11 @@ struct Measured {
 
 // Periodic box at the state point of `p` (its density and temperature); `steps` sampled steps per
 // run. Five runs: the state point, T (1 +- h), rho (1 +- h) (the pressure's derivatives and its
-// excess fit); and D from `diffusion_repeats`
-// independent runs at the state point (the first of them the state point's run).
+// excess fit); D from `diffusion_repeats` independent runs at the state point (the first of them
+// the state point's run); with diffusion_spread s > 0 also D at T (1 +- s), D's power of T. The
+// runs are spread over the cores (jobs.hpp).
 Measured measure(const particle::ParticleParameters& p, long steps, int diffusion_repeats,
-                 double h = 0.05);
+                 double h = 0.05, double diffusion_spread = 0);
 
 // A coefficient measured by independent repeats (different seeds): the mean, and the standard
 // error of that mean by one of two rules.
@@ -109,11 +113,11 @@ struct RelaxationCoefficients {
 // momentum mode along x in a periodic box twice as long as `p`'s, run for about three decay
 // times of the slower mode's estimate; kappa = rho c_p chi with c_p per particle given (the ideal
 // fluid's, or from the measured equation of state), eta = rho m nu. `repeats` runs with
-// different seeds; `report` is told after each.
-RelaxationCoefficients
-measure_relaxation(particle::ParticleParameters p, const Estimates& estimate, double cp,
-                   int repeats,
-                   const std::function<void(int done, const RelaxationCoefficients&)>& report = {});
+// different seeds, spread over the cores (jobs.hpp); `report` is told after each ends: how many
+// have, the summary of those, and which repeat ended.
+RelaxationCoefficients measure_relaxation(
+    particle::ParticleParameters p, const Estimates& estimate, double cp, int repeats,
+    const std::function<void(int done, const RelaxationCoefficients&, int repeat)>& report = {});
 
 // coefficient(T) = value (T / T_ref)^exponent through measured points, weighted least squares in
 // logs; errors from the points' errors (chi2_per_dof says whether they describe the scatter).

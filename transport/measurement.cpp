@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "transport/estimates.hpp"
+#include "transport/jobs.hpp"
 #include "transport/measure.hpp"
 
 namespace twinflow::transport {
@@ -34,121 +35,237 @@ particle::ParticleParameters bulk_fluid(const scene::SceneParameters& scene,
   return p;
 }
 
-TransportMeasurement measure_transport(const scene::SceneParameters& scene,
-                                       const particle::ParticleParameters& scene_fluid,
-                                       const particle::ParticleParameters& p,
-                                       const TransportParameters& t) {
-  TransportMeasurement out;
-  io::Json& r = out.results;
-  const double nan = std::nan("");
-  const Estimates ideal = estimate(p, p.temperature, PairDistribution::ideal());
-  const long steps = 2000;
-  const Measured m = measure(p, steps, t.diffusion_repeats);
-  const auto measured_g = PairDistribution::from_csv(m.rdf_csv);
-  const Estimates with_g = estimate(p, p.temperature, measured_g);
-  particle::Estimate kappa{nan, nan}, eta{nan, nan};
-  RelaxationCoefficients flow;
-  // With a temperature spread s, also at T (1 -+ s): kappa(T) and eta(T) as power laws.
-  std::vector<double> temperatures{p.temperature};
-  const double spread = t.temperature_spread;
-  if (spread > 0)
-    temperatures = {p.temperature * (1 - spread), p.temperature, p.temperature * (1 + spread)};
+namespace {
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t) {
+  return std::chrono::duration<double>(Clock::now() - t).count();
+}
+
+// D's power of T is measured at T (1 -+ this) (eta's kinetic part rides on it).
+constexpr double kDiffusionSpread = 0.25;
+
+// What the stage measured, step by step (measure_transport below).
+struct Plan {
+  const scene::SceneParameters& scene;
+  const particle::ParticleParameters& scene_fluid;
+  const particle::ParticleParameters& p; // the bulk fluid at the state point
+  const TransportParameters& t;
+  bool slabs = false; // kappa (and its law) from periodic heat slabs at the scene's scale
+  std::vector<double> temperatures;
+  double flow_edge = 0, k_rc = 0;
+};
+
+struct Results {
+  Estimates ideal, with_g;
+  Measured bulk;
   std::vector<RelaxationCoefficients> at_temperature;
+  RelaxationCoefficients flow;
+  SlabKappa slab;
+  WallKappa walls;
+  particle::Estimate kappa{NAN, NAN}, eta{NAN, NAN};
+  CoefficientLaw kappa_law, eta_law;
+  bool has_laws = false;
+  std::vector<double> measured_at;
+  double state_temperature = 0;
+  PowerLawFit kappa_power, eta_power;
+};
+
+Plan make_plan(const scene::SceneParameters& scene, const particle::ParticleParameters& scene_fluid,
+               const particle::ParticleParameters& p, const TransportParameters& t) {
+  Plan plan{scene, scene_fluid, p, t, false, {}, 0, 0};
+  plan.slabs = t.measure_flows && t.kappa_from_slabs && scene.heated_direction() >= 0;
+  plan.temperatures = {p.temperature};
+  const double s = t.temperature_spread;
+  if (s > 0) plan.temperatures = {p.temperature * (1 - s), p.temperature, p.temperature * (1 + s)};
   // The relaxation runs' own, smaller box: they last a few relaxation times of the box, ~ L^2.
-  const double flow_edge =
+  plan.flow_edge =
       std::max(3 * p.largest_cutoff(), std::pow(t.flow_particles / p.density, 1.0 / p.dim));
   // The modes' wavelength is the doubled box edge; hydrodynamics needs it long against the
   // interaction range (k rc << 1), else the coefficients are those of a finite wavenumber.
-  const double k_rc = 2 * M_PI / (2 * flow_edge) * p.largest_cutoff();
-  if (t.measure_flows) {
-    // c_p per particle: the ideal fluid's for the ideal gas (estimate); with conservative forces
-    // the same is an approximation (the measured c_p - c_v is reported beside it).
-    particle::ParticleParameters flows = p;
-    flows.box = {{flow_edge, flow_edge, flow_edge}};
-    const int repeats = t.flow_repeats;
-    const int total = repeats * static_cast<int>(temperatures.size());
-    if (k_rc > 0.3)
-      std::cout << "transport: the relaxation modes have k rc = " << k_rc << " (wavelength "
-                << 2 * flow_edge / p.largest_cutoff()
+  plan.k_rc = 2 * M_PI / (2 * plan.flow_edge) * p.largest_cutoff();
+  return plan;
+}
+
+// Step 1: the bulk runs (equation of state, D and its power of T, g(r)) and the estimates.
+void measure_bulk(const Plan& plan, Results& r) {
+  const particle::ParticleParameters& p = plan.p;
+  r.ideal = estimate(p, p.temperature, PairDistribution::ideal());
+  r.bulk = measure(p, 2000, plan.t.diffusion_repeats, 0.05,
+                   plan.t.measure_flows ? kDiffusionSpread : 0.0);
+  r.with_g = estimate(p, p.temperature, PairDistribution::from_csv(r.bulk.rdf_csv));
+}
+
+// The pair parts of the laws at the state point and their powers of T (theory with the measured
+// g(r): transport/estimates.hpp).
+struct PairParts {
+  double kappa, kappa_exponent, eta, eta_exponent;
+};
+PairParts pair_parts(const Plan& plan, const Results& r) {
+  const particle::ParticleParameters& p = plan.p;
+  const auto g = PairDistribution::from_csv(r.bulk.rdf_csv);
+  const Estimates hotter = estimate(p, 1.1 * p.temperature, g);
+  const auto exponent = [](double at, double above) {
+    return std::log(above / at) / std::log(1.1);
+  };
+  return {r.with_g.conductivity_conduction,
+          exponent(r.with_g.conductivity_conduction, hotter.conductivity_conduction),
+          r.with_g.viscosity_dissipative,
+          exponent(r.with_g.viscosity_dissipative, hotter.viscosity_dissipative)};
+}
+
+// Step 2: the flow runs, one job each (relaxation at each temperature, the heat slabs, the
+// wall run), spread over the cores.
+void measure_flows(const Plan& plan, Results& r) {
+  const particle::ParticleParameters& p = plan.p;
+  const auto measured_g = PairDistribution::from_csv(r.bulk.rdf_csv);
+  const auto start = Clock::now();
+  std::vector<Job> jobs;
+  r.at_temperature.resize(plan.temperatures.size());
+  if (plan.t.measure_flows) {
+    if (plan.k_rc > 0.3)
+      std::cout << "transport: the relaxation modes have k rc = " << plan.k_rc << " (wavelength "
+                << 2 * plan.flow_edge / p.largest_cutoff()
                 << " cutoffs): coefficients at that finite wavenumber; more Transport/Flow "
                    "particles lower it (k rc ~ N^(-1/d))\n";
-    const auto flow_start = std::chrono::steady_clock::now();
-    int done_before = 0;
-    for (std::size_t i = 0; i < temperatures.size(); ++i) {
-      const double t = temperatures[i];
-      flows.temperature = t;
+    for (std::size_t i = 0; i < plan.temperatures.size(); ++i) {
+      particle::ParticleParameters flows = p;
+      flows.box = {{plan.flow_edge, plan.flow_edge, plan.flow_edge}};
+      flows.temperature = plan.temperatures[i];
       flows.seed = p.seed + 104729 * i; // independent runs at each temperature
-      const Estimates guess = estimate(flows, t, measured_g);
-      at_temperature.push_back(measure_relaxation(
-          flows, guess, guess.heat_capacity_p, repeats,
-          [&](int done, const RelaxationCoefficients& so_far) {
-            const double spent =
-                std::chrono::duration<double>(std::chrono::steady_clock::now() - flow_start)
-                    .count();
-            const int all = done_before + done;
-            const auto& run_k = so_far.conductivity.repeats.back();
-            const auto& run_e = so_far.viscosity.repeats.back();
-            std::printf("transport: relaxation at T = %.4g, run %d/%d (N = %ld, %ld steps): kappa "
-                        "%.4g +- %.2g, eta %.4g +- %.2g; %.0f s, ETA %.0f s\n",
-                        t, done, repeats, so_far.particles, so_far.steps, run_k.mean, run_k.stderr_,
-                        run_e.mean, run_e.stderr_, spent, spent / all * (total - all));
-            std::fflush(stdout);
-          }));
-      done_before += repeats;
+      const Estimates guess = estimate(flows, flows.temperature, measured_g);
+      const double cost = static_cast<double>(flows.particle_count()) * plan.t.flow_repeats /
+                          (guess.diffusivity * std::pow(2 * M_PI / (2 * plan.flow_edge), 2));
+      jobs.push_back({cost, [&, flows, guess, i] {
+                        r.at_temperature[i] = measure_relaxation(
+                            flows, guess, guess.heat_capacity_p, plan.t.flow_repeats,
+                            [&, T = flows.temperature](
+                                int done, const RelaxationCoefficients& so_far, int repeat) {
+                              const auto& k = so_far.conductivity.value;
+                              const auto& e = so_far.viscosity.value;
+                              std::printf("transport: relaxation at T = %.4g, %d/%d runs (N = %ld, "
+                                          "%ld steps; run %d ended): kappa %.4g +- %.2g, eta %.4g "
+                                          "+- %.2g; %.0f s\n",
+                                          T, done, plan.t.flow_repeats, so_far.particles,
+                                          so_far.steps, repeat + 1, k.mean, k.stderr_, e.mean,
+                                          e.stderr_, seconds_since(start));
+                              std::fflush(stdout);
+                            });
+                      }});
     }
-    flow = at_temperature[temperatures.size() / 2];
-    kappa = flow.conductivity.value;
-    eta = flow.viscosity.value;
   }
-  WallKappa by_walls;
-  if (t.kappa_from_walls) {
-    by_walls = kappa_from_walls(scene, scene_fluid, p.temperature, t.wall_steps);
-    kappa = by_walls.kappa;
+  if (plan.slabs) {
+    // kappa's guess for the slabs' power: the particles' part rho (c_v + k) D with the measured D
+    // and the pair part; within ~15% for the default fluid, which sets the span within as much.
+    const double cv = p.energy == particle::EnergyModel::Dpde ? p.cv : 0.0;
+    const double guess = p.density * (cv + 1) * r.bulk.diffusion.mean + pair_parts(plan, r).kappa;
+    const particle::ParticleParameters slab =
+        slab_fluid(plan.scene, p, guess, r.with_g.heat_capacity_p);
+    const PairParts pairs = pair_parts(plan, r);
+    std::printf("transport: kappa from periodic heat slabs: %ld particles, %ld + %ld steps\n",
+                slab.particle_count(), slab.equilibration_steps, slab.steps);
+    std::fflush(stdout);
+    jobs.push_back(
+        {static_cast<double>(slab.particle_count()) * (slab.steps + slab.equilibration_steps),
+         [&, slab, pairs] {
+           r.slab = kappa_from_slabs(slab, p.density, p.temperature, pairs.kappa,
+                                     pairs.kappa_exponent, r.bulk.diffusion_exponent.mean);
+           std::printf("transport: kappa from the heat slabs = %.4g +- %.2g; %.0f s\n",
+                       r.slab.kappa.mean, r.slab.kappa.stderr_, seconds_since(start));
+           std::fflush(stdout);
+         }});
   }
-  // The relaxation runs' own temperatures (the state they measured), where known.
-  std::vector<double> measured_at = temperatures;
-  for (std::size_t i = 0; i < at_temperature.size(); ++i)
-    if (std::isfinite(at_temperature[i].temperature.value.mean))
-      measured_at[i] = at_temperature[i].temperature.value.mean;
-  const double state_temperature =
-      at_temperature.empty() ? p.temperature : measured_at[temperatures.size() / 2];
-  PowerLawFit kappa_law, eta_law;
-  if (at_temperature.size() > 1) {
-    std::vector<particle::Estimate> k, e;
-    for (const auto& a : at_temperature)
-      k.push_back(a.conductivity.value), e.push_back(a.viscosity.value);
-    kappa_law = fit_power_law(measured_at, k, state_temperature);
-    eta_law = fit_power_law(measured_at, e, state_temperature);
-  }
+  if (plan.t.kappa_from_walls)
+    jobs.push_back({4000.0 * plan.t.wall_steps * 1.2, [&] {
+                      r.walls = kappa_from_walls(plan.scene, plan.scene_fluid, p.temperature,
+                                                 plan.t.wall_steps);
+                    }});
+  run_jobs(std::move(jobs));
+}
 
+// Step 3: which kappa and eta the twin takes, and their laws c(n, T).
+void choose_coefficients(const Plan& plan, Results& r) {
+  const particle::ParticleParameters& p = plan.p;
+  const std::size_t mid = plan.temperatures.size() / 2;
+  r.measured_at = plan.temperatures;
+  for (std::size_t i = 0; i < r.at_temperature.size(); ++i)
+    if (std::isfinite(r.at_temperature[i].temperature.value.mean))
+      r.measured_at[i] = r.at_temperature[i].temperature.value.mean;
+  r.state_temperature = plan.t.measure_flows ? r.measured_at[mid] : p.temperature;
+  if (plan.t.measure_flows) {
+    r.flow = r.at_temperature[mid];
+    r.kappa = r.flow.conductivity.value;
+    r.eta = r.flow.viscosity.value;
+  }
+  if (plan.t.kappa_from_walls) r.kappa = r.walls.kappa;
+  if (r.at_temperature.size() > 1) {
+    std::vector<particle::Estimate> k, e;
+    for (const auto& a : r.at_temperature)
+      k.push_back(a.conductivity.value), e.push_back(a.viscosity.value);
+    r.kappa_power = fit_power_law(r.measured_at, k, r.state_temperature);
+    r.eta_power = fit_power_law(r.measured_at, e, r.state_temperature);
+  }
+  if (!plan.t.measure_flows) return;
+  // The laws (laws.hpp): eta's particle part goes as D (eta_K = rho m D / 2), its pair part as
+  // theory's; kappa's from the slabs' profile where measured, else through the relaxation value
+  // with D's power of T.
+  const PairParts pairs = pair_parts(plan, r);
+  const particle::Estimate a_D = r.bulk.diffusion_exponent;
+  r.eta_law = law_through(r.eta, r.state_temperature, p.density, p.temperature, pairs.eta,
+                          pairs.eta_exponent, a_D.mean, a_D.stderr_);
+  if (plan.slabs) {
+    r.kappa_law = r.slab.law;
+    r.kappa = {r.kappa_law.at(p.density, p.temperature), r.kappa_law.K_stderr};
+  } else {
+    r.kappa_law = law_through(r.kappa, r.state_temperature, p.density, p.temperature, pairs.kappa,
+                              pairs.kappa_exponent, a_D.mean, a_D.stderr_);
+  }
+  r.has_laws = std::isfinite(r.kappa_law.K) && std::isfinite(r.eta_law.K);
+}
+
+// coefficients.csv: the estimates beside the measurements, one row per coefficient.
+std::string coefficients_table(const Plan& plan, const Results& r) {
+  const particle::ParticleParameters& p = plan.p;
+  const double nan = std::nan("");
   std::ostringstream table;
   char line[256];
   std::snprintf(line, sizeof line,
                 "# state point: rho = %g, T = %g (%dD periodic box, N = %ld); kappa and eta "
                 "measured at T = %.4g (the relaxation runs' own)\n",
-                p.density, p.temperature, p.dim, p.particle_count(), state_temperature);
+                p.density, p.temperature, p.dim, p.particle_count(), r.state_temperature);
   table << line
         << "coefficient,estimate_g1,estimate_measured_g,measured,measured_stderr,"
            "measured/estimate\n";
-  auto row = [&](const char* name, double e1, double eg, double meas, double se) {
-    std::snprintf(line, sizeof line, "%s,%.6g,%.6g,%.6g,%.3g,%.4f\n", name, e1, eg, meas, se,
-                  std::isnan(meas) ? NAN : meas / eg);
+  auto row = [&](const std::string& name, double e1, double eg, double meas, double se) {
+    std::snprintf(line, sizeof line, "%s,%.6g,%.6g,%.6g,%.3g,%.4f\n", name.c_str(), e1, eg, meas,
+                  se, std::isnan(meas) ? NAN : meas / eg);
     table << line;
   };
+  const Estimates &ideal = r.ideal, &with_g = r.with_g;
+  const Measured& m = r.bulk;
   row("self_diffusion_D", ideal.diffusion, with_g.diffusion, m.diffusion.mean, m.diffusion.stderr_);
-  row("viscosity_eta", ideal.viscosity, with_g.viscosity, eta.mean, eta.stderr_);
-  row("conductivity_kappa", ideal.conductivity, with_g.conductivity, kappa.mean, kappa.stderr_);
-  if (at_temperature.size() > 1) {
-    for (std::size_t i = 0; i < temperatures.size(); ++i) {
+  row("viscosity_eta", ideal.viscosity, with_g.viscosity, r.eta.mean, r.eta.stderr_);
+  row("conductivity_kappa", ideal.conductivity, with_g.conductivity, r.kappa.mean, r.kappa.stderr_);
+  if (r.at_temperature.size() > 1) {
+    for (std::size_t i = 0; i < plan.temperatures.size(); ++i) {
       char at[32];
-      std::snprintf(at, sizeof at, "_at_T_%.4g", measured_at[i]);
-      row(("viscosity_eta" + std::string(at)).c_str(), nan, nan,
-          at_temperature[i].viscosity.value.mean, at_temperature[i].viscosity.value.stderr_);
-      row(("conductivity_kappa" + std::string(at)).c_str(), nan, nan,
-          at_temperature[i].conductivity.value.mean, at_temperature[i].conductivity.value.stderr_);
+      std::snprintf(at, sizeof at, "_at_T_%.4g", r.measured_at[i]);
+      row("viscosity_eta" + std::string(at), nan, nan, r.at_temperature[i].viscosity.value.mean,
+          r.at_temperature[i].viscosity.value.stderr_);
+      row("conductivity_kappa" + std::string(at), nan, nan,
+          r.at_temperature[i].conductivity.value.mean,
+          r.at_temperature[i].conductivity.value.stderr_);
     }
-    row("viscosity_exponent_n_in_T^n", nan, nan, eta_law.exponent, eta_law.exponent_stderr);
-    row("conductivity_exponent_n_in_T^n", nan, nan, kappa_law.exponent, kappa_law.exponent_stderr);
+    row("viscosity_exponent_n_in_T^n", nan, nan, r.eta_power.exponent, r.eta_power.exponent_stderr);
+    row("conductivity_exponent_n_in_T^n", nan, nan, r.kappa_power.exponent,
+        r.kappa_power.exponent_stderr);
+  }
+  if (r.has_laws) {
+    row("conductivity_law_K", nan, nan, r.kappa_law.K, r.kappa_law.K_stderr);
+    row("conductivity_law_a", nan, nan, r.kappa_law.a, r.kappa_law.a_stderr);
+    row("conductivity_law_P", nan, with_g.conductivity_conduction, r.kappa_law.P, nan);
+    row("viscosity_law_K", nan, nan, r.eta_law.K, r.eta_law.K_stderr);
+    row("viscosity_law_a", nan, nan, r.eta_law.a, r.eta_law.a_stderr);
+    row("viscosity_law_P", nan, with_g.viscosity_dissipative, r.eta_law.P, nan);
   }
   row("conductivity_kappa_002_eq22", ideal.conductivity_002_eq22, with_g.conductivity_002_eq22, nan,
       nan);
@@ -166,22 +283,19 @@ TransportMeasurement measure_transport(const scene::SceneParameters& scene,
       with_g.heat_capacity_p - with_g.heat_capacity_v, m.cp_minus_cv.mean, m.cp_minus_cv.stderr_);
   row("prandtl", ideal.prandtl, with_g.prandtl, nan, nan);
   row("schmidt", ideal.schmidt, with_g.schmidt, nan, nan);
-  r["state_point"]["density"] = p.density;
-  r["state_point"]["temperature"] = p.temperature;
-  // The temperature the measured kappa and eta belong to (the relaxation runs' own).
-  r["state_point"]["measured_temperature"] = state_temperature;
-  r["estimated_g1"] = ideal.json();
-  r["estimated_measured_g"] = with_g.json();
-  r["measured"] = m.json();
-  // The twins' equation of state (transport/coefficients.cpp): the ideal fluid's without a
-  // conservative force (exact; the fit's b0, b1, b2 are then noise about 0), else the fit.
+  return table.str();
+}
+
+// The twins' equation of state (transport/coefficients.cpp): the ideal fluid's without a
+// conservative force (exact; the fit's b0, b1, b2 are then noise about 0), else the fit.
+io::Json equation_of_state(const Plan& plan, const Results& r) {
   io::Json eos = io::Json::object();
-  const bool ideal_fluid = p.conservative == particle::ConservativeForce::None;
+  const bool ideal_fluid = plan.p.conservative == particle::ConservativeForce::None;
   eos["form"] = "p = n k T + n^2 (b0 + b1 k T + b2 (n - n_ref))";
-  eos["n_ref"] = p.density;
+  eos["n_ref"] = plan.p.density;
   eos["source"] = ideal_fluid ? "ideal DPDE fluid (no conservative force)"
                               : "fit to the bulk runs (measured/excess_pressure)";
-  const ExcessPressureFit& fit = m.excess_pressure;
+  const ExcessPressureFit& fit = r.bulk.excess_pressure;
   for (const auto& [key, value] : {std::pair{"b0", fit.b0},
                                    {"b0_stderr", fit.b0_stderr},
                                    {"b1", fit.b1},
@@ -189,57 +303,99 @@ TransportMeasurement measure_transport(const scene::SceneParameters& scene,
                                    {"b2", fit.b2},
                                    {"b2_stderr", fit.b2_stderr}})
     eos[key] = ideal_fluid ? 0.0 : value;
-  r["equation_of_state"] = eos;
-  // The continuum twin reads "conductivity" and "viscosity" (transport/coefficients.cpp).
+  return eos;
+}
+
+// The relaxation runs: method, box and each temperature's repeats (with a temperature spread).
+io::Json relaxation_json(const Plan& plan, const Results& r) {
+  io::Json method = io::Json::object();
+  method["method"] = "heat and transverse-momentum modes decaying in a periodic box (seed 004)";
+  method["particles"] = r.flow.particles;
+  method["wavenumber_times_cutoff"] = plan.k_rc;
+  method["steps"] = r.flow.steps;
+  method["conductivity"] = r.flow.conductivity.json();
+  method["viscosity"] = r.flow.viscosity.json();
+  return method;
+}
+
+// summary.json's "results" ("measured/conductivity" and "viscosity" are what the twin reads,
+// with their laws: transport/coefficients.cpp).
+io::Json results_json(const Plan& plan, const Results& r) {
+  const TransportParameters& t = plan.t;
+  io::Json out = io::Json::object();
+  out["state_point"]["density"] = plan.p.density;
+  out["state_point"]["temperature"] = plan.p.temperature;
+  // The temperature the measured kappa and eta belong to (the relaxation runs' own).
+  out["state_point"]["measured_temperature"] = r.state_temperature;
+  out["estimated_g1"] = r.ideal.json();
+  out["estimated_measured_g"] = r.with_g.json();
+  out["measured"] = r.bulk.json();
+  out["equation_of_state"] = equation_of_state(plan, r);
+  io::Json& measured = out["measured"];
   if (t.kappa_from_walls || t.measure_flows) {
-    r["measured"]["conductivity"] = kappa.mean;
-    r["measured"]["conductivity_stderr"] = kappa.stderr_;
+    measured["conductivity"] = r.kappa.mean;
+    measured["conductivity_stderr"] = r.kappa.stderr_;
   }
-  if (t.kappa_from_walls) r["measured"]["walls"] = by_walls.json;
-  if (t.measure_flows) {
-    if (t.kappa_from_walls) {
-      r["measured"]["conductivity_relaxation"] = flow.conductivity.value.mean;
-      r["measured"]["conductivity_relaxation_stderr"] = flow.conductivity.value.stderr_;
-    }
-    r["measured"]["viscosity"] = eta.mean;
-    r["measured"]["viscosity_stderr"] = eta.stderr_;
-    io::Json method = io::Json::object();
-    method["method"] = "heat and transverse-momentum modes decaying in a periodic box (seed 004)";
-    method["particles"] = flow.particles;
-    method["wavenumber_times_cutoff"] = k_rc;
-    method["steps"] = flow.steps;
-    method["conductivity"] = flow.conductivity.json();
-    method["viscosity"] = flow.viscosity.json();
-    r["measured"]["relaxation"] = method;
-    if (at_temperature.size() > 1) {
-      // The continuum twin reads the exponents (transport/coefficients.cpp).
-      io::Json law = io::Json::object();
-      law["reference_temperature"] = state_temperature;
-      law["temperatures"] = io::Json::array();
-      law["conductivity"] = io::Json::array();
-      law["viscosity"] = io::Json::array();
-      for (std::size_t i = 0; i < temperatures.size(); ++i) {
-        law["temperatures"].push_back(measured_at[i]);
-        law["conductivity"].push_back(at_temperature[i].conductivity.json());
-        law["viscosity"].push_back(at_temperature[i].viscosity.json());
-      }
-      law["conductivity_chi2_per_dof"] = kappa_law.chi2_per_dof;
-      law["viscosity_chi2_per_dof"] = eta_law.chi2_per_dof;
-      r["measured"]["temperature_dependence"] = law;
-      r["measured"]["conductivity_exponent"] = kappa_law.exponent;
-      r["measured"]["conductivity_exponent_stderr"] = kappa_law.exponent_stderr;
-      r["measured"]["viscosity_exponent"] = eta_law.exponent;
-      r["measured"]["viscosity_exponent_stderr"] = eta_law.exponent_stderr;
-    }
-    std::ostringstream note; // the ideal fluid's c_p = c_v + k + (d/2 + 1) k (000:(3.21))
-    note << "kappa = rho c_p chi with the ideal fluid's c_p = " << with_g.heat_capacity_p
-         << " k per particle; the relaxation box holds ~" << t.flow_particles
-         << " particles (x2): in 2D its coefficients depend on the box (long-time tails). Errors: "
-            "the larger of the repeats' spread and the fits' own errors, over sqrt(repeats)";
-    r["measured"]["conductivity_note"] = note.str();
+  if (t.kappa_from_walls) measured["walls"] = r.walls.json;
+  if (plan.slabs) measured["slabs"] = r.slab.json;
+  if (!t.measure_flows) return out;
+  if (t.kappa_from_walls || plan.slabs) {
+    measured["conductivity_relaxation"] = r.flow.conductivity.value.mean;
+    measured["conductivity_relaxation_stderr"] = r.flow.conductivity.value.stderr_;
   }
-  out.coefficients_csv = table.str();
-  out.rdf_csv = m.rdf_csv;
+  measured["viscosity"] = r.eta.mean;
+  measured["viscosity_stderr"] = r.eta.stderr_;
+  measured["relaxation"] = relaxation_json(plan, r);
+  if (r.has_laws) {
+    measured["conductivity_law"] = r.kappa_law.json();
+    measured["viscosity_law"] = r.eta_law.json();
+  }
+  if (r.at_temperature.size() > 1) {
+    io::Json law = io::Json::object();
+    law["reference_temperature"] = r.state_temperature;
+    law["temperatures"] = io::Json::array();
+    law["conductivity"] = io::Json::array();
+    law["viscosity"] = io::Json::array();
+    for (std::size_t i = 0; i < plan.temperatures.size(); ++i) {
+      law["temperatures"].push_back(r.measured_at[i]);
+      law["conductivity"].push_back(r.at_temperature[i].conductivity.json());
+      law["viscosity"].push_back(r.at_temperature[i].viscosity.json());
+    }
+    law["conductivity_chi2_per_dof"] = r.kappa_power.chi2_per_dof;
+    law["viscosity_chi2_per_dof"] = r.eta_power.chi2_per_dof;
+    measured["temperature_dependence"] = law;
+    measured["conductivity_exponent"] = r.kappa_power.exponent;
+    measured["conductivity_exponent_stderr"] = r.kappa_power.exponent_stderr;
+    measured["viscosity_exponent"] = r.eta_power.exponent;
+    measured["viscosity_exponent_stderr"] = r.eta_power.exponent_stderr;
+  }
+  std::ostringstream note; // the ideal fluid's c_p = c_v + k + (d/2 + 1) k (000:(3.21))
+  note << "relaxation: kappa = rho c_p chi with the ideal fluid's c_p = "
+       << r.with_g.heat_capacity_p << " k per particle; the relaxation box holds ~"
+       << t.flow_particles
+       << " particles (x2): in 2D its coefficients depend on the box (long-time tails). Errors: "
+          "the larger of the repeats' spread and the fits' own errors, over sqrt(repeats)";
+  if (plan.slabs)
+    note << "; the twin's kappa is the heat slabs' (the scene's scale, no walls), its law "
+            "conductivity_law";
+  measured["conductivity_note"] = note.str();
+  return out;
+}
+} // namespace
+
+TransportMeasurement measure_transport(const scene::SceneParameters& scene,
+                                       const particle::ParticleParameters& scene_fluid,
+                                       const particle::ParticleParameters& p,
+                                       const TransportParameters& t) {
+  const Plan plan = make_plan(scene, scene_fluid, p, t);
+  Results r;
+  measure_bulk(plan, r);
+  measure_flows(plan, r);
+  choose_coefficients(plan, r);
+  TransportMeasurement out;
+  out.results = results_json(plan, r);
+  out.coefficients_csv = coefficients_table(plan, r);
+  out.rdf_csv = r.bulk.rdf_csv;
   return out;
 }
 

@@ -4,12 +4,15 @@
 // kappa and eta by the relaxation of sine modes, kappa instead by conduction between the
 // scene's own thermal walls. Returns the results; the caller writes them.
 
+#include <cmath>
 #include <string>
+#include <vector>
 
 #include "io/json.hpp"
 #include "particle/parameters.hpp"
 #include "particle/run.hpp"
 #include "scene/scene.hpp"
+#include "transport/laws.hpp"
 #include "transport/parameters.hpp"
 
 namespace twinflow::transport {
@@ -43,5 +46,25 @@ struct WallKappa {
 WallKappa kappa_from_walls(const scene::SceneParameters& scene,
                            const particle::ParticleParameters& scene_fluid, double temperature,
                            long steps);
+
+// kappa without walls at the scene's own scale: the bulk fluid in a periodic box twice the
+// scene's heated length (the slab between two walls and its mirror image) and the scene's other
+// lengths, heat slabs (seed 002 III.B) with a power that spans the scene's thermal walls'
+// temperatures for a conductivity `kappa` (a guess), run for 3 + 10 decay times of the slowest
+// profile mode (heat_capacity_p: per particle, for that time).
+particle::ParticleParameters slab_fluid(const scene::SceneParameters& scene,
+                                        const particle::ParticleParameters& bulk, double kappa,
+                                        double heat_capacity_p);
+// kappa = J0 / |dT/dx| over the slab run (the particle run's heat_slabs fit) and in windows
+// along its profile, and the law K (T/T0)^a + P (n/n0)^2 (T/T0)^b fitted to the windows with the
+// pair part P, b given (fit_law; a_fallback where the span is too small).
+struct SlabKappa {
+  particle::Estimate kappa{NAN, NAN};
+  std::vector<StatePoint> points;
+  CoefficientLaw law;
+  io::Json json = io::Json::object();
+};
+SlabKappa kappa_from_slabs(const particle::ParticleParameters& slab, double n0, double T0,
+                           double pair_at_reference, double pair_exponent, double a_fallback);
 
 } // namespace twinflow::transport

@@ -62,6 +62,13 @@ study::Case CaseFile::resolve(const std::string& filename) const {
   c.twin.kinetic_slip_automatically =
       registry_.get("Continuum/Wall slip") == "auto" &&
       std::none_of(slips.begin(), slips.end(), [](double b) { return b > 0; });
+  const std::vector<double> kapitza = registry_.get_doubles("Continuum/Kapitza conductances");
+  const bool kapitza_given =
+      std::any_of(kapitza.begin(), kapitza.end(), [](double h) { return h > 0; });
+  const std::string jump = registry_.get("Continuum/Wall jump");
+  c.twin.wall_jumps_automatically = jump == "auto" && !kapitza_given;
+  c.twin.wall_jumps_from_theory =
+      jump == "theory" || (c.twin.wall_jumps_automatically && c.twin.coefficients_from_transport);
   c.twin.low_mach_threshold = registry_.get_double("Continuum/Low-Mach threshold");
   c.twin.compressible_threshold = registry_.get_double("Continuum/Compressible threshold");
   out.record = registry_.resolved_json();
@@ -79,6 +86,7 @@ void resolve_transport_and_compare(const Registry& r, study::CaseParameters& c) 
   c.transport.diffusion_repeats = static_cast<int>(r.get_integer("Transport/Diffusion repeats"));
   c.transport.temperature_spread = r.get_double("Transport/Temperature spread");
   c.transport.kappa_from_walls = r.get_bool("Transport/Kappa from walls");
+  c.transport.kappa_from_slabs = r.get_bool("Transport/Kappa from slabs");
   c.transport.wall_steps = r.get_integer("Transport/Wall steps");
   c.compare.wall_layer = r.get_double("Compare/Wall layer");
   c.compare.calibration = r.get("Compare/Calibration");
@@ -122,13 +130,23 @@ void declare_transport_and_compare(Registry& r) {
             "in a periodic box (seed 004's relaxation method; Transport/Flow repeats runs of "
             "three decay times each: minutes at seed 002's state point).");
   r.declare("Transport/Kappa from walls", "false", Bool(),
-            "Measure kappa instead by conduction between the scene's two thermal walls of its "
+            "Also measure kappa by conduction between the scene's two thermal walls of its "
             "heated direction (their temperatures, slip and Particle/Walls), periodic across, no "
             "gravity, ~4000 particles: kappa = the walls' mean heat flux / |dT/dx| in the central "
             "60% (a line through the binned T_internal), over the scene's own temperature span "
             "(so kappa(T) is averaged as the scene averages it). ~4x more precise than the "
-            "relaxation runs in the same time for the default cavity. eta still comes from the "
+            "relaxation runs in the same time for the default cavity. A check of the heat slabs' "
+            "kappa (Kappa from slabs), which the twin takes when both are on; eta comes from the "
             "relaxation runs (Measure kappa and eta).");
+  r.declare("Transport/Kappa from slabs", "true", Bool(),
+            "With Measure kappa and eta, in a scene with two thermal walls at different "
+            "temperatures: kappa and its law kappa(n, T) from periodic heat slabs (seed 002 "
+            "III.B) at the scene's own scale, no walls: a box twice the heated length (the walls' "
+            "mirror image) and the scene's other lengths, a power that spans the walls' "
+            "temperatures, 3 + 10 decay times of the slowest profile mode; kappa = J0 / |dT/dx| "
+            "in windows along the profile, fitted by K (T/T0)^a + P (n/n0)^2 (T/T0)^b with the "
+            "pair part P, b from theory (docs/theory.md). false: kappa from the relaxation runs "
+            "(or the walls), with D's power of T.");
   r.declare("Transport/Wall steps", "100000", Integer(1000),
             "Sampled steps of the wall run of Kappa from walls (a fifth as many settle first).");
   r.declare("Compare/Calibration", "kapitza", Selection("kapitza|wall temperatures"),

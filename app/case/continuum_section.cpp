@@ -157,9 +157,20 @@ void declare_continuum(Registry& r) {
       "transport stage's coefficients: `run`, `sweep`, Coefficients/Source = transport) "
       "and Model is Boussinesq or compressible, else no-slip (a continuum case of its "
       "own). `run`'s calibrated twin takes the measured slip lengths instead.");
+  r.declare(
+      s + "Wall jump", "auto", Selection("auto|none|theory"),
+      "Temperature at the twin's thermal walls where no Kapitza conductances are given. theory: "
+      "at each thermal wall of half-space particle walls, the Robin condition of the wall "
+      "model's own layer (docs/theory.md, \"The wall layer\"): the extrapolation length b of "
+      "the wall's pair conduction, friction and re-emission over the fluid's first cutoffs, "
+      "computed from the case's wall parameters and the transport stage's fluid alone (nothing "
+      "measured beside a wall); the conductance kappa / b, negative where the wall holds its "
+      "layer at T_wall. auto: theory where the twin stands for the particle fluid (Coefficients/"
+      "Source = transport: `run`, `sweep`), else none. none: T = T_wall. `run`'s calibrated "
+      "twin takes the measured jumps instead.");
   r.declare(s + "Kapitza law", "linear", Selection("linear|inverse"),
             "The heat flux into the fluid at a Kapitza wall: linear, h_K (T_wall - T); inverse, "
-            "h_K T_wall^2 (1/T - 1/T_wall), the particle wall's own law (physics.md: the "
+            "h_K T_wall^2 (1/T - 1/T_wall), the particle wall's own law (docs/theory.md: the "
             "inverse heat law against a wall particle at T_wall), whose conductance grows where "
             "the fluid is colder; the same h_K at T = T_wall. `run`'s calibrated twin sets h_K "
             "for the law chosen here.");

@@ -17,7 +17,7 @@ io::Json heat_relaxation_fit(const ParticleParameters& p, const std::vector<doub
   io::Json j = decay_fit(2 * M_PI / p.box[0], t, a, "chi");
   if (!j.contains("chi")) return j;
   // kappa = rho c_p chi with the ideal DPDE fluid's c_p = c_v + k + (d/2) k + k per particle
-  // (physics.md); the transport stage converts chi itself, with the c_p of its estimate.
+  // (docs/theory.md); the transport stage converts chi itself, with the c_p of its estimate.
   const double scale = p.density * (p.cv + 2 + 0.5 * p.dim);
   j["kappa_ideal_cp"] = scale * j["chi"].get<double>();
   j["kappa_ideal_cp_stderr"] = scale * j["chi_stderr"].get<double>();

@@ -38,7 +38,7 @@ TEST(FreeSlipCavity, ConvergesUnderRefinement) {
 TEST(Cavity3D, PeriodicInZReproduces2D) {
   // The 3D discrete space contains the z-independent 2D solution, which is therefore the 3D
   // solution: Nu agrees with 2D on the same xy mesh to the Newton tolerance (bound 1e-6), and
-  // with the de Vahl Davis value 2.2448 to 0.1% (16x16 Q2: 2D Nu is 2.24459, build-notes).
+  // with the de Vahl Davis value 2.2448 to 0.1% (16x16 Q2: 2D Nu is 2.24459, docs/build.md).
   const double rayleigh = 1e4;
   ContinuumParameters p3 = test_cases::cavity(3, rayleigh, 8, 1);
   p3.cells = {{8, 8, 1}}; // z: one cell, kept through the refinement (a thin slice)

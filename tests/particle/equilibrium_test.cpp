@@ -78,7 +78,7 @@ Measured measure(const ParticleParameters& p, const F& friction, const H& heat) 
       mu /= n;
       uv.push_back(mu2 / n - mu * mu);
       // Shape of the laws: velocity kurtosis <v^4>/<v^2>^2 = 3 (Gaussian); Gamma law of u:
-      // Var(u) = (c_v/k + 1)(k T)^2 with T = T_I (000:(2.4), physics.md)
+      // Var(u) = (c_v/k + 1)(k T)^2 with T = T_I (000:(2.4), docs/theory.md)
       double v2 = 0, v4 = 0;
       for (int d = 0; d < D; ++d)
         for (const double v : st.v[d]) v2 += v * v, v4 += v * v * v * v;

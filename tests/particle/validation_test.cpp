@@ -111,7 +111,7 @@ TEST(Seed002, InternalAgainstKineticTemperatureAndRdf) {
 
 // Shardlow + velocity-Verlet without the offset on LAMMPS's system (rho = 3, a0 = 15, sigma = 3,
 // c_v = 200, inverse heat law kappa = 40, w = 1 - r for every term, N = 6000): total-energy
-// change over 10 tau beside LAMMPS's measured drift (shared/peers/lammps/README.md): ours must
+// change over 10 tau beside LAMMPS's measured drift (docs/performance.md): ours must
 // not be worse. Median over 3 seeds, as the peer's script reports.
 TEST(Shardlow, EnergyDriftBesideLammps) {
   const double lammps[] = {7.8e-8, 4.6e-7, 2.6e-6, 1.0e-4};

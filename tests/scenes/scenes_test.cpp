@@ -19,7 +19,7 @@ TEST(Scenes, WallsEquilibriumPressureIsRhoKT) {
 
 // The same fluid at equilibrium against repulsive no-slip walls (a_w = 5): an ideal gas, so the
 // density in the wall's layer is Boltzmann's, n(h) = n_ref exp(-U(h) / k T) with U = a_w range/2
-// (1 - h/range)^2 (physics.md). The wall's Gibbs depth and its tangential friction per area
+// (1 - h/range)^2 (docs/theory.md). The wall's Gibbs depth and its tangential friction per area
 // (constant gamma: gamma n_ref exp(-U/kT) w_D(h) over the layer) follow as sums over the same
 // slices; each measured value within 4 of its block standard errors.
 TEST(Scenes, WallLayerFollowsBoltzmann) {

@@ -1,0 +1,30 @@
+#pragma once
+// Stiff choices caught up front: the integrator, time step and scene checked against where the
+// measured stability maps saw runs fail (data/stability_limits.csv, the one table), and the
+// fluctuation number 000:(3.34) against its stated bound. Warnings, not refusals: each names the
+// stable alternative.
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "particle/parameters.hpp"
+
+namespace twinflow::study {
+
+struct StabilityLimit {
+  std::string integrator, scene; // "euler" / "ec-verlet" / "any"; "thermal walls", ...
+  double largest_stable_dt = 0, smallest_failed_dt = 0;
+  std::string maps; // which maps, and when
+};
+
+// The table (throws io::InputError on a malformed row, naming the file and line).
+std::vector<StabilityLimit> read_stability_limits(const std::filesystem::path& csv);
+// The shipped table (data/stability_limits.csv of the source tree).
+const std::vector<StabilityLimit>& stability_limits();
+
+// One line per stiff choice of `p` (empty: none).
+std::vector<std::string> stiff_choice_warnings(const particle::ParticleParameters& p,
+                                               const std::vector<StabilityLimit>& limits);
+
+} // namespace twinflow::study

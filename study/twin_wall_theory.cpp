@@ -1,0 +1,72 @@
+#include "study/twin_wall_theory.hpp"
+
+#include <cmath>
+#include <cstdio>
+
+#include "transport/estimates.hpp"
+#include "transport/wall_layer.hpp"
+
+namespace twinflow::study {
+
+namespace {
+// The fluid's density at a wall of temperature T_w, on the isobar of the box at rest with a
+// linear temperature between its thermal walls: p = n0 (T_h - T_c) / ln(T_h / T_c) (ideal gas,
+// int n dV = N), n = p / T_w. The twin has not run yet; its own density replaces this later.
+double density_at_wall(const scene::SceneParameters& scene, int heated, double T_w) {
+  const auto& b = scene.boundary[heated];
+  const double hot = std::max(b.temperature[0], b.temperature[1]);
+  const double cold = std::min(b.temperature[0], b.temperature[1]);
+  const double mean = hot > cold ? (hot - cold) / std::log(hot / cold) : hot;
+  return scene.density * mean / T_w;
+}
+} // namespace
+
+int take_wall_jumps(const CaseParameters& c, const transport::Coefficients& k,
+                    continuum::ContinuumParameters& twin) {
+  const particle::ParticleParameters& p = c.particle;
+  const int heated = c.scene.heated_direction();
+  if (heated < 0 || !std::isfinite(k.diffusion) || !(k.state_temperature > 0)) return 0;
+  int taken = 0;
+  for (int d = 0; d < c.scene.dim; ++d) {
+    const auto& walls = p.walls[d];
+    if (!walls.present) continue;
+    for (int side = 0; side < 2; ++side) {
+      if (!walls.thermal[side] || walls.model[side] != particle::WallModel::HalfSpace) continue;
+      const double T_w = walls.temperature[side];
+      const double n = density_at_wall(c.scene, heated, T_w);
+      transport::WallLayerInput in;
+      in.dim = p.dim;
+      in.density = n, in.temperature = T_w;
+      in.kappa =
+          twin.conductivity.at(n, T_w, twin.number_density, twin.reference_temperature).value;
+      // the pair part's theory: rho^2 lambda(T) / (2d) int r^2 g w_H, scaled from the state point
+      const double lambda = transport::pair_conductance(p, T_w);
+      const double lambda_state = transport::pair_conductance(p, k.state_temperature);
+      in.kappa_pair = lambda_state > 0 ? k.conductivity_pair * std::pow(n / k.state_density, 2) *
+                                             lambda / lambda_state
+                                       : 0.0;
+      const double a_D = std::isfinite(k.diffusion_exponent) ? k.diffusion_exponent : 2.0;
+      in.diffusion = k.diffusion * std::pow(T_w / k.state_temperature, a_D) * k.state_density / n;
+      in.pair_conductance = lambda;
+      in.heat_capacity = p.cv;
+      in.heat_weight = p.heat_weight, in.friction_weight = p.dissipation;
+      in.wall_density = p.wall_density > 0 ? p.wall_density : p.density;
+      in.wall_factor = walls.conduction[side];
+      in.gamma =
+          p.friction == particle::Friction::ConstantGamma ? p.gamma : p.sigma * p.sigma / (2 * T_w);
+      in.no_slip = walls.no_slip;
+      const transport::WallLayer layer = transport::solve_wall_layer(in);
+      std::printf("continuum: %s wall from the wall model (n %.3g, T %.3g, f %.3g): extrapolation "
+                  "length %.3f rc, Kapitza conductance %.4g\n",
+                  scene::wall_name(d, side).c_str(), n, T_w, in.wall_factor,
+                  layer.extrapolation_length, layer.conductance);
+      if (std::fabs(layer.extrapolation_length) < 1e-3) continue; // T = T_w at the plane
+      twin.boundary[d].kapitza_conductance[side] = layer.conductance;
+      twin.boundary[d].kapitza_inverse = false;
+      ++taken;
+    }
+  }
+  return taken;
+}
+
+} // namespace twinflow::study

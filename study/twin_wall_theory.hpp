@@ -1,0 +1,20 @@
+#pragma once
+// The nominal twin's thermal walls from the particle wall model alone (docs/theory.md, "The wall
+// layer"): each half-space thermal wall's extrapolation length b from transport::solve_wall_layer
+// at the wall's temperature and the fluid's density there, taken as the Robin (Kapitza)
+// conductance kappa / b (negative where the wall holds its layer at T_w). No number measured in
+// a cavity or wall slab enters: the fluid's coefficients from the transport stage (bulk runs,
+// heat slabs), the wall's from the case.
+
+#include "continuum/parameters.hpp"
+#include "study/case.hpp"
+#include "transport/coefficients.hpp"
+
+namespace twinflow::study {
+
+// Sets the Kapitza conductances of the twin's walls that stand for half-space thermal walls;
+// returns how many it set.
+int take_wall_jumps(const CaseParameters& c, const transport::Coefficients& k,
+                    continuum::ContinuumParameters& twin);
+
+} // namespace twinflow::study

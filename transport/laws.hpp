@@ -1,0 +1,48 @@
+#pragma once
+// A transport coefficient as a function of the local state, in the form kinetic theory gives it
+// (docs/theory.md, "Coefficients against n and T"): a part carried by moving particles, whose
+// mean free path goes as 1/n so that it does not depend on n, and a part carried by the pair
+// terms (friction for eta, heat conduction for kappa), which goes as n^2 (Marsh, Backx & Ernst
+// 1997; 000:(3.25)-(3.26)):
+//   c(n, T) = K (T / T0)^a + P (n / n0)^2 (T / T0)^b.
+// P and b come from the pair integrals with the measured g(r) (transport/estimates.hpp); K and a
+// from measurements without walls: kappa along a periodic heat-slab profile (kappa_law), eta from
+// the relaxation runs with a the exponent of D(T) (viscosity_law).
+
+#include <vector>
+
+#include "io/json.hpp"
+#include "statistics/blocking.hpp"
+
+namespace twinflow::transport {
+
+struct CoefficientLaw {
+  double T0 = 1, n0 = 1;      // the reference state (the transport stage's state point)
+  double K = 0, K_stderr = 0; // the particles' part at (n0, T0)
+  double a = 0, a_stderr = 0; // its power of T
+  double P = 0, b = 0;        // the pair part at (n0, T0) and its power of T (theory)
+  double chi2_per_dof = 0;    // of the fit that gave K and a (0: not fitted)
+  int points = 0;
+  double at(double n, double T) const;
+  double pair_fraction(double T) const; // P (T/T0)^b / c(n0, T)
+  io::Json json() const;
+};
+
+// One local measurement of a coefficient: its value and error at (n, T).
+struct StatePoint {
+  double n = 0, T = 0;
+  statistics::Estimate value;
+};
+
+// K and a by weighted least squares through `points` (P, b given): for each a the best K is
+// linear; a by golden-section search on [-3, 5]; errors from chi^2's curvature, scaled by
+// sqrt(chi^2 / dof) when that exceeds 1. With a temperature span under 10% a is not fitted:
+// `a_fallback` is taken and K's error is the points' mean error.
+CoefficientLaw fit_law(const std::vector<StatePoint>& points, double n0, double T0, double P,
+                       double b, double a_fallback);
+
+// K from one measured value at (n0, T) with a given (the pair part's P, b theory's).
+CoefficientLaw law_through(const statistics::Estimate& value, double T, double n0, double T0,
+                           double P, double b, double a, double a_stderr);
+
+} // namespace twinflow::transport

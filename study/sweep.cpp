@@ -123,20 +123,9 @@ std::string vector_text(const std::array<double, 3>& v, int dim) {
   return text;
 }
 
-} // namespace
-
-int sweep(const GridOptions& cl, const CaseReader& reader) {
-  const std::vector<Axis> axes = parse_axes(cl, reader);
-  if (axes.empty() && cl.rayleigh.empty())
-    throw io::InputError("sweep needs at least one --vary 'Section/Key=V1,V2,...' or "
-                         "--rayleigh R1,R2,...");
-  for (const auto& a : axes)
-    if (a.key == "Scene/Gravity" && !cl.rayleigh.empty())
-      throw io::InputError("--vary 'Scene/Gravity=...' and --rayleigh both set the gravity; "
-                           "give one of them");
-  const std::size_t copies = std::max<std::size_t>(1, cl.rayleigh.size());
-  std::vector<Point> points = make_points(cl, reader, axes, copies);
-
+// The grid as a sweep records it: what makes two invocations the same grid (case, parameters,
+// --vary, --rayleigh) and the columns the points fill.
+Study sweep_study(const GridOptions& cl, const CaseReader& reader, const std::vector<Axis>& axes) {
   Study s;
   s.name = "sweep";
   s.child_command = "run";
@@ -147,15 +136,17 @@ int sweep(const GridOptions& cl, const CaseReader& reader) {
   s.grid["case_file"] = fs::absolute(cl.case_file).lexically_normal().string();
   s.grid["base_parameters"] = reader.record(cl.settings);
   s.grid["vary"] = io::Json::object();
-  std::set<std::string> reserved = {"point",           "status",  "reason",      "exit_code",
-                                    "target_rayleigh", "gravity", "wall_seconds"};
   for (const auto& a : axes) {
     s.grid["vary"][a.key] = io::Json::array();
     for (const auto& v : a.shown) s.grid["vary"][a.key].push_back(v);
-    reserved.insert(a.key);
   }
   s.grid["rayleigh"] = io::Json(cl.rayleigh);
+  return s;
+}
 
+// Each point's target Ra and gravity columns; what --rayleigh needs of a point is checked before
+// anything runs.
+void set_rayleigh_columns(const GridOptions& cl, std::vector<Point>& points, std::size_t copies) {
   for (std::size_t i = 0; i < points.size(); ++i) {
     Point& p = points[i];
     p.columns["target_rayleigh"] =
@@ -164,7 +155,6 @@ int sweep(const GridOptions& cl, const CaseReader& reader) {
                                ? io::Json(magnitude(p.resolved.scene.gravity, p.resolved.scene.dim))
                                : io::Json();
     if (cl.rayleigh.empty() || !p.rejected.empty()) continue;
-    // What --rayleigh needs is checked before anything runs.
     const std::string where = cl.case_file + " (point " + p.name + ")";
     if (p.resolved.compare.rayleigh_control != "gravity")
       throw io::InputError(where + ": 'Compare/Rayleigh control' = '" +
@@ -176,10 +166,13 @@ int sweep(const GridOptions& cl, const CaseReader& reader) {
       throw io::InputError(where + ": --rayleigh needs a heated direction (two thermal walls of "
                                    "one direction at different temperatures); the case has none");
   }
-  // The twin's coefficients must be known before the point's particle run sets g. `run` measures
-  // them at the particle fluid's mean temperature, known only after that run: here each point's
-  // transport stage is pinned to Scene/Temperature instead (unless the case or the grid gives
-  // Transport/Temperature), so that it can run first.
+}
+
+// The twin's coefficients must be known before the point's particle run sets g. `run` measures
+// them at the particle fluid's mean temperature, known only after that run: here each point's
+// transport stage is pinned to Scene/Temperature instead (unless the case or the grid gives
+// Transport/Temperature), so that it can run first.
+void pin_transport_temperatures(const GridOptions& cl, std::vector<Point>& points) {
   std::string pinned_note;
   for (Point& p : points) {
     if (cl.rayleigh.empty() || !p.rejected.empty() || !twin_takes_transport(cl, p) ||
@@ -194,77 +187,111 @@ int sweep(const GridOptions& cl, const CaseReader& reader) {
                  "so they are measured at the case's Scene/Temperature, not at the particle "
                  "fluid's mean temperature as `run` does: "
               << pinned_note << " (--set Transport/Temperature=... chooses another)\n";
+}
 
-  s.prepare = [&](const fs::path& dir) {
-    for (std::size_t i = 0; i < points.size(); ++i) {
-      Point& p = points[i];
-      if (cl.rayleigh.empty() || !p.rejected.empty()) continue;
-      continuum::ContinuumParameters twin = p.resolved.continuum;
-      if (twin_takes_transport(cl, p)) {
-        // The point's own transport stage, with the inputs its run's will have (gravity is none
-        // of them): that run takes this measurement from the cache, or repeats it bit for bit.
-        const fs::path reference = dir / "reference" / p.name;
-        const fs::path summary_file = reference / "transport" / "summary.json";
-        if (!fs::exists(summary_file)) {
-          fs::create_directories(reference);
-          ChildTask t;
-          t.arguments = {"transport", cl.case_file, "--out", reference.string()};
-          for (const auto& o : cl.settings) t.arguments.insert(t.arguments.end(), {"--set", o});
-          for (const auto& a : p.assignments) t.arguments.insert(t.arguments.end(), {"--set", a});
-          if (cl.run.threads > 0)
-            t.arguments.insert(t.arguments.end(), {"--threads", std::to_string(cl.run.threads)});
-          t.log = reference / "log.txt";
-          t.launcher = cl.launcher; // the transport stage's particle runs use its ranks too
-          std::cerr << "sweep: point " << p.name
-                    << ": its transport stage, for its gravity (log: " << t.log.string() << ")\n";
-          ChildResult result;
-          const int signal =
-              run_children({t}, 1, [&](std::size_t, const ChildResult& r) { result = r; });
-          if (signal || result.exit_code == kExitInterrupted) {
-            std::cerr << "sweep: interrupted in a transport stage; run the same command again\n";
-            return kExitInterrupted;
-          }
-          if (result.exit_code != 0) {
-            p.rejected = "its transport stage failed (exit " + std::to_string(result.exit_code) +
-                         "): " + result.message + " (log: " + t.log.string() + ")";
-            p.columns["gravity"] = io::Json();
-            continue;
-          }
+// The point's own transport stage, with the inputs its run's will have (gravity is none of
+// them): that run takes this measurement from the cache, or repeats it bit for bit. Returns the
+// child's exit code (kExitInterrupted when stopped by a signal); its summary lands in
+// `reference`/transport.
+int run_reference_transport(const GridOptions& cl, Point& p, const fs::path& reference) {
+  fs::create_directories(reference);
+  ChildTask t;
+  t.arguments = {"transport", cl.case_file, "--out", reference.string()};
+  for (const auto& o : cl.settings) t.arguments.insert(t.arguments.end(), {"--set", o});
+  for (const auto& a : p.assignments) t.arguments.insert(t.arguments.end(), {"--set", a});
+  if (cl.run.threads > 0)
+    t.arguments.insert(t.arguments.end(), {"--threads", std::to_string(cl.run.threads)});
+  t.log = reference / "log.txt";
+  t.launcher = cl.launcher; // the transport stage's particle runs use its ranks too
+  std::cerr << "sweep: point " << p.name
+            << ": its transport stage, for its gravity (log: " << t.log.string() << ")\n";
+  ChildResult result;
+  const int signal = run_children({t}, 1, [&](std::size_t, const ChildResult& r) { result = r; });
+  if (signal || result.exit_code == kExitInterrupted) return kExitInterrupted;
+  if (result.exit_code != 0)
+    p.rejected = "its transport stage failed (exit " + std::to_string(result.exit_code) +
+                 "): " + result.message + " (log: " + t.log.string() + ")";
+  return result.exit_code;
+}
+
+// --rayleigh: each point's gravity from its twin's coefficients (its reference transport stage),
+// so that the twin runs at the target Ra.
+int set_rayleigh_gravities(const GridOptions& cl, std::vector<Point>& points, std::size_t copies,
+                           const fs::path& dir) {
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    Point& p = points[i];
+    if (cl.rayleigh.empty() || !p.rejected.empty()) continue;
+    continuum::ContinuumParameters twin = p.resolved.continuum;
+    if (twin_takes_transport(cl, p)) {
+      const fs::path reference = dir / "reference" / p.name;
+      const fs::path summary_file = reference / "transport" / "summary.json";
+      if (!fs::exists(summary_file)) {
+        const int rc = run_reference_transport(cl, p, reference);
+        if (rc == kExitInterrupted) {
+          std::cerr << "sweep: interrupted in a transport stage; run the same command again\n";
+          return kExitInterrupted;
         }
-        const transport::Coefficients k = transport::read_coefficients(
-            io::read_json(summary_file), p.resolved.transport.source, twin.reference_temperature);
-        take_coefficients(k, twin);
+        if (rc != 0) {
+          p.columns["gravity"] = io::Json();
+          continue;
+        }
       }
-      try {
-        const auto g = gravity_for_rayleigh(twin, cl.rayleigh[i % copies]);
-        p.assignments.push_back("Scene/Gravity=" + vector_text(g, p.resolved.scene.dim));
-        p.columns["gravity"] = magnitude(g, p.resolved.scene.dim);
-      } catch (const std::runtime_error& e) {
-        p.rejected = e.what();
-        p.columns["gravity"] = io::Json();
-      }
+      const transport::Coefficients k = transport::read_coefficients(
+          io::read_json(summary_file), p.resolved.transport.source, twin.reference_temperature);
+      take_coefficients(k, twin);
     }
-    return 0;
-  };
-  // A point lands when its twin's Ra is within kRayleighTolerance of the target. Its particle
-  // fluid's mean temperature is recorded beside: the coefficients were pinned to another.
-  const auto check_landing = [&](const Point& p, const fs::path& point_dir, io::Json& row) {
-    const double target = io::number(p.columns, {"target_rayleigh"});
-    if (!std::isfinite(target) || io::text(row, {"status"}) != "done") return;
-    row["transport_temperature"] = p.resolved.transport.temperature;
-    row["particle_temperature"] = number_or_null(io::number(
-        read_json_or_empty(point_dir / "particle" / "summary.json"), {"results", "T_kinetic"}));
-    const double achieved = io::number(row, {"rayleigh"});
-    if (std::isfinite(achieved) && std::fabs(achieved / target - 1) <= kRayleighTolerance) return;
-    row["status"] = "failed";
-    row["reason"] = std::isfinite(achieved)
-                        ? "the twin ran at Ra = " + number_text(achieved) + ", " +
-                              number_text(100 * (achieved / target - 1)) + "% from the target " +
-                              number_text(target) +
-                              " (allowed: " + number_text(100 * kRayleighTolerance) +
-                              "%): its coefficients are not those its gravity was set with"
-                        : "the twin recorded no Ra to compare with the target";
-  };
+    try {
+      const auto g = gravity_for_rayleigh(twin, cl.rayleigh[i % copies]);
+      p.assignments.push_back("Scene/Gravity=" + vector_text(g, p.resolved.scene.dim));
+      p.columns["gravity"] = magnitude(g, p.resolved.scene.dim);
+    } catch (const std::runtime_error& e) {
+      p.rejected = e.what();
+      p.columns["gravity"] = io::Json();
+    }
+  }
+  return 0;
+}
+
+// A point lands when its twin's Ra is within kRayleighTolerance of the target. Its particle
+// fluid's mean temperature is recorded beside: the coefficients were pinned to another.
+void check_landing(const Point& p, const fs::path& point_dir, io::Json& row) {
+  const double target = io::number(p.columns, {"target_rayleigh"});
+  if (!std::isfinite(target) || io::text(row, {"status"}) != "done") return;
+  row["transport_temperature"] = p.resolved.transport.temperature;
+  row["particle_temperature"] = number_or_null(io::number(
+      read_json_or_empty(point_dir / "particle" / "summary.json"), {"results", "T_kinetic"}));
+  const double achieved = io::number(row, {"rayleigh"});
+  if (std::isfinite(achieved) && std::fabs(achieved / target - 1) <= kRayleighTolerance) return;
+  row["status"] = "failed";
+  row["reason"] = std::isfinite(achieved)
+                      ? "the twin ran at Ra = " + number_text(achieved) + ", " +
+                            number_text(100 * (achieved / target - 1)) + "% from the target " +
+                            number_text(target) +
+                            " (allowed: " + number_text(100 * kRayleighTolerance) +
+                            "%): its coefficients are not those its gravity was set with"
+                      : "the twin recorded no Ra to compare with the target";
+}
+
+} // namespace
+
+int sweep(const GridOptions& cl, const CaseReader& reader) {
+  const std::vector<Axis> axes = parse_axes(cl, reader);
+  if (axes.empty() && cl.rayleigh.empty())
+    throw io::InputError("sweep needs at least one --vary 'Section/Key=V1,V2,...' or "
+                         "--rayleigh R1,R2,...");
+  for (const auto& a : axes)
+    if (a.key == "Scene/Gravity" && !cl.rayleigh.empty())
+      throw io::InputError("--vary 'Scene/Gravity=...' and --rayleigh both set the gravity; "
+                           "give one of them");
+  const std::size_t copies = std::max<std::size_t>(1, cl.rayleigh.size());
+  std::vector<Point> points = make_points(cl, reader, axes, copies);
+  Study s = sweep_study(cl, reader, axes);
+  std::set<std::string> reserved = {"point",           "status",  "reason",      "exit_code",
+                                    "target_rayleigh", "gravity", "wall_seconds"};
+  for (const auto& a : axes) reserved.insert(a.key);
+  set_rayleigh_columns(cl, points, copies);
+  pin_transport_temperatures(cl, points);
+  s.prepare = [&](const fs::path& dir) { return set_rayleigh_gravities(cl, points, copies, dir); };
   s.finished = [&](const Point& p, const fs::path& point_dir, const io::Json*, io::Json& row) {
     if (!run_finished(point_dir)) return false;
     row["status"] = "done";

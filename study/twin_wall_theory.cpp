@@ -60,7 +60,10 @@ int take_wall_jumps(const CaseParameters& c, const transport::Coefficients& k,
                   "length %.3f rc, Kapitza conductance %.4g\n",
                   scene::wall_name(d, side).c_str(), n, T_w, in.wall_factor,
                   layer.extrapolation_length, layer.conductance);
-      if (std::fabs(layer.extrapolation_length) < 1e-3) continue; // T = T_w at the plane
+      // A pinned layer (b < 0) keeps T = T_w at the plane: a negative Robin conductance makes
+      // the steady problem lose its solution (the default cavity's twin met a fold at Ra 1326 of
+      // 1359, docs/notebook/2026-11-27-predictions-from-measurements-without-walls.md).
+      if (layer.extrapolation_length < 1e-3) continue;
       twin.boundary[d].kapitza_conductance[side] = layer.conductance;
       twin.boundary[d].kapitza_inverse = false;
       ++taken;

@@ -2,7 +2,8 @@
 // The nominal twin's thermal walls from the particle wall model alone (docs/theory.md, "The wall
 // layer"): each half-space thermal wall's extrapolation length b from transport::solve_wall_layer
 // at the wall's temperature and the fluid's density there, taken as the Robin (Kapitza)
-// conductance kappa / b (negative where the wall holds its layer at T_w). No number measured in
+// conductance kappa / b where b > 0; where the wall holds its layer at T_w (b <= 0) the twin
+// keeps T = T_w at the plane. No number measured in
 // a cavity or wall slab enters: the fluid's coefficients from the transport stage (bulk runs,
 // heat slabs), the wall's from the case.
 

@@ -134,91 +134,129 @@ FIELD_MAPS = {
 }
 
 
-def figure_fields(out_dir, bins, geometry, twins, metrics, field="temperature"):
-    import numpy as np
-    import matplotlib.pyplot as plt
-    from matplotlib.patches import Rectangle
+class FieldMaps:
+    """One field's maps (FIELD_MAPS) on the plane bin_plane shows: the particle's and each twin's
+    on one colour scale with one arrow scale, and the particle's difference to a twin."""
 
-    spec = FIELD_MAPS[field]
-    prefix, symbol = spec["prefix"], spec["symbol"]
-    a, b, xs, ys, grid, cut_text, layer = bin_plane(bins, geometry)
-    cut = geometry.plane()[2]
-    ex, ey = edges(xs), edges(ys)
-    va, vb = f"v{AXES[a]}", f"v{AXES[b]}"
-    # Every twin has a temperature column; only a low-Mach twin has a density one.
-    sources = [("particle", spec["particle"])] + \
-        [(t, TWIN_LABEL[t] + spec["twin"]) for t in twins
-         if bins.has(f"{prefix}_{t}", optional=field == "density")]
-    maps = {name: grid(f"{prefix}_{name}", optional=False) for name, _ in sources}
-    # The difference map against the nominal twin (the prediction), else the calibrated one.
-    reference = next((t for t in ("nominal", "calibrated") if t in maps), None)
-    t_low = min(np.nanmin(m) for m in maps.values())
-    t_high = max(np.nanmax(m) for m in maps.values())
-    interior = grid("interior", optional=False)
-    # One arrow scale for every map: the largest bin speed spans ~0.9 of a bin.
-    speeds = [np.hypot(grid(f"{va}_{n}"), grid(f"{vb}_{n}")) for n, _ in sources]
-    v_max = max((np.nanmax(s) for s in speeds if np.isfinite(s).any()), default=math.nan)
-    spacing = min(ex[1] - ex[0], ey[1] - ey[0])
-    arrow_scale = v_max / (0.9 * spacing) if finite(v_max) and v_max > 0 else None
+    def __init__(self, bins, geometry, twins, field):
+        import numpy as np
 
-    panels = len(sources) + (1 if reference else 0)
-    columns = 2 if panels == 4 else panels
-    rows = math.ceil(panels / columns)
-    aspect = (ey[-1] - ey[0]) / (ex[-1] - ex[0])
-    fig, axes = plt.subplots(rows, columns, figsize=(4.8 * columns, rows * (3.5 * aspect + 0.8)),
-                             squeeze=False, layout="constrained")
-    # Room for the inset colour bars' labels, which the layout engine does not see.
-    fig.get_layout_engine().set(wspace=0.18, hspace=0.06)
-    axes = axes.ravel()
+        self.spec, self.field, self.geometry = FIELD_MAPS[field], field, geometry
+        prefix = self.spec["prefix"]
+        self.a, self.b, self.xs, self.ys, self.grid, self.cut_text, self.layer = \
+            bin_plane(bins, geometry)
+        self.cut = geometry.plane()[2]
+        self.ex, self.ey = edges(self.xs), edges(self.ys)
+        # Every twin has a temperature column; only a low-Mach twin has a density one.
+        self.sources = [("particle", self.spec["particle"])] + \
+            [(t, TWIN_LABEL[t] + self.spec["twin"]) for t in twins
+             if bins.has(f"{prefix}_{t}", optional=field == "density")]
+        self.maps = {name: self.grid(f"{prefix}_{name}", optional=False)
+                     for name, _ in self.sources}
+        # The difference map against the nominal twin (the prediction), else the calibrated one.
+        self.reference = next((t for t in ("nominal", "calibrated") if t in self.maps), None)
+        self.low = min(np.nanmin(m) for m in self.maps.values())
+        self.high = max(np.nanmax(m) for m in self.maps.values())
+        self.interior = self.grid("interior", optional=False)
+        # One arrow scale for every map: the largest bin speed spans ~0.9 of a bin.
+        speeds = [np.hypot(*self.velocity(n)) for n, _ in self.sources]
+        self.v_max = max((np.nanmax(s) for s in speeds if np.isfinite(s).any()),
+                         default=math.nan)
+        spacing = min(self.ex[1] - self.ex[0], self.ey[1] - self.ey[0])
+        self.arrow_scale = (self.v_max / (0.9 * spacing)
+                            if finite(self.v_max) and self.v_max > 0 else None)
 
-    def decorate(ax):
+    def velocity(self, name):
+        """The bins' in-plane velocity (u, v) of a source, NaN where its columns are absent."""
+        return self.grid(f"v{AXES[self.a]}_{name}"), self.grid(f"v{AXES[self.b]}_{name}")
+
+    def figure(self, panels):
+        """The figure and its axes (flat): one row of panels, 2 × 2 for four, each as tall as the
+        plane's aspect makes it."""
+        import matplotlib.pyplot as plt
+
+        columns = 2 if panels == 4 else panels
+        rows = math.ceil(panels / columns)
+        aspect = (self.ey[-1] - self.ey[0]) / (self.ex[-1] - self.ex[0])
+        fig, axes = plt.subplots(rows, columns,
+                                 figsize=(4.8 * columns, rows * (3.5 * aspect + 0.8)),
+                                 squeeze=False, layout="constrained")
+        # Room for the inset colour bars' labels, which the layout engine does not see.
+        fig.get_layout_engine().set(wspace=0.18, hspace=0.06)
+        return fig, axes.ravel()
+
+    def frame(self, ax):
+        """The plane's extent and axis labels, and the wall layer left out of the distances
+        hatched."""
+        from matplotlib.patches import Rectangle
+
+        ex, ey = self.ex, self.ey
         ax.set_aspect("equal")
         ax.set_xlim(ex[0], ex[-1])
         ax.set_ylim(ey[0], ey[-1])
-        ax.set_xlabel(f"{AXES[a]} [rc]")
-        ax.set_ylabel(f"{AXES[b]} [rc]")
-        # The wall layer left out of the distances: hatched.
-        for j in range(len(ys)):
-            for i in range(len(xs)):
-                if interior[j, i] == 0:
+        ax.set_xlabel(f"{AXES[self.a]} [rc]")
+        ax.set_ylabel(f"{AXES[self.b]} [rc]")
+        for j in range(len(self.ys)):
+            for i in range(len(self.xs)):
+                if self.interior[j, i] == 0:
                     ax.add_patch(Rectangle((ex[i], ey[j]), ex[i + 1] - ex[i], ey[j + 1] - ey[j],
                                            fill=False, hatch="///", edgecolor=(0.6, 0.6, 0.6, 0.8),
                                            linewidth=0))
 
-    for ax, (name, title) in zip(axes, sources):
-        image = ax.pcolormesh(ex, ey, maps[name], cmap=spec["cmap"], vmin=t_low, vmax=t_high)
-        colour_bar(fig, ax, image, f"{symbol} [{spec['unit']}]")
-        u, v = grid(f"{va}_{name}"), grid(f"{vb}_{name}")
-        if arrow_scale and np.isfinite(u).any():
-            X, Y = np.meshgrid(xs, ys)
-            arrows = ax.quiver(X, Y, u, v, color="white", scale=arrow_scale, scale_units="xy",
-                               angles="xy", width=0.006, headwidth=4)
+    def draw_source(self, fig, ax, name, title):
+        """A source's map on the common colour scale, with its bin velocities (the arrow key on
+        the particle's)."""
+        import numpy as np
+
+        image = ax.pcolormesh(self.ex, self.ey, self.maps[name], cmap=self.spec["cmap"],
+                              vmin=self.low, vmax=self.high)
+        colour_bar(fig, ax, image, f"{self.spec['symbol']} [{self.spec['unit']}]")
+        u, v = self.velocity(name)
+        if self.arrow_scale and np.isfinite(u).any():
+            X, Y = np.meshgrid(self.xs, self.ys)
+            arrows = ax.quiver(X, Y, u, v, color="white", scale=self.arrow_scale,
+                               scale_units="xy", angles="xy", width=0.006, headwidth=4)
             if name == "particle":
-                key = nice_arrow(0.5 * v_max)
+                key = nice_arrow(0.5 * self.v_max)
                 ax.quiverkey(arrows, 0.78, 1.035, key, f"{fmt(key, 2)} rc/tau", labelpos="E",
                              coordinates="axes", color="black", fontproperties={"size": 8})
-        decorate(ax)
+        self.frame(ax)
         ax.set_title(title, loc="left", fontsize=10)
 
+    def draw_difference(self, fig, ax, metrics):
+        """particle − the reference twin on a diverging scale, × where the compare stage found
+        the largest interior difference."""
+        import numpy as np
+
+        symbol, reference = self.spec["symbol"], self.reference
+        difference = self.maps["particle"] - self.maps[reference]
+        limit = np.nanmax(np.abs(difference))
+        limit = limit if finite(limit) and limit > 0 else 1.0
+        image = ax.pcolormesh(self.ex, self.ey, difference, cmap="RdBu_r", vmin=-limit,
+                              vmax=limit)
+        colour_bar(fig, ax, image,
+                   f"{symbol}_particle − {symbol}_{reference} [{self.spec['unit']}]")
+        self.frame(ax)
+        at = lookup(metrics, "twins", reference, self.field, "max_at") or []
+        if len(at) >= self.geometry.dim and (self.cut is None or at[self.cut] == self.layer):
+            ax.plot([at[self.a]], [at[self.b]], "x", color="black", ms=10, mew=2)
+        ax.set_title(f"particle − {TWIN_LABEL[reference]}", loc="left", fontsize=10)
+
+
+def figure_fields(out_dir, bins, geometry, twins, metrics, field="temperature"):
+    """fields.png (density.png for field="density"); returns the twin the difference map is
+    against (None without a twin's map) and the 3D cut's text."""
+    field_maps = FieldMaps(bins, geometry, twins, field)
+    panels = len(field_maps.sources) + (1 if field_maps.reference else 0)
+    fig, axes = field_maps.figure(panels)
+    for ax, (name, title) in zip(axes, field_maps.sources):
+        field_maps.draw_source(fig, ax, name, title)
     for ax in axes[panels:]:
         ax.set_visible(False)
-    if reference is None:
-        save_figure(fig, out_dir, spec["file"])
-        return None, cut_text
-    ax = axes[len(sources)]
-    difference = maps["particle"] - maps[reference]
-    limit = np.nanmax(np.abs(difference))
-    limit = limit if finite(limit) and limit > 0 else 1.0
-    image = ax.pcolormesh(ex, ey, difference, cmap="RdBu_r", vmin=-limit, vmax=limit)
-    colour_bar(fig, ax, image, f"{symbol}_particle − {symbol}_{reference} [{spec['unit']}]")
-    decorate(ax)
-    # Where the compare stage found the largest interior difference.
-    at = lookup(metrics, "twins", reference, field, "max_at") or []
-    if len(at) >= geometry.dim and (cut is None or at[cut] == layer):
-        ax.plot([at[a]], [at[b]], "x", color="black", ms=10, mew=2)
-    ax.set_title(f"particle − {TWIN_LABEL[reference]}", loc="left", fontsize=10)
-    save_figure(fig, out_dir, spec["file"])
-    return reference, cut_text
+    if field_maps.reference is not None:
+        field_maps.draw_difference(fig, axes[len(field_maps.sources)], metrics)
+    save_figure(fig, out_dir, field_maps.spec["file"])
+    return field_maps.reference, field_maps.cut_text
 
 
 def figure_profiles(out_dir, profiles, geometry, metrics, twins, excluded):
@@ -472,49 +510,83 @@ def rayleigh_explanation(convection, summaries, twins, transport_summary):
     return " ".join(parts) or "No dimensionless numbers were recorded."
 
 
-def report_run(run_dir, out_dir):
-    compare_dir = os.path.join(run_dir, "compare")
-    metrics = read_json(os.path.join(compare_dir, "metrics.json"))
-    bins = read_table(os.path.join(compare_dir, "bins.csv"))
-    profiles = read_table(os.path.join(compare_dir, "profiles.csv"))
-    series = read_table(os.path.join(compare_dir, "error_vs_time.csv"))
-    particle_summary = read_json(os.path.join(run_dir, "particle", "summary.json"))
-    # Every run has a nominal twin; a calibrated one only where the scene has thermal walls.
-    twins = [t for t in TWINS
-             if isinstance(lookup(metrics, "twins", t, optional=t == "calibrated"), dict)]
-    summaries = {"nominal": read_json(os.path.join(run_dir, "continuum", "summary.json")),
-                 "calibrated": read_json(os.path.join(run_dir, "continuum_calibrated",
-                                                      "summary.json"),
-                                         optional="calibrated" not in twins)}
-    particle = lookup(metrics, "particle") or {}
-    # What the compare stage writes for some scenes only: velocity distances with a positive
-    # velocity scale (a flow to compare), density distances beside a low-Mach twin, Nusselt
-    # numbers with a heated direction.
-    optional_field = {"temperature": False, "velocity": not number(metrics, "velocity_scale") > 0,
-                      "density": True}
-    nu_optional = heat_flow_optional(particle)
+class RunFiles:
+    """A run directory's files, read once, and what several sections take from them."""
 
-    def twin_number(t, key):
+    def __init__(self, run_dir):
+        self.directory = run_dir
+        compare_dir = os.path.join(run_dir, "compare")
+        self.metrics = metrics = read_json(os.path.join(compare_dir, "metrics.json"))
+        self.bins = read_table(os.path.join(compare_dir, "bins.csv"))
+        self.profiles = read_table(os.path.join(compare_dir, "profiles.csv"))
+        self.series = read_table(os.path.join(compare_dir, "error_vs_time.csv"))
+        self.particle_summary = read_json(os.path.join(run_dir, "particle", "summary.json"))
+        # Every run has a nominal twin; a calibrated one only where the scene has thermal walls.
+        self.twins = twins = [
+            t for t in TWINS
+            if isinstance(lookup(metrics, "twins", t, optional=t == "calibrated"), dict)]
+        self.summaries = {
+            "nominal": read_json(os.path.join(run_dir, "continuum", "summary.json")),
+            "calibrated": read_json(os.path.join(run_dir, "continuum_calibrated", "summary.json"),
+                                    optional="calibrated" not in twins)}
+        self.particle = lookup(metrics, "particle") or {}
+        # What the compare stage writes for some scenes only: velocity distances with a positive
+        # velocity scale (a flow to compare), density distances beside a low-Mach twin, Nusselt
+        # numbers with a heated direction.
+        self.optional_field = {"temperature": False,
+                               "velocity": not number(metrics, "velocity_scale") > 0,
+                               "density": True}
+        self.nu_optional = heat_flow_optional(self.particle)
+        self.geometry = RunGeometry(metrics, self.particle_summary, self.summaries["nominal"],
+                                    self.bins)
+        self.case = lookup(metrics, "case") or lookup(self.particle_summary, "case") or \
+            os.path.basename(os.path.abspath(run_dir))
+        self.excluded = number(metrics, "wall_layer_excluded")
+        # The particle stage's estimates need gravity and a heated direction; the measured Mach
+        # number a flow.
+        self.convection = lookup(lookup(self.particle_summary, "results"), "convection",
+                                 optional=True)
+
+    def twin_number(self, t, key):
         """A Nusselt number of metrics.json's twin t."""
-        return number(metrics, "twins", t, key, optional=nu_optional)
+        return number(self.metrics, "twins", t, key, optional=self.nu_optional)
 
-    geometry = RunGeometry(metrics, particle_summary, summaries["nominal"], bins)
-    case = lookup(metrics, "case") or lookup(particle_summary, "case") or os.path.basename(
-        os.path.abspath(run_dir))
-    excluded = number(metrics, "wall_layer_excluded")
-    doc = Document(f"Twin comparison: {case}")
+    def has_density(self):
+        """Whether a twin has density distances (a low-Mach twin)."""
+        return any(lookup(self.metrics, "twins", t, "density", optional=True) for t in self.twins)
+
+
+def report_run(run_dir, out_dir):
+    run = RunFiles(run_dir)
+    doc = Document(f"Twin comparison: {run.case}")
+    verdict_section(doc, run.metrics)
+    doc.paragraph(f"Run directory: {os.path.abspath(run_dir)}. Twins compared: "
+                  + (", ".join(TWIN_LABEL[t] for t in run.twins) or "none") + ". " + UNITS_NOTE
+                  + ".")
+    dimensionless_numbers_section(doc, run)
+    what_was_compared_section(doc, run)
+    distances_section(doc, run)
+    particle_heat_flow_section(doc, run.particle)
+    wall_temperature_jumps_section(doc, run)
+    gap_explained_section(doc, run)
+    wall_layer_table(doc, run.particle_summary, run.summaries.get("calibrated"))
+    continuum_accuracy(doc, run.summaries, run.twins)
+    figures_section(doc, run, out_dir)
+    write_documents(doc, out_dir)
+
+
+def verdict_section(doc, metrics):
+    """The compare stage's verdict lines, when it wrote any."""
     verdict = [line for line in (lookup(metrics, "verdict", optional=True) or [])
                if isinstance(line, str)]
     if verdict:
         doc.heading("Verdict")
         doc.bullets(verdict)
-    doc.paragraph(f"Run directory: {os.path.abspath(run_dir)}. Twins compared: "
-                  + (", ".join(TWIN_LABEL[t] for t in twins) or "none") + ". " + UNITS_NOTE + ".")
 
-    # Dimensionless numbers, each from the stage that states it.
-    # The particle stage's estimates need gravity and a heated direction; the measured Mach
-    # number a flow.
-    convection = lookup(lookup(particle_summary, "results"), "convection", optional=True)
+
+def dimensionless_numbers_section(doc, run):
+    """The Ra and Pr of each column, each from the stage that states it, and why they differ."""
+    convection = run.convection
     rows = []
     if convection:
         rows.append(["particle (estimate, particle/summary.json)",
@@ -522,7 +594,7 @@ def report_run(run_dir, out_dir):
                      fmt(number(convection, "mach_measured", optional=True), 3),
                      fmt(number(convection, "delta_T_over_T"), 3), "–"])
     for twin in TWINS:
-        d = lookup(summaries[twin], "dimensionless")
+        d = lookup(run.summaries[twin], "dimensionless")
         if d:
             stage = "continuum_calibrated" if twin == "calibrated" else "continuum"
             rows.append([f"{TWIN_LABEL[twin]} ({stage}/summary.json)",
@@ -531,160 +603,196 @@ def report_run(run_dir, out_dir):
     if rows:
         doc.heading("Dimensionless numbers: which Ra and Pr each column uses")
         doc.table(["source", "Ra", "Pr", "Mach (measured)", "dT/T", "epsilon"], rows)
-        doc.paragraph(rayleigh_explanation(convection, summaries, twins,
-                                           read_json(os.path.join(run_dir, "transport",
+        doc.paragraph(rayleigh_explanation(convection, run.summaries, run.twins,
+                                           read_json(os.path.join(run.directory, "transport",
                                                                   "summary.json"),
                                                      optional=True)))
 
+
+def what_was_compared_section(doc, run):
+    """The bins, the wall layer left out, and the scales the distances are in."""
+    metrics = run.metrics
     doc.heading("What was compared")
     counts = lookup(metrics, "bins") or []
     doc.bullets([
         f"Bins: {' × '.join(str(int(c)) for c in counts)}; interior bins (counted in the "
         f"distances): {fmt(number(metrics, 'interior_bins'))}.",
         f"Wall layer: requested {fmt(number(metrics, 'wall_layer'))} rc; excluded thickness "
-        f"{fmt(excluded)} rc (whole bins) at every wall.",
+        f"{fmt(run.excluded)} rc (whole bins) at every wall.",
         f"Temperature scale dT = {fmt(number(metrics, 'temperature_scale'))} T0; velocity scale "
         f"U = {fmt(number(metrics, 'velocity_scale'))} rc/tau (the nominal twin's largest speed). "
         "L2 and max distances below are in these units.",
         f"Fields: {lookup(metrics, 'temperature_field') or 'temperature'}.",
     ] + ([f"Density scale n0 = {fmt(number(metrics, 'density_scale'))} rc^-d (the mean number "
           "density), for the low-Mach twin's n(P, T) against the particles' bin density."]
-         if any(lookup(metrics, "twins", t, "density", optional=True) for t in twins) else []))
+         if run.has_density() else []))
 
-    # The metrics, one column per twin.
+
+def distances_section(doc, run):
+    """The metrics, one column per twin, and whether each difference is within noise."""
+    if not run.twins:
+        return
+    doc.heading("Distances between the twins")
+    doc.table(["quantity"] + [TWIN_LABEL[t] for t in run.twins], distance_rows(run))
+    sentences = within_noise_sentences(run)
+    bound = fmt(WITHIN_NOISE_STDERRS, 2)
+    doc.paragraph(f"Within noise? A difference counts as within noise when the L2 exceeds the "
+                  f"noise by at most {bound} of its standard errors (for Nu: when "
+                  f"|Nu particle − Nu twin| is at most {bound} "
+                  "standard errors: the particle's, combined with the twin's where its "
+                  "coefficients were measured).")
+    doc.bullets(sentences)
+
+
+def distance_rows(run):
+    """The distances table's rows: each field's distances, then the Nusselt numbers."""
+    metrics, twins, particle = run.metrics, run.twins, run.particle
     table_rows = []
-    if twins:
-        doc.heading("Distances between the twins")
 
-        def row(label, values):
-            table_rows.append([label] + values)
+    def row(label, values):
+        table_rows.append([label] + values)
 
-        for field, scale in (("temperature", "dT"), ("velocity", "U"), ("density", "n0")):
-            d = {t: lookup(metrics, "twins", t, field, optional=optional_field[field])
-                 for t in twins}
-            if not any(d.values()):
-                continue
-            row(f"{field} L2 / {scale}",
-                [fmt_pm(number(d[t], "l2"), number(d[t], "l2_stderr")) for t in twins])
-            row(f"{field} noise / {scale}", [fmt(number(d[t], "noise")) for t in twins])
-            row(f"{field} excess over noise / {scale}",
-                [fmt(number(d[t], "excess_over_noise")) for t in twins])
-            row(f"{field} max / {scale} (at the bin centre [rc])",
-                [f"{fmt_pm(number(d[t], 'max'), number(d[t], 'max_stderr'))} at "
-                 f"({', '.join(fmt(v, 3) for v in (lookup(d[t], 'max_at') or [])[:geometry.dim])})"
-                 for t in twins])
-        row("Nu particle ± stderr",
-            [fmt_pm(number(particle, "nusselt", optional=nu_optional),
-                    number(particle, "nusselt_stderr", optional=nu_optional))] * len(twins))
-        row("Nu twin ± stderr from its measured coefficients and Kapitza conductances (heat "
-            "flux / the nominal conduction flux, as the particle's)",
-            [fmt_pm(twin_number(t, "nusselt"), twin_number(t, "nusselt_stderr_from_coefficients"))
+    for field, scale in (("temperature", "dT"), ("velocity", "U"), ("density", "n0")):
+        d = {t: lookup(metrics, "twins", t, field, optional=run.optional_field[field])
+             for t in twins}
+        if not any(d.values()):
+            continue
+        row(f"{field} L2 / {scale}",
+            [fmt_pm(number(d[t], "l2"), number(d[t], "l2_stderr")) for t in twins])
+        row(f"{field} noise / {scale}", [fmt(number(d[t], "noise")) for t in twins])
+        row(f"{field} excess over noise / {scale}",
+            [fmt(number(d[t], "excess_over_noise")) for t in twins])
+        row(f"{field} max / {scale} (at the bin centre [rc])",
+            [f"{fmt_pm(number(d[t], 'max'), number(d[t], 'max_stderr'))} at "
+             f"({', '.join(fmt(v, 3) for v in (lookup(d[t], 'max_at') or [])[:run.geometry.dim])})"
              for t in twins])
-        row("Nu twin (its own dT)", [fmt(twin_number(t, "nusselt_own")) for t in twins])
-        row("Nu particle − twin",
-            [fmt(twin_number(t, "nusselt_particle_minus_twin")) for t in twins])
-        row("Nu relative difference",
-            [fmt_percent(twin_number(t, "nusselt_relative_difference")) for t in twins])
-        row("Ra of the twin", [fmt(number(metrics, "twins", t, "rayleigh")) for t in twins])
-        doc.table(["quantity"] + [TWIN_LABEL[t] for t in twins], table_rows)
-        sentences = []
-        for t in twins:
-            for field in ("temperature", "velocity", "density"):
-                distance = lookup(metrics, "twins", t, field, optional=optional_field[field])
-                if distance:
-                    sentences.append(within_noise_sentence(f"{field}, {TWIN_LABEL[t]}", distance))
-            s = nusselt_sentence(t, lookup(metrics, "twins", t), particle, optional=nu_optional)
-            if s:
-                sentences.append(s)
-        stratification = number(convection, "stratification_g_H_over_c2")
-        if any(lookup(metrics, "twins", t, "density", optional=True) for t in twins) and \
-                finite(stratification):
-            # n ~ exp(-m g z / kT): across the height a linear profile of relative slope
-            # g H / c^2, whose rms over the box is that / sqrt(12). The low-Mach twin's
-            # thermodynamic pressure is uniform: it has no hydrostatic stratification.
-            sentences.append(
-                f"density: the particle fluid is stratified by gravity (g H / c^2 = "
-                f"{fmt(stratification, 3)}: n ~ exp(−m g z / kT)), which the low-Mach twin "
-                "leaves out (its thermodynamic pressure is uniform); that alone makes an rms "
-                f"density difference of ~{fmt(stratification / math.sqrt(12), 2)} n0.")
-        bound = fmt(WITHIN_NOISE_STDERRS, 2)
-        doc.paragraph(f"Within noise? A difference counts as within noise when the L2 exceeds the "
-                      f"noise by at most {bound} of its standard errors (for Nu: when "
-                      f"|Nu particle − Nu twin| is at most {bound} "
-                      "standard errors: the particle's, combined with the twin's where its "
-                      "coefficients were measured).")
-        doc.bullets(sentences)
+    row("Nu particle ± stderr",
+        [fmt_pm(number(particle, "nusselt", optional=run.nu_optional),
+                number(particle, "nusselt_stderr", optional=run.nu_optional))] * len(twins))
+    row("Nu twin ± stderr from its measured coefficients and Kapitza conductances (heat "
+        "flux / the nominal conduction flux, as the particle's)",
+        [fmt_pm(run.twin_number(t, "nusselt"),
+                run.twin_number(t, "nusselt_stderr_from_coefficients")) for t in twins])
+    row("Nu twin (its own dT)", [fmt(run.twin_number(t, "nusselt_own")) for t in twins])
+    row("Nu particle − twin",
+        [fmt(run.twin_number(t, "nusselt_particle_minus_twin")) for t in twins])
+    row("Nu relative difference",
+        [fmt_percent(run.twin_number(t, "nusselt_relative_difference")) for t in twins])
+    row("Ra of the twin", [fmt(number(metrics, "twins", t, "rayleigh")) for t in twins])
+    return table_rows
 
-    if finite(number(particle, "nusselt", optional=True)):
-        doc.heading("Particle heat flow")
-        doc.bullets([
-            f"Nu = {fmt_pm(number(particle, 'nusselt'), number(particle, 'nusselt_stderr'))} "
-            "(mean of the two walls; heat flux "
-            f"{fmt_pm(number(particle, 'heat_flux'), number(particle, 'heat_flux_stderr'))} "
-            "k T0 / (rc^(d-1) tau)).",
-            f"hot wall Nu = {fmt(number(particle, 'nusselt_hot_wall'))}, cold wall Nu = "
-            f"{fmt(number(particle, 'nusselt_cold_wall'))}: they differ by "
-            f"{fmt(number(particle, 'wall_imbalance_over_stderr'), 3)} standard errors: "
-            + steady_verdict(number(particle, "wall_imbalance_over_stderr")),
-        ])
 
-    jumps = lookup(particle, "wall_temperature_jumps") or {}
-    if jumps:
-        doc.heading("Wall temperature jumps (particle)")
-        calibrated_parameters = lookup(summaries["calibrated"], "case_parameters")
-        rows = []
-        for wall, j in jumps.items():
-            axis, side = wall.split("_", 1) if "_" in wall else (wall, "")
-            calibrated_wall = lookup(
-                calibrated_parameters,
-                f"Scene/{axis} boundaries/{side.capitalize()} wall temperature")
-            rows.append([wall, fmt(number(j, "wall_temperature")),
-                         fmt_pm(number(j, "fluid_temperature_at_wall"),
-                                number(j, "fluid_temperature_at_wall_stderr")),
-                         fmt(number(j, "jump")), fmt(number(j, "extrapolated_from_distance")),
-                         fmt(to_float(calibrated_wall)) if calibrated_wall else "–"])
-        doc.table(["wall", "wall T [T0]", "fluid T at the wall [T0]", "jump = wall − fluid [T0]",
-                   "extrapolated from [rc]", "calibrated twin's wall T [T0]"], rows)
-        doc.paragraph("The fluid's temperature at a wall is extrapolated linearly from the first "
-                      "two bin layers beyond the wall layer (compare stage).")
+def within_noise_sentences(run):
+    """Per twin: each field's distance against the noise and the Nusselt gap against the
+    errors; then what gravity's stratification alone makes of the density distance."""
+    metrics = run.metrics
+    sentences = []
+    for t in run.twins:
+        for field in ("temperature", "velocity", "density"):
+            distance = lookup(metrics, "twins", t, field, optional=run.optional_field[field])
+            if distance:
+                sentences.append(within_noise_sentence(f"{field}, {TWIN_LABEL[t]}", distance))
+        s = nusselt_sentence(t, lookup(metrics, "twins", t), run.particle,
+                             optional=run.nu_optional)
+        if s:
+            sentences.append(s)
+    stratification = number(run.convection, "stratification_g_H_over_c2")
+    if run.has_density() and finite(stratification):
+        # n ~ exp(-m g z / kT): across the height a linear profile of relative slope
+        # g H / c^2, whose rms over the box is that / sqrt(12). The low-Mach twin's
+        # thermodynamic pressure is uniform: it has no hydrostatic stratification.
+        sentences.append(
+            f"density: the particle fluid is stratified by gravity (g H / c^2 = "
+            f"{fmt(stratification, 3)}: n ~ exp(−m g z / kT)), which the low-Mach twin "
+            "leaves out (its thermodynamic pressure is uniform); that alone makes an rms "
+            f"density difference of ~{fmt(stratification / math.sqrt(12), 2)} n0.")
+    return sentences
 
-    if "nominal" in twins and "calibrated" in twins:
-        doc.heading("How much of the particle–continuum gap each correction explains")
-        gap_rows = []
 
-        def gap(label, nominal_value, calibrated_value):
-            if finite(nominal_value) and finite(calibrated_value):
-                explained = 1 - calibrated_value / nominal_value if nominal_value != 0 else math.nan
-                gap_rows.append([label, fmt(nominal_value), fmt(calibrated_value),
-                                 fmt_percent(explained)])
+def particle_heat_flow_section(doc, particle):
+    """The particle's Nusselt number and whether its two walls carry the same heat flow."""
+    if not finite(number(particle, "nusselt", optional=True)):
+        return
+    doc.heading("Particle heat flow")
+    doc.bullets([
+        f"Nu = {fmt_pm(number(particle, 'nusselt'), number(particle, 'nusselt_stderr'))} "
+        "(mean of the two walls; heat flux "
+        f"{fmt_pm(number(particle, 'heat_flux'), number(particle, 'heat_flux_stderr'))} "
+        "k T0 / (rc^(d-1) tau)).",
+        f"hot wall Nu = {fmt(number(particle, 'nusselt_hot_wall'))}, cold wall Nu = "
+        f"{fmt(number(particle, 'nusselt_cold_wall'))}: they differ by "
+        f"{fmt(number(particle, 'wall_imbalance_over_stderr'), 3)} standard errors: "
+        + steady_verdict(number(particle, "wall_imbalance_over_stderr")),
+    ])
 
-        for field, scale in (("temperature", "dT"), ("velocity", "U"), ("density", "n0")):
-            distance = {t: lookup(metrics, "twins", t, field, optional=optional_field[field])
-                        for t in twins}
-            gap(f"{field} L2 / {scale}", number(distance["nominal"], "l2"),
-                number(distance["calibrated"], "l2"))
-            gap(f"{field} excess over noise / {scale}",
-                number(distance["nominal"], "excess_over_noise"),
-                number(distance["calibrated"], "excess_over_noise"))
-        gap("|Nu particle − Nu twin|", abs(twin_number("nominal", "nusselt_particle_minus_twin")),
-            abs(twin_number("calibrated", "nusselt_particle_minus_twin")))
-        doc.table(["gap", "nominal twin", f"calibrated twin ({calibration_text(metrics)})",
-                   "fraction explained = 1 − calibrated / nominal"], gap_rows)
-        differences = parameter_differences(summaries["nominal"], summaries["calibrated"])
-        if differences:
-            doc.paragraph("The calibrated twin's parameters that differ from the nominal twin's "
-                          "(continuum*/summary.json): " + "; ".join(
-                              f"{k}: {a} → {b}" for k, a, b in differences) +
-                          ". The fraction explained is the part of each gap that this change "
-                          "removes; a negative fraction means it made the gap larger.")
-    wall_layer_table(doc, particle_summary, summaries.get("calibrated"))
 
-    continuum_accuracy(doc, summaries, twins)
+def wall_temperature_jumps_section(doc, run):
+    """Each thermal wall's temperature against the particle fluid's there, beside the calibrated
+    twin's wall temperature."""
+    jumps = lookup(run.particle, "wall_temperature_jumps") or {}
+    if not jumps:
+        return
+    doc.heading("Wall temperature jumps (particle)")
+    calibrated_parameters = lookup(run.summaries["calibrated"], "case_parameters")
+    rows = []
+    for wall, j in jumps.items():
+        axis, side = wall.split("_", 1) if "_" in wall else (wall, "")
+        calibrated_wall = lookup(
+            calibrated_parameters,
+            f"Scene/{axis} boundaries/{side.capitalize()} wall temperature")
+        rows.append([wall, fmt(number(j, "wall_temperature")),
+                     fmt_pm(number(j, "fluid_temperature_at_wall"),
+                            number(j, "fluid_temperature_at_wall_stderr")),
+                     fmt(number(j, "jump")), fmt(number(j, "extrapolated_from_distance")),
+                     fmt(to_float(calibrated_wall)) if calibrated_wall else "–"])
+    doc.table(["wall", "wall T [T0]", "fluid T at the wall [T0]", "jump = wall − fluid [T0]",
+               "extrapolated from [rc]", "calibrated twin's wall T [T0]"], rows)
+    doc.paragraph("The fluid's temperature at a wall is extrapolated linearly from the first "
+                  "two bin layers beyond the wall layer (compare stage).")
 
-    # Figures.
+
+def gap_explained_section(doc, run):
+    """With both twins: how much of each particle–continuum gap the calibration removes, and the
+    parameters it changed."""
+    metrics, twins = run.metrics, run.twins
+    if not ("nominal" in twins and "calibrated" in twins):
+        return
+    doc.heading("How much of the particle–continuum gap each correction explains")
+    gap_rows = []
+
+    def gap(label, nominal_value, calibrated_value):
+        if finite(nominal_value) and finite(calibrated_value):
+            explained = 1 - calibrated_value / nominal_value if nominal_value != 0 else math.nan
+            gap_rows.append([label, fmt(nominal_value), fmt(calibrated_value),
+                             fmt_percent(explained)])
+
+    for field, scale in (("temperature", "dT"), ("velocity", "U"), ("density", "n0")):
+        distance = {t: lookup(metrics, "twins", t, field, optional=run.optional_field[field])
+                    for t in twins}
+        gap(f"{field} L2 / {scale}", number(distance["nominal"], "l2"),
+            number(distance["calibrated"], "l2"))
+        gap(f"{field} excess over noise / {scale}",
+            number(distance["nominal"], "excess_over_noise"),
+            number(distance["calibrated"], "excess_over_noise"))
+    gap("|Nu particle − Nu twin|", abs(run.twin_number("nominal", "nusselt_particle_minus_twin")),
+        abs(run.twin_number("calibrated", "nusselt_particle_minus_twin")))
+    doc.table(["gap", "nominal twin", f"calibrated twin ({calibration_text(metrics)})",
+               "fraction explained = 1 − calibrated / nominal"], gap_rows)
+    differences = parameter_differences(run.summaries["nominal"], run.summaries["calibrated"])
+    if differences:
+        doc.paragraph("The calibrated twin's parameters that differ from the nominal twin's "
+                      "(continuum*/summary.json): " + "; ".join(
+                          f"{k}: {a} → {b}" for k, a, b in differences) +
+                      ". The fraction explained is the part of each gap that this change "
+                      "removes; a negative fraction means it made the gap larger.")
+
+
+def figures_section(doc, run, out_dir):
+    """The figures there is data for, each with its caption."""
+    bins, profiles, series, twins = run.bins, run.profiles, run.series, run.twins
     doc.heading("Figures")
     if bins and bins.rows and bins.has("T_particle", optional=False):
-        reference, cut_text = figure_fields(out_dir, bins, geometry, twins, metrics)
+        reference, cut_text = figure_fields(out_dir, bins, run.geometry, twins, run.metrics)
         where = f"; 3D: {cut_text}" if cut_text else ""
         difference = (f", and particle − {TWIN_LABEL[reference]} on a diverging scale (×: the "
                       "largest interior difference, metrics.json max_at)" if reference else "")
@@ -692,17 +800,18 @@ def report_run(run_dir, out_dir):
                    "Bin-averaged temperature: particle (T_kinetic)"
                    + "".join(", " + TWIN_LABEL[t] for t in twins) + " on one colour scale"
                    + difference + ". Arrows: bin velocities (one scale for all maps, key on the "
-                   f"particle map). Hatched: the wall layer ({fmt(excluded)} rc) left out of the "
-                   f"distances{where}. {UNITS_NOTE}.")
+                   f"particle map). Hatched: the wall layer ({fmt(run.excluded)} rc) left out of "
+                   f"the distances{where}. {UNITS_NOTE}.")
     if bins and bins.rows and any(bins.has(f"density_{t}") for t in twins):
-        reference, _ = figure_fields(out_dir, bins, geometry, twins, metrics, "density")
+        reference, _ = figure_fields(out_dir, bins, run.geometry, twins, run.metrics, "density")
         doc.figure("density.png",
                    "Bin-averaged number density: particle and the low-Mach twin's n(P, T) "
                    "(thermodynamic pressure P from the closed cavity's mass) on one colour scale"
                    + (f", and particle − {TWIN_LABEL[reference]}" if reference else "")
                    + f". Arrows and hatching as above. {UNITS_NOTE}.")
     if profiles and profiles.rows:
-        titles = figure_profiles(out_dir, profiles, geometry, metrics, twins, excluded)
+        titles = figure_profiles(out_dir, profiles, run.geometry, run.metrics, twins,
+                                 run.excluded)
         doc.figure("profiles.png",
                    "Mid-line profiles (" + "; ".join(titles) + "), compare/profiles.csv ("
                    + ("; ".join(profiles.comments) or "mid-line profiles") + "): particle "
@@ -710,9 +819,10 @@ def report_run(run_dir, out_dir):
                    "excluded wall layer; squares: the walls' temperatures; diamonds: the particle "
                    f"fluid's temperature extrapolated to the wall. {UNITS_NOTE}.")
     # Written by the particle stage for a scene with walls.
-    layers = read_table(os.path.join(run_dir, "particle", "wall_layers.csv"), optional=True)
+    layers = read_table(os.path.join(run.directory, "particle", "wall_layers.csv"),
+                        optional=True)
     if layers and layers.rows:
-        figure_wall_layers(out_dir, layers, particle_summary)
+        figure_wall_layers(out_dir, layers, run.particle_summary)
         doc.figure("wall_layers.png",
                    "The particle fluid in the layer at each wall (particle/wall_layers.csv, "
                    "slices parallel to the wall, block standard errors): number density, kinetic "
@@ -721,15 +831,14 @@ def report_run(run_dir, out_dir):
                    "density profile, where Compare/Effective walls puts the calibrated twin's "
                    f"wall). {UNITS_NOTE}.")
     if series and series.rows:
-        fields = figure_error_vs_time(out_dir, series, metrics, twins)
+        fields = figure_error_vs_time(out_dir, series, run.metrics, twins)
         doc.figure("error_vs_time.png",
                    "L2 distance of the cumulative particle average to each twin against the "
                    "particle run's wall-clock time (log-log), with standard errors; solid grey: "
                    "the noise (the L2 two identical twins would show through the particle's "
                    "statistical error); dotted: the floor, the final excess over noise "
                    "(metrics.json).")
-        floor_text(doc, series, metrics, twins, fields, particle, summaries)
-    write_documents(doc, out_dir)
+        floor_text(doc, series, run.metrics, twins, fields, run.particle, run.summaries)
 
 
 def continuum_accuracy(doc, summaries, twins):

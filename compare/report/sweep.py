@@ -235,59 +235,55 @@ def realisations_section(doc, done):
                       "between the realisations, independent of the runs' own error bars).")
 
 
-def report_sweep(sweep_dir, out_dir):
-    import matplotlib.pyplot as plt
+class Sweep:
+    """A sweep directory's table and grid, and what its figures put along x: Ra for a sweep over
+    target Rayleigh numbers (one series per value of the first varied key), else the first varied
+    key (one series per value of the second), else the point."""
 
-    table = Table(os.path.join(sweep_dir, "sweep.csv"))
-    description = read_json(os.path.join(sweep_dir, "sweep.json")) or {}
-    grid = lookup(description, "grid") or {}
-    keys = varied_keys(table, SWEEP_OWN_COLUMNS) or list((lookup(grid, "vary") or {}).keys())
-    done = [r for r in table.rows if cell(r, "status") == "done"]
-    not_done = [r for r in table.rows if cell(r, "status") != "done"]
-    by_rayleigh = table.has("target_rayleigh", optional=False) and any(
-        finite(to_float(cell(r, "target_rayleigh"))) for r in table.rows)
-    if by_rayleigh:
-        # The continuum's Ra where it ran, else the target.
-        x_column = "rayleigh_axis"
-        for r in table.rows:
-            measured = to_float(metric(r, "rayleigh"))
-            r[x_column] = metric(r, "rayleigh") if finite(measured) else cell(r, "target_rayleigh")
-        x_label, x_name, series_key = "Rayleigh number Ra (nominal twin)", "rayleigh", (
-            keys[0] if keys else None)
-    elif keys:
-        x_column, x_label, x_name = keys[0], with_unit(keys[0]), slug(keys[0])
-        series_key = keys[1] if len(keys) > 1 else None
-    else:
-        x_column, x_label, x_name, series_key = "point", "point", "point", None
-    x_axis = Axis(x_column, [cell(r, x_column) for r in done] or [""])
-    if by_rayleigh:
-        x_axis.log = True
-    groups = sweep_groups(done, series_key,
-                          [str(v) for v in (lookup(grid, "vary", series_key) or [])]
-                          if series_key else [])
+    def __init__(self, sweep_dir):
+        self.table = table = Table(os.path.join(sweep_dir, "sweep.csv"))
+        description = read_json(os.path.join(sweep_dir, "sweep.json")) or {}
+        self.grid = lookup(description, "grid") or {}
+        self.keys = varied_keys(table, SWEEP_OWN_COLUMNS) or list(
+            (lookup(self.grid, "vary") or {}).keys())
+        self.done = [r for r in table.rows if cell(r, "status") == "done"]
+        self.not_done = [r for r in table.rows if cell(r, "status") != "done"]
+        self.by_rayleigh = table.has("target_rayleigh", optional=False) and any(
+            finite(to_float(cell(r, "target_rayleigh"))) for r in table.rows)
+        self.x_column, self.x_label, self.x_name, series_key = self._choose_x()
+        self.x_axis = Axis(self.x_column, [cell(r, self.x_column) for r in self.done] or [""])
+        if self.by_rayleigh:
+            self.x_axis.log = True
+        self.groups = sweep_groups(self.done, series_key,
+                                   [str(v) for v in (lookup(self.grid, "vary", series_key) or [])]
+                                   if series_key else [])
 
-    case_name = study_case_name(grid, sweep_dir)
-    doc = Document(f"Sweep: {case_name}")
-    doc.paragraph(f"Sweep directory: {os.path.abspath(sweep_dir)}. Case file: "
-                  f"{lookup(grid, 'case_file') or '–'}. {UNITS_NOTE}.")
-    grid_items = [f"{k}: {', '.join(map(str, v))}" for k, v in (lookup(grid, "vary") or {}).items()]
-    if not grid_items:  # sweep.json without the grid: the values in the table
-        grid_items = [f"{k}: " + ", ".join(dict.fromkeys(cell(r, k) for r in table.rows))
-                      for k in keys]
-    targets = lookup(grid, "rayleigh")
-    if targets:
-        grid_items.append("target Rayleigh numbers (gravity scaled): " +
-                          ", ".join(fmt(to_float(t)) for t in targets))
-    doc.heading("Grid")
-    doc.bullets(grid_items or ["(sweep.json states no grid)"])
-    doc.paragraph(f"{len(table.rows)} points: {len(done)} done, {len(not_done)} not done.")
+    def _choose_x(self):
+        """(x column, x label, x name in file names, series key); a Ra sweep gets the column
+        rayleigh_axis in every row."""
+        keys = self.keys
+        if self.by_rayleigh:
+            # The continuum's Ra where it ran, else the target.
+            x_column = "rayleigh_axis"
+            for r in self.table.rows:
+                measured = to_float(metric(r, "rayleigh"))
+                r[x_column] = metric(r, "rayleigh") if finite(measured) else cell(
+                    r, "target_rayleigh")
+            return x_column, "Rayleigh number Ra (nominal twin)", "rayleigh", (
+                keys[0] if keys else None)
+        if keys:
+            return keys[0], with_unit(keys[0]), slug(keys[0]), (keys[1] if len(keys) > 1 else None)
+        return "point", "point", "point", None
 
-    figures = []
+    def draw(self, ax, sources):
+        """draw_sources over the points done, against x."""
+        return draw_sources(ax, self.table, self.groups, self.x_axis, self.x_column, sources)
 
-    def finish(ax, handles, ylabel, title, legend=True):
-        handles = handles + mark_not_done(ax, x_axis, x_column, not_done)
-        x_axis.apply(ax, "x")
-        ax.set_xlabel(x_label)
+    def finish(self, ax, handles, ylabel, title, legend=True):
+        """The x axis, labels and legend of a figure against x, the points not done marked."""
+        handles = handles + mark_not_done(ax, self.x_axis, self.x_column, self.not_done)
+        self.x_axis.apply(ax, "x")
+        ax.set_xlabel(self.x_label)
         ax.set_ylabel(ylabel)
         ax.set_title(title, fontsize=10)
         ax.grid(alpha=0.3, which="both")
@@ -295,85 +291,158 @@ def report_sweep(sweep_dir, out_dir):
         if handles and legend:
             ax.legend(handles=handles, fontsize=8, loc="upper left", bbox_to_anchor=(1.02, 1))
 
+
+def report_sweep(sweep_dir, out_dir):
+    sweep = Sweep(sweep_dir)
+    case_name = study_case_name(sweep.grid, sweep_dir)
+    doc = Document(f"Sweep: {case_name}")
+    doc.paragraph(f"Sweep directory: {os.path.abspath(sweep_dir)}. Case file: "
+                  f"{lookup(sweep.grid, 'case_file') or '–'}. {UNITS_NOTE}.")
+    grid_section(doc, sweep)
+    figures = sweep_figures(out_dir, sweep, doc)
+    points_section(doc, sweep)
+    if sweep.keys == ["Particle/Seed"]:
+        realisations_section(doc, sweep.done)
+    not_done_section(doc, sweep.not_done)
+    if figures:
+        doc.heading("Figures")
+        for name, caption in figures:
+            doc.figure(name, caption + f" {UNITS_NOTE}.")
+    write_documents(doc, out_dir)
+
+
+def grid_section(doc, sweep):
+    """The values each key took (and the target Ra), and how many points finished."""
+    grid, table = sweep.grid, sweep.table
+    grid_items = [f"{k}: {', '.join(map(str, v))}" for k, v in (lookup(grid, "vary") or {}).items()]
+    if not grid_items:  # sweep.json without the grid: the values in the table
+        grid_items = [f"{k}: " + ", ".join(dict.fromkeys(cell(r, k) for r in table.rows))
+                      for k in sweep.keys]
+    targets = lookup(grid, "rayleigh")
+    if targets:
+        grid_items.append("target Rayleigh numbers (gravity scaled): " +
+                          ", ".join(fmt(to_float(t)) for t in targets))
+    doc.heading("Grid")
+    doc.bullets(grid_items or ["(sweep.json states no grid)"])
+    doc.paragraph(f"{len(table.rows)} points: {len(sweep.done)} done, "
+                  f"{len(sweep.not_done)} not done.")
+
+
+def sweep_figures(out_dir, sweep, doc):
+    """The figures there is data for: [(file, caption)] (the Pareto front's paragraph goes into
+    doc)."""
+    figures = []
     nusselt_columns = ("nusselt_particle", "nusselt_nominal", "nusselt_calibrated")
-    if done and any(table.has(c) for c in nusselt_columns):
-        # Nusselt numbers.
-        fig, ax = plt.subplots(figsize=(8.4, 4.8), layout="constrained")
-        handles = draw_sources(ax, table, groups, x_axis, x_column, [
-            ("particle ± stderr", "nusselt_particle", "nusselt_particle_stderr",
-             COLOUR["particle"]),
-            ("nominal twin", "nusselt_nominal", None, COLOUR["nominal"]),
-            ("calibrated twin", "nusselt_calibrated", None, COLOUR["calibrated"])])
-        no_slip = walls_no_slip(grid)
-        benchmark_note = None
-        # The benchmark only where the sweep has points: its range sets the axis.
-        sweep_ra = [x_axis.position(cell(r, x_column)) for r in table.rows]
-        benchmark = in_range(DE_VAHL_DAVIS_NUSSELT, sweep_ra)
-        if by_rayleigh and no_slip is not False and benchmark:
-            from matplotlib.lines import Line2D
-            ra, nu = zip(*benchmark)
-            label = "de Vahl Davis 1983, no-slip, Pr 0.71" + (
-                "" if no_slip else " (walls' slip not stated)")
-            ax.plot(ra, nu, "*", ms=10, color=COLOUR["benchmark"], zorder=4)
-            handles.append(Line2D([], [], marker="*", ls="", ms=10, color=COLOUR["benchmark"],
-                                  label=label))
-            benchmark_note = ("Stars: de Vahl Davis (1983), Int. J. Numer. Meth. Fluids 3, 249, "
-                              "Boussinesq cavity with no-slip walls at Pr = 0.71, its values "
-                              "within the sweep's Ra range"
-                              + ("" if no_slip else "; the sweep does not state its walls' slip")
-                              + ".")
-        elif by_rayleigh and no_slip is not False:
-            benchmark_note = ("de Vahl Davis's no-slip benchmark (Ra 1e3-1e6) has no value "
-                              "within the sweep's Ra range.")
-        elif by_rayleigh:
-            benchmark_note = ("de Vahl Davis's no-slip benchmark is not drawn: this case's walls "
-                              "are not all no-slip.")
-        finish(ax, handles, "Nusselt number Nu", f"Nusselt number against {x_label}")
-        name = save_figure(fig, out_dir, f"nusselt_vs_{x_name}.png")
-        figures.append((name, f"Nusselt numbers: the particle fluid's (with standard errors) and "
-                              f"each continuum twin's, against {x_label}. "
-                        + (benchmark_note or "")))
-
-    if done:
-        # Distances between the twins.
-        fields = [f for f in ("temperature", "velocity") if any(
-            table.has(f"{f}_l2_{t}") for t in TWINS)]
-        if fields:
-            fig, axes = plt.subplots(1, len(fields), figsize=(5.4 * len(fields) + 2.4, 4.6),
-                                     squeeze=False, layout="constrained")
-            for n, (ax, field) in enumerate(zip(axes[0], fields)):
-                handles = draw_sources(ax, table, groups, x_axis, x_column, [
-                    ("nominal twin ± stderr", f"{field}_l2_nominal", f"{field}_l2_nominal_stderr",
-                     COLOUR["nominal"]),
-                    ("calibrated twin ± stderr", f"{field}_l2_calibrated",
-                     f"{field}_l2_calibrated_stderr", COLOUR["calibrated"]),
-                    ("noise", f"{field}_l2_noise", None, COLOUR["noise"])])
-                ax.set_yscale("log")
-                finish(ax, handles, f"{field} L2 / {'dT' if field == 'temperature' else 'U'}",
-                       f"{field}: L2 distance particle–twin and the noise",
-                       legend=n == len(fields) - 1)  # one legend serves both panels
-            name = save_figure(fig, out_dir, f"errors_vs_{x_name}.png")
-            figures.append((name, "L2 distance of the particle fields to each twin (interior bins, "
-                                  "in units of the point's temperature / velocity scale) with "
-                                  "standard errors, and the noise: the L2 two identical twins "
-                                  "would show through the particle's statistical error."))
-
-        # Cost.
-        stages = [("particle stage", "wall_seconds_particle", None, COLOUR["particle"]),
-                  ("nominal twin", "wall_seconds_continuum", None, COLOUR["nominal"]),
-                  ("calibrated twin", "wall_seconds_continuum_calibrated", None,
-                   COLOUR["calibrated"]),
-                  ("whole point", "wall_seconds", None, "black")]
-        fig, ax = plt.subplots(figsize=(8.4, 4.8), layout="constrained")
-        handles = draw_sources(ax, table, groups, x_axis, x_column, stages)
-        ax.set_yscale("log")
-        finish(ax, handles, "wall-clock time [s]", f"cost per stage against {x_label}")
-        figures.append((save_figure(fig, out_dir, "cost.png"),
-                        "Wall-clock seconds per stage and per point (the point's child process)."))
-        pareto = None if by_rayleigh else figure_pareto(out_dir, done, keys, doc)
+    if sweep.done and any(sweep.table.has(c) for c in nusselt_columns):
+        figures.append(figure_nusselt(out_dir, sweep))
+    if sweep.done:
+        errors = figure_errors(out_dir, sweep)
+        if errors:
+            figures.append(errors)
+        figures.append(figure_cost(out_dir, sweep))
+        pareto = None if sweep.by_rayleigh else figure_pareto(out_dir, sweep.done, sweep.keys, doc)
         if pareto:
             figures.append(pareto)
+    return figures
 
+
+def figure_nusselt(out_dir, sweep):
+    """The Nusselt numbers against x (and de Vahl Davis's benchmark): (file, caption)."""
+    import matplotlib.pyplot as plt
+
+    fig, ax = plt.subplots(figsize=(8.4, 4.8), layout="constrained")
+    handles = sweep.draw(ax, [
+        ("particle ± stderr", "nusselt_particle", "nusselt_particle_stderr",
+         COLOUR["particle"]),
+        ("nominal twin", "nusselt_nominal", None, COLOUR["nominal"]),
+        ("calibrated twin", "nusselt_calibrated", None, COLOUR["calibrated"])])
+    benchmark_note = draw_benchmark(ax, handles, sweep)
+    sweep.finish(ax, handles, "Nusselt number Nu", f"Nusselt number against {sweep.x_label}")
+    name = save_figure(fig, out_dir, f"nusselt_vs_{sweep.x_name}.png")
+    return (name, f"Nusselt numbers: the particle fluid's (with standard errors) and "
+                  f"each continuum twin's, against {sweep.x_label}. " + (benchmark_note or ""))
+
+
+def draw_benchmark(ax, handles, sweep):
+    """de Vahl Davis's Nusselt numbers on a Ra sweep with walls not known to slip (its legend
+    entry added to handles); the caption's sentence on the benchmark, None unless a Ra sweep."""
+    no_slip = walls_no_slip(sweep.grid)
+    benchmark_note = None
+    # The benchmark only where the sweep has points: its range sets the axis.
+    sweep_ra = [sweep.x_axis.position(cell(r, sweep.x_column)) for r in sweep.table.rows]
+    benchmark = in_range(DE_VAHL_DAVIS_NUSSELT, sweep_ra)
+    if sweep.by_rayleigh and no_slip is not False and benchmark:
+        from matplotlib.lines import Line2D
+        ra, nu = zip(*benchmark)
+        label = "de Vahl Davis 1983, no-slip, Pr 0.71" + (
+            "" if no_slip else " (walls' slip not stated)")
+        ax.plot(ra, nu, "*", ms=10, color=COLOUR["benchmark"], zorder=4)
+        handles.append(Line2D([], [], marker="*", ls="", ms=10, color=COLOUR["benchmark"],
+                              label=label))
+        benchmark_note = ("Stars: de Vahl Davis (1983), Int. J. Numer. Meth. Fluids 3, 249, "
+                          "Boussinesq cavity with no-slip walls at Pr = 0.71, its values "
+                          "within the sweep's Ra range"
+                          + ("" if no_slip else "; the sweep does not state its walls' slip")
+                          + ".")
+    elif sweep.by_rayleigh and no_slip is not False:
+        benchmark_note = ("de Vahl Davis's no-slip benchmark (Ra 1e3-1e6) has no value "
+                          "within the sweep's Ra range.")
+    elif sweep.by_rayleigh:
+        benchmark_note = ("de Vahl Davis's no-slip benchmark is not drawn: this case's walls "
+                          "are not all no-slip.")
+    return benchmark_note
+
+
+def figure_errors(out_dir, sweep):
+    """The distances between the twins against x, a panel per field: (file, caption), None
+    without distance columns."""
+    import matplotlib.pyplot as plt
+
+    fields = [f for f in ("temperature", "velocity") if any(
+        sweep.table.has(f"{f}_l2_{t}") for t in TWINS)]
+    if not fields:
+        return None
+    fig, axes = plt.subplots(1, len(fields), figsize=(5.4 * len(fields) + 2.4, 4.6),
+                             squeeze=False, layout="constrained")
+    for n, (ax, field) in enumerate(zip(axes[0], fields)):
+        handles = sweep.draw(ax, [
+            ("nominal twin ± stderr", f"{field}_l2_nominal", f"{field}_l2_nominal_stderr",
+             COLOUR["nominal"]),
+            ("calibrated twin ± stderr", f"{field}_l2_calibrated",
+             f"{field}_l2_calibrated_stderr", COLOUR["calibrated"]),
+            ("noise", f"{field}_l2_noise", None, COLOUR["noise"])])
+        ax.set_yscale("log")
+        sweep.finish(ax, handles, f"{field} L2 / {'dT' if field == 'temperature' else 'U'}",
+                     f"{field}: L2 distance particle–twin and the noise",
+                     legend=n == len(fields) - 1)  # one legend serves both panels
+    name = save_figure(fig, out_dir, f"errors_vs_{sweep.x_name}.png")
+    return (name, "L2 distance of the particle fields to each twin (interior bins, "
+                  "in units of the point's temperature / velocity scale) with "
+                  "standard errors, and the noise: the L2 two identical twins "
+                  "would show through the particle's statistical error.")
+
+
+def figure_cost(out_dir, sweep):
+    """Each stage's wall-clock time against x: (file, caption)."""
+    import matplotlib.pyplot as plt
+
+    stages = [("particle stage", "wall_seconds_particle", None, COLOUR["particle"]),
+              ("nominal twin", "wall_seconds_continuum", None, COLOUR["nominal"]),
+              ("calibrated twin", "wall_seconds_continuum_calibrated", None,
+               COLOUR["calibrated"]),
+              ("whole point", "wall_seconds", None, "black")]
+    fig, ax = plt.subplots(figsize=(8.4, 4.8), layout="constrained")
+    handles = sweep.draw(ax, stages)
+    ax.set_yscale("log")
+    sweep.finish(ax, handles, "wall-clock time [s]", f"cost per stage against {sweep.x_label}")
+    return (save_figure(fig, out_dir, "cost.png"),
+            "Wall-clock seconds per stage and per point (the point's child process).")
+
+
+def points_section(doc, sweep):
+    """Every point's keys, status and metrics (and, for a Ra sweep, how far its twin landed from
+    its target Ra)."""
+    keys, by_rayleigh, table = sweep.keys, sweep.by_rayleigh, sweep.table
     doc.heading("Points")
     columns = [("point", "point"), ("status", "status")] + [(k, k) for k in keys]
     if by_rayleigh:
@@ -404,8 +473,10 @@ def report_sweep(sweep_dir, out_dir):
     doc.table([c[0] for c in columns] + ["Nu particle", "Nu nominal", "Nu calibrated",
                                           "T L2 nominal", "T L2 calibrated", "T noise",
                                           "wall s"], rows)
-    if keys == ["Particle/Seed"]:
-        realisations_section(doc, done)
+
+
+def not_done_section(doc, not_done):
+    """The points that did not finish, and why."""
     doc.heading("Points not done")
     if not_done:
         doc.table(["point", "status", "exit code", "reason"],
@@ -413,11 +484,6 @@ def report_sweep(sweep_dir, out_dir):
                     plain(cell(r, "reason"))] for r in not_done])
     else:
         doc.paragraph("None: every point finished.")
-    if figures:
-        doc.heading("Figures")
-        for name, caption in figures:
-            doc.figure(name, caption + f" {UNITS_NOTE}.")
-    write_documents(doc, out_dir)
 
 
 # ---------------------------------------------------------------------------------------------

@@ -98,7 +98,13 @@ int stability(const CommandLine& cl) {
   return study::stability(grid_options(cl), case_reader(cl.target));
 }
 int bench(const CommandLine& cl) {
-  return study::bench(cl.run, cl.settings);
+  particle::ParticleParameters cavity;
+  for (const auto& setting : cl.settings)
+    if (setting.rfind("Bench/Cavity", 0) == 0) {
+      CaseFile file;
+      cavity = file.load(study::shipped_case("heated_cavity_2d"), {}).parameters.particle;
+    }
+  return study::bench(cl.run, cl.settings, cavity);
 }
 
 } // namespace

@@ -131,21 +131,8 @@ void default_openmp_wait(char** argv) {
   execv("/proc/self/exe", argv); // returns only on failure: go on with the runtime's default
 }
 
-} // namespace
-
-int main(int argc, char** argv) {
-  default_openmp_wait(argv);
-  study::save_environment_before_mpi(); // what sweep --launcher hands an MPI launcher
-  // One process; deal.II's solvers and HDF5 expect MPI initialised.
-  dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
-  // Under mpirun rank 0 prints; the other ranks' console lines would repeat its own (their
-  // errors still reach stderr).
-  if (!study::on_rank_zero() && !std::freopen("/dev/null", "w", stdout))
-    std::cout.setstate(std::ios::badbit);
-  // Line by line into a log file too (`twinflow run ... > log`), so that the log shows a long
-  // run's stages as they happen rather than at exit.
-  std::setvbuf(stdout, nullptr, _IOLBF, BUFSIZ);
-
+// Every option the command line takes (the help shows them).
+po::options_description visible_options() {
   po::options_description opts("options");
   opts.add_options()("help,h", "this help")("out,o", po::value<std::string>(),
                                             "run directory (default: twinflow-runs/<case name>)")(
@@ -170,78 +157,111 @@ int main(int argc, char** argv) {
                      "command: 'mpirun -np 2 {cmd}', 'srun -n 4 {cmd}'")(
       "plan", "sweep, stability: write each point's command as DIR/points/NNN/command.sh (for a "
               "job array) and run nothing");
+  return opts;
+}
+
+// The options every command shares: --out, --set, --seed, --threads, --force, --restart,
+// --wall-time.
+void read_run_options(const po::variables_map& vm, int argc, char** argv, app::CommandLine& cl) {
+  if (vm.count("out")) cl.run.out = vm["out"].as<std::string>();
+  if (vm.count("set")) cl.settings = vm["set"].as<std::vector<std::string>>();
+  if (vm.count("seed"))
+    cl.settings.push_back("Particle/Seed=" + std::to_string(vm["seed"].as<long>()));
+  if (vm.count("threads")) {
+    cl.run.threads = vm["threads"].as<int>();
+    if (cl.run.threads < 1)
+      throw io::InputError("--threads " + std::to_string(cl.run.threads) + ": allowed: >= 1");
+    omp_set_num_threads(cl.run.threads);
+  }
+  cl.run.force = vm.count("force") > 0;
+  cl.run.continue_command = continue_command(argc, argv);
+  cl.run.restart = vm.count("restart") > 0;
+  if (vm.count("wall-time"))
+    cl.run.wall_time_limit = parse_duration(vm["wall-time"].as<std::string>());
+}
+
+// The grid's options (sweep, stability), refused for the other commands.
+void read_grid_options(const po::variables_map& vm, app::CommandLine& cl) {
+  const bool grid_command = cl.command == "sweep" || cl.command == "stability";
+  for (const char* option : {"vary", "rayleigh", "jobs", "launcher", "plan"})
+    if (vm.count(option) && !grid_command)
+      throw io::InputError(std::string("--") + option + " belongs to sweep and stability, not '" +
+                           cl.command + "'");
+  if (vm.count("rayleigh") && cl.command != "sweep")
+    throw io::InputError("--rayleigh belongs to sweep, not '" + cl.command + "'");
+  if (vm.count("wall-time") && grid_command)
+    throw io::InputError("--wall-time is not available for " + cl.command +
+                         " (stop it with Ctrl-C; running the same command again continues it)");
+  if (vm.count("vary")) cl.vary = vm["vary"].as<std::vector<std::string>>();
+  if (vm.count("rayleigh")) cl.rayleigh = parse_rayleigh_list(vm["rayleigh"].as<std::string>());
+  if (vm.count("launcher")) {
+    cl.launcher = vm["launcher"].as<std::string>();
+    study::check_launcher(cl.launcher);
+  }
+  cl.plan = vm.count("plan") > 0;
+  if (vm.count("jobs")) {
+    cl.jobs = vm["jobs"].as<int>();
+    if (cl.jobs < 1) throw io::InputError("--jobs " + std::to_string(cl.jobs) + ": allowed: >= 1");
+  }
+}
+
+// Parses the command line and runs its command; --help and --version answer here.
+int run_command_line(int argc, char** argv) {
+  const po::options_description opts = visible_options();
   po::options_description hidden;
   hidden.add_options()("command", po::value<std::string>())("target", po::value<std::string>());
   po::positional_options_description positional;
   positional.add("command", 1).add("target", 1);
   po::options_description all;
   all.add(opts).add(hidden);
-
+  po::variables_map vm;
+  po::store(po::command_line_parser(argc, argv).options(all).positional(positional).run(), vm);
+  po::notify(vm);
+  if (vm.count("version")) {
+    version(std::cout);
+    return 0;
+  }
+  const app::Command* command =
+      vm.count("command") ? find_command(vm["command"].as<std::string>()) : nullptr;
+  if (vm.count("help") && command) {
+    std::cout << command->details;
+    return 0;
+  }
+  if (vm.count("help") || !vm.count("command")) {
+    usage(vm.count("help") ? std::cout : std::cerr, opts);
+    return vm.count("help") ? 0 : 2;
+  }
   app::CommandLine cl;
+  cl.command = vm["command"].as<std::string>();
+  if (!command)
+    throw io::InputError("unknown command '" + cl.command + "' (twinflow --help lists them)");
+  if (vm.count("target")) cl.target = vm["target"].as<std::string>();
+  if (*command->arguments && cl.target.empty())
+    throw io::InputError("'" + cl.command + "' needs a CASE file (or RUNDIR)");
+  read_run_options(vm, argc, argv, cl);
+  read_grid_options(vm, cl);
+  if (study::rank_count() > 1 && study::on_rank_zero()) // how this run is spread, first
+    std::cout << "twinflow: " << study::ranks_and_threads() << std::endl;
+  return command->run(cl);
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+  default_openmp_wait(argv);
+  study::save_environment_before_mpi(); // what sweep --launcher hands an MPI launcher
+  // One process; deal.II's solvers and HDF5 expect MPI initialised.
+  dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  // Under mpirun rank 0 prints; the other ranks' console lines would repeat its own (their
+  // errors still reach stderr).
+  if (!study::on_rank_zero() && !std::freopen("/dev/null", "w", stdout))
+    std::cout.setstate(std::ios::badbit);
+  // Line by line into a log file too (`twinflow run ... > log`), so that the log shows a long
+  // run's stages as they happen rather than at exit.
+  std::setvbuf(stdout, nullptr, _IOLBF, BUFSIZ);
+  // The exit codes: docs/usage.md, "Exit codes".
   try {
-    po::variables_map vm;
-    po::store(po::command_line_parser(argc, argv).options(all).positional(positional).run(), vm);
-    po::notify(vm);
-    if (vm.count("version")) {
-      version(std::cout);
-      return 0;
-    }
-    const app::Command* command =
-        vm.count("command") ? find_command(vm["command"].as<std::string>()) : nullptr;
-    if (vm.count("help") && command) {
-      std::cout << command->details;
-      return 0;
-    }
-    if (vm.count("help") || !vm.count("command")) {
-      usage(vm.count("help") ? std::cout : std::cerr, opts);
-      return vm.count("help") ? 0 : 2;
-    }
-    cl.command = vm["command"].as<std::string>();
-    if (!command)
-      throw io::InputError("unknown command '" + cl.command + "' (twinflow --help lists them)");
-    if (vm.count("target")) cl.target = vm["target"].as<std::string>();
-    if (*command->arguments && cl.target.empty())
-      throw io::InputError("'" + cl.command + "' needs a CASE file (or RUNDIR)");
-    if (vm.count("out")) cl.run.out = vm["out"].as<std::string>();
-    if (vm.count("set")) cl.settings = vm["set"].as<std::vector<std::string>>();
-    if (vm.count("seed"))
-      cl.settings.push_back("Particle/Seed=" + std::to_string(vm["seed"].as<long>()));
-    if (vm.count("threads")) {
-      cl.run.threads = vm["threads"].as<int>();
-      if (cl.run.threads < 1)
-        throw io::InputError("--threads " + std::to_string(cl.run.threads) + ": allowed: >= 1");
-      omp_set_num_threads(cl.run.threads);
-    }
-    cl.run.force = vm.count("force") > 0;
-    cl.run.continue_command = continue_command(argc, argv);
-    cl.run.restart = vm.count("restart") > 0;
-    if (vm.count("wall-time"))
-      cl.run.wall_time_limit = parse_duration(vm["wall-time"].as<std::string>());
-    const bool grid_command = cl.command == "sweep" || cl.command == "stability";
-    for (const char* option : {"vary", "rayleigh", "jobs", "launcher", "plan"})
-      if (vm.count(option) && !grid_command)
-        throw io::InputError(std::string("--") + option + " belongs to sweep and stability, not '" +
-                             cl.command + "'");
-    if (vm.count("rayleigh") && cl.command != "sweep")
-      throw io::InputError("--rayleigh belongs to sweep, not '" + cl.command + "'");
-    if (vm.count("wall-time") && grid_command)
-      throw io::InputError("--wall-time is not available for " + cl.command +
-                           " (stop it with Ctrl-C; running the same command again continues it)");
-    if (vm.count("vary")) cl.vary = vm["vary"].as<std::vector<std::string>>();
-    if (vm.count("rayleigh")) cl.rayleigh = parse_rayleigh_list(vm["rayleigh"].as<std::string>());
-    if (vm.count("launcher")) {
-      cl.launcher = vm["launcher"].as<std::string>();
-      study::check_launcher(cl.launcher);
-    }
-    cl.plan = vm.count("plan") > 0;
-    if (vm.count("jobs")) {
-      cl.jobs = vm["jobs"].as<int>();
-      if (cl.jobs < 1)
-        throw io::InputError("--jobs " + std::to_string(cl.jobs) + ": allowed: >= 1");
-    }
-    if (study::rank_count() > 1 && study::on_rank_zero()) // how this run is spread, first
-      std::cout << "twinflow: " << study::ranks_and_threads() << std::endl;
-    return command->run(cl);
+    return run_command_line(argc, argv);
   } catch (const po::error& e) {
     std::cerr << "twinflow: error: " << e.what() << " (twinflow --help)\n";
     return 2;

@@ -131,9 +131,8 @@ io::Json to_json(const ContinuumParameters& p) {
   return j;
 }
 
-io::Json to_json(const ContinuumResult& r) {
-  io::Json j = io::Json::object();
-  const auto& n = r.numbers;
+namespace {
+io::Json numbers_json(const DimensionlessNumbers& n) {
   io::Json numbers = io::Json::object();
   numbers["kinematic_viscosity_nu"] = n.kinematic_viscosity;
   numbers["thermal_diffusivity_chi"] = n.thermal_diffusivity;
@@ -145,103 +144,112 @@ io::Json to_json(const ContinuumResult& r) {
   numbers["velocity_scale_chi_over_H"] = n.velocity_scale;
   numbers["conduction_flux"] = n.conduction_flux;
   numbers["epsilon"] = n.epsilon;
-  j["dimensionless"] = numbers;
+  return numbers;
+}
 
-  io::Json mesh = io::Json::object();
-  mesh["cells"] = cells_json(r.cells, r.dim);
-  mesh["dofs"] = r.dofs;
-  j["mesh"] = mesh;
-
-  io::Json results = io::Json::object();
-  if (r.model == "boussinesq" || r.model == "low-mach" || r.model == "compressible") {
-    results["nusselt_volume_average"] = r.nusselt;
-    if (r.model == "compressible") {
-      results["relative_mass_error"] = r.mass_error;
-      results["mean_pressure_over_p0"] = r.pressure_ratio; // p0 = n0 k T_ref
-      results["number_density_min"] = r.density_min;
-      results["number_density_max"] = r.density_max;
-    }
-    if (r.model == "low-mach") {
-      results["thermodynamic_pressure"] = r.thermodynamic_pressure;
-      results["pressure_ratio_P_over_p0"] = r.pressure_ratio;
-      results["relative_mass_error"] = r.mass_error;
-      results["number_density_min"] = r.density_min;
-      results["number_density_max"] = r.density_max;
-      results["wall_nusselt_consistent_flux"] = r.consistent_wall_nusselt;
-      if (r.time_steps > 0) {
-        results["time"] = r.time;
-        results["time_steps"] = r.time_steps;
-      }
-    }
-    io::Json walls = io::Json::array();
-    for (const auto& w : r.walls) {
-      io::Json o = io::Json::object();
-      o["wall"] = std::string(1, "xyz"[w.direction]) + (w.side ? " upper" : " lower");
-      o["nusselt_average"] = w.average;
-      walls.push_back(o);
-    }
-    results["wall_nusselt"] = walls;
-    if (r.has_midline_maxima) {
-      io::Json u = io::Json::object();
-      u["value_chi_over_H"] = r.u_max_vertical_midline.value;
-      u["y_over_Ly"] = r.u_max_vertical_midline.position;
-      results["u_max_on_x_mid"] = u;
-      io::Json v = io::Json::object();
-      v["value_chi_over_H"] = r.v_max_horizontal_midline.value;
-      v["x_over_Lx"] = r.v_max_horizontal_midline.position;
-      results["v_max_on_y_mid"] = v;
-    }
-    if (r.stream_function_max > 0) {
-      results["stream_function_max_over_chi"] = r.stream_function_max;
-      results["vortex_centre_fraction_of_box"] =
-          std::vector<double>{r.vortex_centre[0], r.vortex_centre[1]};
-    }
-    results["max_speed_chi_over_H"] = r.max_speed;
-    results["kinetic_energy"] = r.kinetic_energy;
-    results["newton_iterations"] = r.newton_iterations;
-    if (!r.time_series.empty()) {
+// What the low-Mach and compressible models add: the mass and the pressure.
+void variable_density_results(const ContinuumResult& r, io::Json& results) {
+  if (r.model == "compressible") {
+    results["relative_mass_error"] = r.mass_error;
+    results["mean_pressure_over_p0"] = r.pressure_ratio; // p0 = n0 k T_ref
+    results["number_density_min"] = r.density_min;
+    results["number_density_max"] = r.density_max;
+  }
+  if (r.model == "low-mach") {
+    results["thermodynamic_pressure"] = r.thermodynamic_pressure;
+    results["pressure_ratio_P_over_p0"] = r.pressure_ratio;
+    results["relative_mass_error"] = r.mass_error;
+    results["number_density_min"] = r.density_min;
+    results["number_density_max"] = r.density_max;
+    results["wall_nusselt_consistent_flux"] = r.consistent_wall_nusselt;
+    if (r.time_steps > 0) {
       results["time"] = r.time;
       results["time_steps"] = r.time_steps;
-      results["time_step"] = r.time_step;
-      io::Json series = io::Json::object();
-      std::vector<double> t, nu, ke, speed;
-      for (const auto& s : r.time_series) {
-        t.push_back(s.time);
-        nu.push_back(s.nusselt);
-        ke.push_back(s.kinetic_energy);
-        speed.push_back(s.max_speed);
-      }
-      series["time"] = t;
-      series["nusselt"] = nu;
-      series["kinetic_energy"] = ke;
-      series["max_speed_chi_over_H"] = speed;
-      results["time_series"] = series;
     }
-    results["continuation_rayleigh"] = r.continuation_rayleigh;
-    io::Json study = io::Json::array();
-    for (const auto& m : r.mesh_study) {
-      io::Json o = io::Json::object();
-      o["level"] = m.level;
-      o["cells"] = cells_json(m.cells, r.dim);
-      o["dofs"] = m.dofs;
-      o["nusselt"] = m.nusselt;
-      o["change_in_nusselt"] = m.change_in_nusselt;
-      if (m.pressure_ratio > 0) o["pressure_ratio"] = m.pressure_ratio;
-      o["newton_iterations"] = m.newton_iterations;
-      o["wall_time_s"] = m.wall_time;
-      study.push_back(o);
-    }
-    results["mesh_study"] = study;
-  } else {
+  }
+}
+
+// The roll: wall Nu, mid-line maxima (de Vahl Davis's numbers), the stream function's maximum.
+void roll_results(const ContinuumResult& r, io::Json& results) {
+  io::Json walls = io::Json::array();
+  for (const auto& w : r.walls) {
+    io::Json o = io::Json::object();
+    o["wall"] = std::string(1, "xyz"[w.direction]) + (w.side ? " upper" : " lower");
+    o["nusselt_average"] = w.average;
+    walls.push_back(o);
+  }
+  results["wall_nusselt"] = walls;
+  if (r.has_midline_maxima) {
+    io::Json u = io::Json::object();
+    u["value_chi_over_H"] = r.u_max_vertical_midline.value;
+    u["y_over_Ly"] = r.u_max_vertical_midline.position;
+    results["u_max_on_x_mid"] = u;
+    io::Json v = io::Json::object();
+    v["value_chi_over_H"] = r.v_max_horizontal_midline.value;
+    v["x_over_Lx"] = r.v_max_horizontal_midline.position;
+    results["v_max_on_y_mid"] = v;
+  }
+  if (r.stream_function_max > 0) {
+    results["stream_function_max_over_chi"] = r.stream_function_max;
+    results["vortex_centre_fraction_of_box"] =
+        std::vector<double>{r.vortex_centre[0], r.vortex_centre[1]};
+  }
+  results["max_speed_chi_over_H"] = r.max_speed;
+  results["kinetic_energy"] = r.kinetic_energy;
+  results["newton_iterations"] = r.newton_iterations;
+}
+
+io::Json time_series_json(const ContinuumResult& r) {
+  io::Json series = io::Json::object();
+  std::vector<double> t, nu, ke, speed;
+  for (const auto& s : r.time_series) {
+    t.push_back(s.time);
+    nu.push_back(s.nusselt);
+    ke.push_back(s.kinetic_energy);
+    speed.push_back(s.max_speed);
+  }
+  series["time"] = t;
+  series["nusselt"] = nu;
+  series["kinetic_energy"] = ke;
+  series["max_speed_chi_over_H"] = speed;
+  return series;
+}
+
+io::Json mesh_study_json(const ContinuumResult& r) {
+  io::Json study = io::Json::array();
+  for (const auto& m : r.mesh_study) {
+    io::Json o = io::Json::object();
+    o["level"] = m.level;
+    o["cells"] = cells_json(m.cells, r.dim);
+    o["dofs"] = m.dofs;
+    o["nusselt"] = m.nusselt;
+    o["change_in_nusselt"] = m.change_in_nusselt;
+    if (m.pressure_ratio > 0) o["pressure_ratio"] = m.pressure_ratio;
+    o["newton_iterations"] = m.newton_iterations;
+    o["wall_time_s"] = m.wall_time;
+    study.push_back(o);
+  }
+  return study;
+}
+
+// A flow model's results (Boussinesq, low-Mach, compressible).
+io::Json flow_results(const ContinuumResult& r) {
+  io::Json results = io::Json::object();
+  results["nusselt_volume_average"] = r.nusselt;
+  variable_density_results(r, results);
+  roll_results(r, results);
+  if (!r.time_series.empty()) {
     results["time"] = r.time;
     results["time_steps"] = r.time_steps;
-    results["newton_iterations"] = r.newton_iterations;
-    results["heat_into_lower_wall_face"] = r.heat_flux_lower;
-    results["heat_into_upper_wall_face"] = r.heat_flux_upper;
+    results["time_step"] = r.time_step;
+    results["time_series"] = time_series_json(r);
   }
-  results["temperature_min"] = r.temperature_min;
-  results["temperature_max"] = r.temperature_max;
-  results["temperature_mean"] = r.temperature_mean;
+  results["continuation_rayleigh"] = r.continuation_rayleigh;
+  results["mesh_study"] = mesh_study_json(r);
+  return results;
+}
+
+io::Json probes_json(const ContinuumResult& r) {
   io::Json probes = io::Json::array();
   for (std::size_t i = 0; i < r.probe_points.size(); ++i) {
     io::Json o = io::Json::object();
@@ -253,9 +261,32 @@ io::Json to_json(const ContinuumResult& r) {
     o["values"] = values;
     probes.push_back(o);
   }
-  results["probes"] = probes;
-  j["results"] = results;
+  return probes;
+}
+} // namespace
 
+io::Json to_json(const ContinuumResult& r) {
+  io::Json j = io::Json::object();
+  j["dimensionless"] = numbers_json(r.numbers);
+  io::Json mesh = io::Json::object();
+  mesh["cells"] = cells_json(r.cells, r.dim);
+  mesh["dofs"] = r.dofs;
+  j["mesh"] = mesh;
+  io::Json results = io::Json::object();
+  if (r.model == "boussinesq" || r.model == "low-mach" || r.model == "compressible") {
+    results = flow_results(r);
+  } else {
+    results["time"] = r.time;
+    results["time_steps"] = r.time_steps;
+    results["newton_iterations"] = r.newton_iterations;
+    results["heat_into_lower_wall_face"] = r.heat_flux_lower;
+    results["heat_into_upper_wall_face"] = r.heat_flux_upper;
+  }
+  results["temperature_min"] = r.temperature_min;
+  results["temperature_max"] = r.temperature_max;
+  results["temperature_mean"] = r.temperature_mean;
+  results["probes"] = probes_json(r);
+  j["results"] = results;
   io::Json times = io::Json::object();
   times["setup"] = r.times.setup;
   times["assembly"] = r.times.assembly;

@@ -155,7 +155,8 @@ void gather_in_rank_order(const Slabs& s, const T* local, std::size_t count, std
 // one-process sum, bit for bit. Rank 0 holds the sums.
 class OrderedTally {
 public:
-  static constexpr int slots = 12;
+  // 0-5 energy into each wall, 6-11 momentum, 12-17 wall heat moves proposed, 18-23 accepted
+  static constexpr int slots = 24;
   void add(int slot, double value) {
     if (logging_)
       log_.push_back(static_cast<double>(pass_)), log_.push_back(slot), log_.push_back(value);

@@ -213,14 +213,15 @@ template <int D>
 WallLayerSampler<D>::WallLayerSampler(const std::array<double, 3>& box,
                                       const std::array<bool, 3>& walls, double range,
                                       int slices_per_range, int blocks, long total_samples,
-                                      double mass)
+                                      double mass, double heat_capacity)
     : box_(box), slice_(range / slices_per_range), slices_(2 * slices_per_range), blocks_(blocks),
-      total_(total_samples), mass_(mass) {
+      total_(total_samples), mass_(mass), cv_(heat_capacity) {
   for (int d = 0; d < D; ++d)
     if (walls[d]) walls_.push_back(2 * d), walls_.push_back(2 * d + 1);
   const std::size_t cells = static_cast<std::size_t>(blocks_) * walls_.size() * slices_;
   n_.assign(cells, 0.0);
   v2_.assign(cells, 0.0);
+  for (auto* a : {&inv_theta_, &u_, &u2_, &v4_}) a->assign(cells, 0.0);
   v_.assign(cells * D, 0.0);
   block_samples_.assign(blocks_, 0);
 }
@@ -239,8 +240,14 @@ template <int D> void WallLayerSampler<D>::sample(const State<D>& s) {
       if (slice < 0 || slice >= slices_) continue;
       n_[base + slice] += 1;
       for (int e = 0; e < D; ++e) {
-        v_[(base + slice) * D + e] += s.v[e][i];
-        v2_[base + slice] += s.v[e][i] * s.v[e][i];
+        const double v = s.v[e][i];
+        v_[(base + slice) * D + e] += v;
+        v2_[base + slice] += v * v;
+        v4_[base + slice] += v * v * v * v;
+      }
+      if (!s.u.empty()) {
+        const double u = s.u[i];
+        inv_theta_[base + slice] += cv_ / u, u_[base + slice] += u, u2_[base + slice] += u * u;
       }
     }
   }
@@ -262,13 +269,14 @@ WallLayerSampler<D>::result(const std::function<double(int, double, double)>& fr
     p.slice = slice_;
     for (int j = 0; j < slices_; ++j) p.h.push_back((j + 0.5) * slice_);
     // Per block: density and mean velocity per slice, the reference density, the Gibbs depth.
-    std::vector<std::vector<double>> n_blocks, v_blocks, t_blocks;
+    std::vector<std::vector<double>> n_blocks, v_blocks, t_blocks, ti_blocks, g_blocks, k_blocks;
     std::vector<double> ref_blocks, depth_blocks, zeta_blocks, zeta_h_blocks;
     for (int b = 0; b < blocks_; ++b) {
       if (block_samples_[b] == 0) continue;
       const std::size_t base = (static_cast<std::size_t>(b) * walls_.size() + k) * slices_;
       std::vector<double> n(slices_), v(static_cast<std::size_t>(slices_) * D, 0.0);
-      std::vector<double> t(slices_, 0.0);
+      std::vector<double> t(slices_, 0.0), ti(slices_, 0.0), gamma(slices_, 0.0),
+          kurt(slices_, 0.0);
       double ref = 0;
       for (int j = 0; j < slices_; ++j) {
         n[j] = n_[base + j] / (block_samples_[b] * area * slice_);
@@ -276,6 +284,15 @@ WallLayerSampler<D>::result(const std::function<double(int, double, double)>& fr
           v[j * D + e] = n_[base + j] > 0 ? v_[(base + j) * D + e] / n_[base + j] : 0.0;
         if (j >= slices_ / 2) ref += n[j] / (slices_ - slices_ / 2);
         t[j] = rest_frame_temperature<D>(mass_, n_[base + j], &v_[(base + j) * D], v2_[base + j]);
+        const double c = n_[base + j];
+        if (c < 2) continue;
+        ti[j] = inv_theta_[base + j] > 0 ? c / inv_theta_[base + j] : 0.0;
+        const double mean_u = u_[base + j] / c;
+        gamma[j] = mean_u > 0
+                       ? (u2_[base + j] / c - mean_u * mean_u) * (cv_ + 1) / (mean_u * mean_u)
+                       : 0.0;
+        const double v2 = v2_[base + j] / (c * D), v4 = v4_[base + j] / (c * D);
+        kurt[j] = v2 > 0 ? v4 / (v2 * v2) : 0.0;
       }
       double depth = 0, zeta = 0, zeta_h = 0;
       for (int j = 0; j < slices_ / 2; ++j) {
@@ -286,6 +303,8 @@ WallLayerSampler<D>::result(const std::function<double(int, double, double)>& fr
       }
       n_blocks.push_back(std::move(n)), v_blocks.push_back(std::move(v));
       t_blocks.push_back(std::move(t));
+      ti_blocks.push_back(std::move(ti)), g_blocks.push_back(std::move(gamma));
+      k_blocks.push_back(std::move(kurt));
       ref_blocks.push_back(ref), depth_blocks.push_back(depth);
       zeta_blocks.push_back(zeta), zeta_h_blocks.push_back(zeta > 0 ? zeta_h / zeta : 0.0);
     }
@@ -297,12 +316,19 @@ WallLayerSampler<D>::result(const std::function<double(int, double, double)>& fr
     };
     p.density.mean.resize(slices_), p.density.stderr_.resize(slices_);
     p.temperature.mean.resize(slices_), p.temperature.stderr_.resize(slices_);
+    for (auto* f : {&p.temperature_internal, &p.gamma_ratio, &p.kurtosis})
+      f->mean.resize(slices_), f->stderr_.resize(slices_);
     p.velocity.mean.resize(static_cast<std::size_t>(slices_) * D);
     p.velocity.stderr_.resize(static_cast<std::size_t>(slices_) * D);
     for (int j = 0; j < slices_; ++j) {
       mean_se([&](int b) { return n_blocks[b][j]; }, p.density.mean[j], p.density.stderr_[j]);
       mean_se([&](int b) { return t_blocks[b][j]; }, p.temperature.mean[j],
               p.temperature.stderr_[j]);
+      mean_se([&](int b) { return ti_blocks[b][j]; }, p.temperature_internal.mean[j],
+              p.temperature_internal.stderr_[j]);
+      mean_se([&](int b) { return g_blocks[b][j]; }, p.gamma_ratio.mean[j],
+              p.gamma_ratio.stderr_[j]);
+      mean_se([&](int b) { return k_blocks[b][j]; }, p.kurtosis.mean[j], p.kurtosis.stderr_[j]);
       for (int e = 0; e < D; ++e)
         mean_se([&](int b) { return v_blocks[b][j * D + e]; }, p.velocity.mean[j * D + e],
                 p.velocity.stderr_[j * D + e]);
@@ -322,12 +348,13 @@ template <int D>
 std::string WallLayerSampler<D>::csv(const std::vector<WallLayerProfile>& profiles, int dim) {
   std::ostringstream out;
   out << "# the layer at each wall in slices parallel to it: h = distance from the wall plane "
-         "(rc), number density, kinetic temperature and mean velocity components with block "
-         "standard errors\n"
+         "(rc), number density, kinetic temperature and mean velocity components, the internal "
+         "temperature 1/<1/theta>, Var(u) (c_v + 1) / <u>^2 (1: the Gamma law) and the velocity "
+         "components' kurtosis (3: Gaussian), with block standard errors\n"
          "wall,h,density,density_se,T_kinetic,T_kinetic_se";
   const char* axes = "xyz";
   for (int e = 0; e < dim; ++e) out << ",v" << axes[e] << ",v" << axes[e] << "_se";
-  out << "\n";
+  out << ",T_internal,T_internal_se,u_gamma_ratio,u_gamma_ratio_se,kurtosis,kurtosis_se\n";
   const char* names[6] = {"x_lower", "x_upper", "y_lower", "y_upper", "z_lower", "z_upper"};
   char buf[128];
   for (const auto& p : profiles)
@@ -339,6 +366,10 @@ std::string WallLayerSampler<D>::csv(const std::vector<WallLayerProfile>& profil
       for (int e = 0; e < dim; ++e) {
         std::snprintf(buf, sizeof buf, ",%.8g,%.8g", p.velocity.mean[j * dim + e],
                       p.velocity.stderr_[j * dim + e]);
+        out << buf;
+      }
+      for (const auto* f : {&p.temperature_internal, &p.gamma_ratio, &p.kurtosis}) {
+        std::snprintf(buf, sizeof buf, ",%.8g,%.8g", f->mean[j], f->stderr_[j]);
         out << buf;
       }
       out << "\n";

@@ -111,6 +111,11 @@ struct WallLayerProfile {
   std::vector<double> h;                        // slice centres, distance from the wall plane
   FieldEstimate density, temperature, velocity; // per slice (velocity: slice * D + d);
                                                 // temperature: kinetic, in the slice's frame
+  // The equilibrium laws inside the layer (an energy-conserving fluid): T_internal = 1 / <1 /
+  // theta>, the internal energies' Var(u) (c_v + 1) / <u>^2 (1 for the Gamma law u^{c_v}
+  // exp(-u/T), 000:(2.4)) and the velocity components' kurtosis <v^4> / <v^2>^2 (3 for a
+  // Gaussian), per slice.
+  FieldEstimate temperature_internal, gamma_ratio, kurtosis;
   // Gibbs (1878) dividing surface: integral over [0, range) of (1 - n(h) / reference) dh, the depth
   // of a step profile with the same particle count; per block, its mean and block error.
   double effective_position = 0, effective_position_stderr = 0;
@@ -123,7 +128,8 @@ template <int D> class WallLayerSampler {
 public:
   // Walls present per direction; `range` the wall force's (the slices span [0, 2 range)).
   WallLayerSampler(const std::array<double, 3>& box, const std::array<bool, 3>& walls, double range,
-                   int slices_per_range, int blocks, long total_samples, double mass);
+                   int slices_per_range, int blocks, long total_samples, double mass,
+                   double heat_capacity);
   void sample(const State<D>& s); // call exactly total_samples times
   // friction(wall, T, h): the friction coefficient gamma w_D(h) of a particle at temperature T
   // and distance h from that wall.
@@ -133,7 +139,8 @@ public:
 
   template <class A> void archive(A& a) {
     a("wall_layer_counts", n_), a("wall_layer_velocity", v_), a("wall_layer_v2", v2_);
-    a("wall_layer_taken", taken_);
+    a("wall_layer_taken", taken_), a("wall_layer_inverse_theta", inv_theta_);
+    a("wall_layer_u", u_), a("wall_layer_u2", u2_), a("wall_layer_v4", v4_);
     a("wall_layer_block_samples", block_samples_);
   }
 
@@ -143,8 +150,10 @@ private:
   double slice_;
   int slices_, blocks_;
   long total_, taken_ = 0;
-  double mass_;
+  double mass_, cv_;
   std::vector<double> n_, v_, v2_; // [block][wall][slice] (v_: times D)
+  std::vector<double> inv_theta_, u_, u2_,
+      v4_; // [block][wall][slice]: sums of 1/theta, u, u^2, v^4
   std::vector<long> block_samples_;
 };
 

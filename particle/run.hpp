@@ -42,6 +42,7 @@ struct RunControl {
   // minute into a log file (stderr redirected), so that a long run's log shows where it stands.
   enum class Progress { none, terminal, log };
   Progress progress = Progress::none;
+  std::string progress_label; // before "step ..." (a run inside another stage says which)
   static Progress progress_for_stderr(); // terminal or log, by isatty(stderr)
   // Polled after every step; true: write a checkpoint and return (RunOutput::interrupted).
   std::function<bool()> stop_requested;

@@ -90,6 +90,12 @@ public:
   // several ranks: on rank 0, as of the last gather).
   std::array<double, 6> wall_energy_in() const { return wall_sums(0); }
   long wall_crossings() const { return tally_.counted(); } // particles reflected into the box
+  // Per wall: the Metropolis moves of its heat exchange proposed (0-5) and accepted (6-11).
+  std::array<double, 12> wall_heat_moves() const {
+    std::array<double, 12> m;
+    for (int k = 0; k < 12; ++k) m[k] = tally_.sums()[12 + k];
+    return m;
+  }
   // Momentum along each wall's inward normal given to the fluid since the start (repulsion,
   // friction and noise, reflections): its rate per area is the pressure on the wall.
   std::array<double, 6> wall_momentum_in() const { return wall_sums(6); }
@@ -132,14 +138,16 @@ private:
   template <class A>
   void archive_arrays(A& a, State<D>& s, Carried<D>& c, typename CellGrid<D>::ListedPositions& l) {
     std::array<double, 6> energy_in = wall_energy_in(), momentum_in = wall_momentum_in();
+    std::array<double, 12> heat_moves = wall_heat_moves();
     long crossings = wall_crossings();
     a("x", s.x), a("v", s.v), a("u", s.u), a("id", s.id);
     a("force", c.f), a("heat_rate", c.q), a("potential", c.potential);
     a("step", step_), a("wall_energy_in", energy_in), a("wall_crossings", crossings);
-    a("wall_momentum_in", momentum_in), a("x_listed", l);
+    a("wall_momentum_in", momentum_in), a("wall_heat_moves", heat_moves), a("x_listed", l);
     if constexpr (A::loading) {
       for (int k = 0; k < 6; ++k)
         tally_.sums()[k] = energy_in[k], tally_.sums()[6 + k] = momentum_in[k];
+      for (int k = 0; k < 12; ++k) tally_.sums()[12 + k] = heat_moves[k];
       tally_.set_counted(slabs_.root() ? crossings : 0);
     }
   }

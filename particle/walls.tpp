@@ -182,6 +182,7 @@ double Simulation<M>::exchange_wall_heat(const PairNoise& noise, std::size_t i, 
     double rate0, amplitude0;
     wall_heat(c, u0 / cv, th_wall, rate0, amplitude0);
     const double u1 = u0 + rate0 * dt_ + amplitude0 * g * sqrt_dt_;
+    tally_.add(12 + index, 1); // a move proposed (the acceptance rate: walls' diagnostic)
     if (!(u1 > 0)) return 0;
     double rate1, amplitude1;
     wall_heat(c, u1 / cv, th_wall, rate1, amplitude1);
@@ -197,6 +198,7 @@ double Simulation<M>::exchange_wall_heat(const PairNoise& noise, std::size_t i, 
       if (!(0.5 * std::erfc(-g1 / std::sqrt(2.0)) < std::exp(log_ratio))) return 0;
     }
     state_.u[i] = u1;
+    tally_.add(18 + index, 1); // and accepted
     return u1 - u0;
   }
 }

@@ -12,6 +12,8 @@
 //   Bench/Steps=200           timed steps (default max(5, 3e6 / N))
 //   Bench/Thermo=1000         instead of timing: equilibrate 1000 steps, then sample as many,
 //                             printing energy drift, T_kinetic, T_internal and pressure
+//   Bench/Cavity=1600,6400    the default cavity (its fluid, walls and gravity) at these N in a
+//                             square box, beside the same fluid periodic: what the walls cost
 
 #include <omp.h>
 #include <sys/resource.h>
@@ -96,8 +98,9 @@ struct Options {
   std::vector<double> skins{ParticleParameters().neighbour_skin};
   std::vector<bool> uniform_noise{false};
   bool sizes_given = false;
-  long steps = 0;  // 0: max(5, 3e6 / N)
-  long thermo = 0; // > 0: thermodynamics instead of timing
+  long steps = 0;                 // 0: max(5, 3e6 / N)
+  long thermo = 0;                // > 0: thermodynamics instead of timing
+  std::vector<long> cavity_sizes; // Bench/Cavity: the default cavity walled and periodic
 };
 
 Options parse(const RunOptions& cl, const std::vector<std::string>& settings) {
@@ -168,12 +171,19 @@ Options parse(const RunOptions& cl, const std::vector<std::string>& settings) {
       } else if (key == "Bench/Steps") {
         o.steps = std::stol(value);
         if (o.steps < 1) throw bad("steps >= 1");
+      } else if (key == "Bench/Cavity") {
+        for (const auto& n : split(value)) {
+          o.cavity_sizes.push_back(std::stol(n));
+          if (o.cavity_sizes.back() < 64) throw bad("N >= 64");
+        }
+        if (!o.sizes_given) o.sizes.clear(); // the cavity alone unless sizes are given too
+        o.sizes_given = true;
       } else if (key == "Bench/Thermo") {
         o.thermo = std::stol(value);
         if (o.thermo < 10) throw bad("steps >= 10");
       } else {
         throw bad("Bench/N, Bench/N2D, Bench/Scenes, Bench/Integrators, Bench/Threads, Bench/Skin, "
-                  "Bench/Noise, Bench/Steps, Bench/Thermo");
+                  "Bench/Noise, Bench/Steps, Bench/Thermo, Bench/Cavity");
       }
     } catch (const std::logic_error&) { // stoi/stod
       throw bad("numbers");
@@ -181,9 +191,51 @@ Options parse(const RunOptions& cl, const std::vector<std::string>& settings) {
   }
   return o;
 }
+// The default cavity's fluid at N particles in a square box (its density): with its walls and
+// gravity, or periodic without them.
+ParticleParameters cavity_case(const ParticleParameters& cavity, long n, bool walls) {
+  ParticleParameters p = cavity;
+  const double l = std::sqrt(n / p.density);
+  p.box = {{l, l, l}};
+  if (!walls) {
+    for (auto& w : p.walls) w.present = false;
+    p.gravity = {{0, 0, 0}};
+  }
+  return p;
+}
+
+// One timed row: particle-steps/s of `p` over `steps` steps.
+std::string timed_row(const ParticleParameters& p, const std::string& scene, int threads,
+                      long steps_given, io::Json& row) {
+  const long steps = steps_given > 0 ? steps_given : std::max(5L, 3000000L / p.particle_count());
+  const BenchResult r = bench_particles(p, steps);
+  char line[512];
+  std::snprintf(line, sizeof line,
+                "| %d | %ld | %s | %s | %d | %g | %s | %.3g | %.1f | %ld | %d | %.0f |\n", p.dim,
+                r.particles, scene.c_str(), to_string(p.integrator), threads, p.neighbour_skin,
+                p.uniform_noise ? "uniform" : "gaussian", r.particle_steps_per_second,
+                r.steps_per_list, peak_rss_kb(), r.ranks, r.bytes_per_particle);
+  row["ranks"] = r.ranks;
+  row["bytes_per_particle"] = r.bytes_per_particle;
+  row["ghosts_per_owned"] = r.ghosts_per_owned;
+  row["steps_per_list"] = r.steps_per_list;
+  row["N"] = r.particles;
+  row["steps"] = steps;
+  row["seconds"] = r.seconds;
+  row["particle_steps_per_second"] = r.particle_steps_per_second;
+  row["peak_rss_kb"] = peak_rss_kb();
+  row["dim"] = p.dim;
+  row["scene"] = scene;
+  row["integrator"] = to_string(p.integrator);
+  row["threads"] = threads;
+  row["skin"] = p.neighbour_skin;
+  row["noise"] = p.uniform_noise ? "uniform" : "gaussian";
+  return line;
+}
 } // namespace
 
-int bench(const RunOptions& cl, const std::vector<std::string>& settings) {
+int bench(const RunOptions& cl, const std::vector<std::string>& settings,
+          const ParticleParameters& cavity) {
   const io::StageDirectory stage(
       cl.out.empty() ? std::filesystem::path("twinflow-runs/bench") : cl.out, "bench", cl.force);
   const Options o = parse(cl, settings);
@@ -229,36 +281,34 @@ int bench(const RunOptions& cl, const std::vector<std::string>& settings) {
                               num("T_kinetic_stderr"), num("T_internal"), num("T_internal_stderr"),
                               num("pressure"), num("pressure_stderr"));
                 row = s;
+                row["dim"] = size.dim;
+                row["scene"] = scene->name;
+                row["integrator"] = to_string(integrator);
+                row["threads"] = threads;
+                row["skin"] = skin;
+                row["noise"] = noise;
               } else {
-                const long steps =
-                    o.steps > 0 ? o.steps : std::max(5L, 3000000L / p.particle_count());
-                const BenchResult r = bench_particles(p, steps);
-                std::snprintf(line, sizeof line,
-                              "| %d | %ld | %s | %s | %d | %g | %s | %.3g | %.1f | %ld | %d | %.0f "
-                              "|\n",
-                              size.dim, r.particles, scene->name, to_string(integrator), threads,
-                              skin, noise, r.particle_steps_per_second, r.steps_per_list,
-                              peak_rss_kb(), r.ranks, r.bytes_per_particle);
-                row["ranks"] = r.ranks;
-                row["bytes_per_particle"] = r.bytes_per_particle;
-                row["ghosts_per_owned"] = r.ghosts_per_owned;
-                row["steps_per_list"] = r.steps_per_list;
-                row["N"] = r.particles;
-                row["steps"] = steps;
-                row["seconds"] = r.seconds;
-                row["particle_steps_per_second"] = r.particle_steps_per_second;
-                row["peak_rss_kb"] = peak_rss_kb();
+                std::snprintf(line, sizeof line, "%s",
+                              timed_row(p, scene->name, threads, o.steps, row).c_str());
               }
               if (root) std::cout << line << std::flush;
               table << line;
-              row["dim"] = size.dim;
-              row["scene"] = scene->name;
-              row["integrator"] = to_string(integrator);
-              row["threads"] = threads;
-              row["skin"] = skin;
-              row["noise"] = noise;
               rows.push_back(row);
             }
+  // The walls' cost: the cavity walled beside its fluid periodic, at each N and thread count,
+  // interleaved (walled, bulk, walled, bulk, ...).
+  for (const long n : o.cavity_sizes)
+    for (const int threads : o.threads)
+      for (const bool walls : {true, false}) {
+        omp_set_num_threads(threads);
+        io::Json row = io::Json::object();
+        const std::string line =
+            timed_row(cavity_case(cavity, n, walls), walls ? "cavity walled" : "cavity bulk",
+                      threads, o.steps, row);
+        if (root) std::cout << line << std::flush;
+        table << line;
+        rows.push_back(row);
+      }
   if (!root) return 0;
   stage.create();
   io::Json summary = io::Json::object();

@@ -10,6 +10,10 @@
 
 namespace twinflow::study {
 
-int bench(const RunOptions& options, const std::vector<std::string>& settings);
+// `cavity`: the default cavity's particle parameters (cases/heated_cavity_2d.prm, loaded at the
+// edge), for Bench/Cavity=N1,...: its walled scene beside the same fluid periodic, at N
+// particles in a square box, so that what the walls cost is measured in one run.
+int bench(const RunOptions& options, const std::vector<std::string>& settings,
+          const particle::ParticleParameters& cavity);
 
 } // namespace twinflow::study

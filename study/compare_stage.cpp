@@ -20,12 +20,6 @@ compare::TwinFacts twin_facts(const continuum::ContinuumParameters& p, double vi
   return {continuum::has_robin_walls(p.model), p.boundary[0].kapitza_inverse, viscosity};
 }
 
-// A value handed to the calibrated twin as its record states it: `digits` significant digits.
-std::string as_text(double x, int digits) {
-  std::ostringstream o;
-  o << std::setprecision(digits) << x;
-  return o.str();
-}
 } // namespace
 
 Case calibrated_case(const Case& nominal, const fs::path& run_dir) {
@@ -48,7 +42,7 @@ Case calibrated_case(const Case& nominal, const fs::path& run_dir) {
     std::string text;
     std::array<double, 6> values{};
     for (int w = 0; w < 2 * dim; ++w) {
-      const std::string v = as_text(member(walls.wall[w / 2][w % 2]), digits);
+      const std::string v = number_text(member(walls.wall[w / 2][w % 2]), digits);
       values[w] = std::stod(v);
       text += (w ? ", " : "") + v;
     }
@@ -62,7 +56,7 @@ Case calibrated_case(const Case& nominal, const fs::path& run_dir) {
     for (int side = 0; side < 2; ++side) {
       const double T = walls.wall[d][side].fluid_temperature;
       if (!std::isfinite(T)) continue;
-      const std::string text = as_text(T, 10);
+      const std::string text = number_text(T, 10);
       set(std::string("Scene/") + "xyz"[d] + " boundaries/" + (side ? "Upper" : "Lower") +
               " wall temperature",
           text);

@@ -160,6 +160,85 @@ const char* model_name(continuum::Model m) {
 }
 } // namespace
 
+namespace {
+// Why Model = auto chose this twin (study::automatic_model's order: stratification, epsilon).
+void explain_automatic_model(const CaseParameters& parameters,
+                             const continuum::ContinuumParameters& p) {
+  const double stratification = parameters.scene.stratification(p.particle_mass);
+  const double epsilon = parameters.scene.thermal_wall_epsilon();
+  const bool stratified = stratification > parameters.twin.compressible_threshold;
+  std::cout << "continuum: Model = auto: " << model_name(p.model) << " (stratification g H / c^2 "
+            << stratification << (stratified ? " > " : " <= ")
+            << parameters.twin.compressible_threshold;
+  if (!stratified)
+    std::cout << ", the thermal walls' epsilon " << epsilon
+              << (p.model == continuum::Model::Boussinesq ? " <= " : " > ")
+              << parameters.twin.low_mach_threshold;
+  if (!stratified && p.model == continuum::Model::Compressible)
+    std::cout << " with a conservative force, which the low-Mach twin's p = n k T leaves out";
+  std::cout << ")\n";
+}
+
+// The twin's model, its numbers and a note where its equation of state leaves the fluid's
+// conservative force out.
+void announce_twin(const CaseParameters& parameters, const continuum::ContinuumParameters& p) {
+  const auto numbers = continuum::dimensionless_numbers(p);
+  if (parameters.twin.model_chosen_automatically && parameters.scene.has_walls())
+    explain_automatic_model(parameters, p);
+  std::cout << "continuum: " << model_name(p.model) << (p.transient() ? " in time" : ", steady")
+            << ", " << p.dim << "D, Ra = " << numbers.rayleigh << ", Pr = " << numbers.prandtl
+            << ", epsilon = " << numbers.epsilon
+            << ", g H / c^2 = " << parameters.scene.stratification(p.particle_mass) << std::endl;
+  const bool eos_matters =
+      p.model == continuum::Model::LowMach || p.model == continuum::Model::Compressible;
+  if (eos_matters && parameters.particle.conservative != particle::ConservativeForce::None &&
+      p.equation_of_state.ideal())
+    std::cout << "continuum: note: the twin's equation of state is the ideal DPDE fluid's, "
+                 "p = n k T; this fluid's conservative force adds to its pressure, which the "
+              << (p.model == continuum::Model::LowMach
+                      ? "low-Mach twin leaves out (the compressible twin takes the transport "
+                        "stage's fit)\n"
+                      : "twin leaves out (Coefficients/Excess pressure, or Source = transport)\n");
+}
+
+// bins.csv and, where the twin has them, wall_nusselt.csv and time_series.csv; returns every
+// file the stage wrote.
+std::vector<std::string> write_twin_tables(const io::StageDirectory& stage,
+                                           const continuum::ContinuumResult& result,
+                                           const continuum::ContinuumParameters& p) {
+  io::write_file_atomically(stage.file("bins.csv"), continuum::bins_csv(result, p));
+  std::vector<std::string> files = result.files;
+  files.push_back("bins.csv");
+  if (!result.walls.empty() && !result.walls.front().local.empty()) {
+    io::write_file_atomically(stage.file("wall_nusselt.csv"), continuum::wall_nusselt_csv(result));
+    files.push_back("wall_nusselt.csv");
+  }
+  if (!result.time_series.empty()) {
+    io::write_file_atomically(stage.file("time_series.csv"), continuum::time_series_csv(result));
+    files.push_back("time_series.csv");
+  }
+  return files;
+}
+
+void print_twin_result(const continuum::ContinuumResult& result,
+                       const continuum::ContinuumParameters& p, const io::StageDirectory& stage,
+                       const std::vector<std::string>& files) {
+  if (result.model == "boussinesq" || result.model == "low-mach") {
+    std::cout << "continuum: ";
+    if (p.transient()) std::cout << "at t = " << result.time << ", ";
+    std::cout << "Nu = " << result.nusselt;
+    if (result.model == "low-mach") std::cout << ", P/p0 = " << result.pressure_ratio;
+    if (result.has_midline_maxima)
+      std::cout << ", u_max(x = Lx/2) = " << result.u_max_vertical_midline.value
+                << ", v_max(y = Ly/2) = " << result.v_max_horizontal_midline.value << " (chi/H)";
+    std::cout << "\n";
+  }
+  std::cout << "continuum: results in " << stage.path().string() << " (summary.json";
+  for (const auto& f : files) std::cout << ", " << f;
+  std::cout << ")" << std::endl;
+}
+} // namespace
+
 int continuum_stage(const Case& c, const RunOptions& options, const std::string& stage_name) {
   const auto start = std::chrono::steady_clock::now();
   const CaseParameters& parameters = c.parameters;
@@ -187,57 +266,12 @@ int continuum_stage(const Case& c, const RunOptions& options, const std::string&
         (parameters.twin.model_chosen_automatically ? " (Model = auto chose it)" : "") +
         "; allowed: > 1 (c_p > k: c_V = c_p - k > 0), or Coefficients/Source = transport");
   const io::StageDirectory stage(run_dir, stage_name, options.force);
-  const auto numbers = continuum::dimensionless_numbers(p);
-  if (root && parameters.twin.model_chosen_automatically && parameters.scene.has_walls()) {
-    // Why auto chose this model (study::automatic_model's order: stratification, epsilon).
-    const double stratification = parameters.scene.stratification(p.particle_mass);
-    const double epsilon = parameters.scene.thermal_wall_epsilon();
-    const bool stratified = stratification > parameters.twin.compressible_threshold;
-    std::cout << "continuum: Model = auto: " << model_name(p.model) << " (stratification g H / c^2 "
-              << stratification << (stratified ? " > " : " <= ")
-              << parameters.twin.compressible_threshold;
-    if (!stratified)
-      std::cout << ", the thermal walls' epsilon " << epsilon
-                << (p.model == continuum::Model::Boussinesq ? " <= " : " > ")
-                << parameters.twin.low_mach_threshold;
-    if (!stratified && p.model == continuum::Model::Compressible)
-      std::cout << " with a conservative force, which the low-Mach twin's p = n k T leaves out";
-    std::cout << ")\n";
-  }
-  if (root)
-    std::cout << "continuum: " << model_name(p.model) << (p.transient() ? " in time" : ", steady")
-              << ", " << p.dim << "D, Ra = " << numbers.rayleigh << ", Pr = " << numbers.prandtl
-              << ", epsilon = " << numbers.epsilon
-              << ", g H / c^2 = " << parameters.scene.stratification(p.particle_mass) << std::endl;
-
-  const bool eos_matters =
-      p.model == continuum::Model::LowMach || p.model == continuum::Model::Compressible;
-  if (root && eos_matters &&
-      parameters.particle.conservative != particle::ConservativeForce::None &&
-      p.equation_of_state.ideal())
-    std::cout << "continuum: note: the twin's equation of state is the ideal DPDE fluid's, "
-                 "p = n k T; this fluid's conservative force adds to its pressure, which the "
-              << (p.model == continuum::Model::LowMach
-                      ? "low-Mach twin leaves out (the compressible twin takes the transport "
-                        "stage's fit)\n"
-                      : "twin leaves out (Coefficients/Excess pressure, or Source = transport)\n");
+  if (root) announce_twin(parameters, p);
   if (root) stage.create();
   MPI_Barrier(comm);
   const continuum::ContinuumResult result = continuum::run(p, stage.path(), comm);
   if (!root) return 0;
-
-  io::write_file_atomically(stage.file("bins.csv"), continuum::bins_csv(result, p));
-  std::vector<std::string> files = result.files;
-  files.push_back("bins.csv");
-  if (!result.walls.empty() && !result.walls.front().local.empty()) {
-    io::write_file_atomically(stage.file("wall_nusselt.csv"), continuum::wall_nusselt_csv(result));
-    files.push_back("wall_nusselt.csv");
-  }
-  if (!result.time_series.empty()) {
-    io::write_file_atomically(stage.file("time_series.csv"), continuum::time_series_csv(result));
-    files.push_back("time_series.csv");
-  }
-
+  const std::vector<std::string> files = write_twin_tables(stage, result, p);
   io::Json summary = io::Json::object();
   summary["stage"] = "continuum";
   summary["case"] = parameters.name;
@@ -267,20 +301,7 @@ int continuum_stage(const Case& c, const RunOptions& options, const std::string&
   summary["stage_wall_time_s"] =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   io::write_file_atomically(stage.file("summary.json"), io::dump(summary));
-
-  if (result.model == "boussinesq" || result.model == "low-mach") {
-    std::cout << "continuum: ";
-    if (p.transient()) std::cout << "at t = " << result.time << ", ";
-    std::cout << "Nu = " << result.nusselt;
-    if (result.model == "low-mach") std::cout << ", P/p0 = " << result.pressure_ratio;
-    if (result.has_midline_maxima)
-      std::cout << ", u_max(x = Lx/2) = " << result.u_max_vertical_midline.value
-                << ", v_max(y = Ly/2) = " << result.v_max_horizontal_midline.value << " (chi/H)";
-    std::cout << "\n";
-  }
-  std::cout << "continuum: results in " << stage.path().string() << " (summary.json";
-  for (const auto& f : files) std::cout << ", " << f;
-  std::cout << ")" << std::endl;
+  print_twin_result(result, p, stage, files);
   return 0;
 }
 

@@ -103,6 +103,69 @@ io::Json write_results(const Case& c, const io::StageDirectory& stage, particle:
 }
 } // namespace
 
+namespace {
+// The checkpoint to continue from (--restart): it belongs to these exact parameters, so that a
+// changed case cannot continue it (keys that change no result, the checkpoint interval, may).
+std::optional<io::Checkpoint> checkpoint_to_continue(const fs::path& checkpoint_path,
+                                                     const std::string& parameters, bool root) {
+  if (!fs::exists(checkpoint_path))
+    throw io::InputError(checkpoint_path.string() +
+                         ": no checkpoint to restart from (was the run interrupted?)");
+  io::Checkpoint resume = io::Checkpoint::read(checkpoint_path);
+  if (resume.get<std::string>("case_parameters") != parameters)
+    throw io::InputError(checkpoint_path.string() +
+                         ": was written for other case parameters; restart with the same case "
+                         "file and --set options (or start afresh with --force)");
+  if (root)
+    std::cout << "particle: resumed from step "
+              << (resume.contains("step") ? std::to_string(resume.get<std::int64_t>("step"))
+                                          : std::string("?"))
+              << " (checkpoint of "
+              << (resume.contains("written_at") ? resume.get<std::string>("written_at")
+                                                : std::string("an unknown date"))
+              << ")" << std::endl;
+  return resume;
+}
+
+// How the run reports, stops and checkpoints: a progress line, a signal or the wall-time limit
+// stops it with a checkpoint, and one is written every Checkpoint interval.
+particle::RunControl run_control(const CaseParameters& p, const RunOptions& options,
+                                 const io::Checkpoint* resume, const std::string& parameters,
+                                 const fs::path& checkpoint_path,
+                                 std::chrono::steady_clock::time_point started) {
+  particle::RunControl control;
+  control.progress = particle::RunControl::progress_for_stderr();
+  control.resume = resume;
+  control.checkpoint_every_seconds = 60 * p.checkpoint_interval_minutes; // 0: never
+  control.stop_requested = [&options, started] {
+    return stop_signal != 0 ||
+           (options.wall_time_limit > 0 &&
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count() >
+                options.wall_time_limit);
+  };
+  control.write_checkpoint = [parameters, checkpoint_path](const io::Checkpoint& state) {
+    io::Checkpoint file = state;
+    file.put("case_parameters", parameters);
+    file.put("written_at", local_time_now());
+    file.write(checkpoint_path);
+  };
+  return control;
+}
+
+int report_interrupted(const Case& c, const RunOptions& options, const fs::path& run_dir,
+                       const fs::path& checkpoint_path, long steps_done) {
+  std::cerr << "twinflow: particle run "
+            << (stop_signal ? "interrupted by a signal" : "reached the wall-time limit")
+            << " at step " << steps_done << "; checkpoint written to "
+            << fs::absolute(checkpoint_path).string() << "\ncontinue with: "
+            << (options.continue_command.empty()
+                    ? "twinflow particle " + c.file + " --out " + run_dir.string() + " --restart"
+                    : options.continue_command)
+            << "\n";
+  return kExitInterrupted;
+}
+} // namespace
+
 int particle_stage(const Case& c, const RunOptions& options) {
   const CaseParameters& p = c.parameters;
   // Under mpirun the particles are split over the ranks (particle/decomposition.hpp); rank 0
@@ -112,31 +175,12 @@ int particle_stage(const Case& c, const RunOptions& options) {
   const fs::path run_dir = run_directory(options, p.name);
   const io::StageDirectory stage(run_dir, "particle", options.force && !options.restart);
   const fs::path checkpoint_path = particle_checkpoint(run_dir);
-  // The checkpoint belongs to these exact parameters: a changed case cannot continue it (keys
-  // that change no result, the checkpoint interval, may change).
   io::Json record = c.record;
   for (auto it = record.begin(); it != record.end();)
     it = changes_no_result(it.key()) ? record.erase(it) : std::next(it);
   const std::string parameters = record.dump();
   std::optional<io::Checkpoint> resume;
-  if (options.restart) {
-    if (!fs::exists(checkpoint_path))
-      throw io::InputError(checkpoint_path.string() +
-                           ": no checkpoint to restart from (was the run interrupted?)");
-    resume = io::Checkpoint::read(checkpoint_path);
-    if (resume->get<std::string>("case_parameters") != parameters)
-      throw io::InputError(checkpoint_path.string() +
-                           ": was written for other case parameters; restart with the same case "
-                           "file and --set options (or start afresh with --force)");
-    if (root)
-      std::cout << "particle: resumed from step "
-                << (resume->contains("step") ? std::to_string(resume->get<std::int64_t>("step"))
-                                             : std::string("?"))
-                << " (checkpoint of "
-                << (resume->contains("written_at") ? resume->get<std::string>("written_at")
-                                                   : std::string("an unknown date"))
-                << ")" << std::endl;
-  }
+  if (options.restart) resume = checkpoint_to_continue(checkpoint_path, parameters, root);
   stop_signal = 0; // from here on a signal stops the run cleanly, with a checkpoint
   std::signal(SIGINT, on_stop_signal);
   std::signal(SIGTERM, on_stop_signal);
@@ -149,22 +193,8 @@ int particle_stage(const Case& c, const RunOptions& options) {
   }
   if (ranks > 1) MPI_Barrier(MPI_COMM_WORLD);
   const auto started = std::chrono::steady_clock::now();
-  particle::RunControl control;
-  control.progress = particle::RunControl::progress_for_stderr();
-  control.resume = resume ? &*resume : nullptr;
-  control.checkpoint_every_seconds = 60 * p.checkpoint_interval_minutes; // 0: never
-  control.stop_requested = [&] {
-    return stop_signal != 0 ||
-           (options.wall_time_limit > 0 &&
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count() >
-                options.wall_time_limit);
-  };
-  control.write_checkpoint = [&](const io::Checkpoint& state) {
-    io::Checkpoint file = state;
-    file.put("case_parameters", parameters);
-    file.put("written_at", local_time_now());
-    file.write(checkpoint_path);
-  };
+  const particle::RunControl control =
+      run_control(p, options, resume ? &*resume : nullptr, parameters, checkpoint_path, started);
   particle::RunOutput out;
   try {
     out = particle::run_particles(p.particle, control);
@@ -178,17 +208,8 @@ int particle_stage(const Case& c, const RunOptions& options) {
   std::signal(SIGTERM, SIG_DFL);
   std::signal(SIGUSR1, SIG_DFL);
   if (!root) return out.interrupted ? kExitInterrupted : 0;
-  if (out.interrupted) {
-    std::cerr << "twinflow: particle run "
-              << (stop_signal ? "interrupted by a signal" : "reached the wall-time limit")
-              << " at step " << out.steps_done << "; checkpoint written to "
-              << fs::absolute(checkpoint_path).string() << "\ncontinue with: "
-              << (options.continue_command.empty()
-                      ? "twinflow particle " + c.file + " --out " + run_dir.string() + " --restart"
-                      : options.continue_command)
-              << "\n";
-    return kExitInterrupted;
-  }
+  if (out.interrupted)
+    return report_interrupted(c, options, run_dir, checkpoint_path, out.steps_done);
   io::Json convection;
   try {
     convection = write_results(

@@ -121,4 +121,10 @@ std::string from_rank_zero(const std::string& text) {
   return out;
 }
 
+double from_rank_zero(double value) {
+  if (rank_count() == 1) return value;
+  MPI_Bcast(&value, 1, MPI_DOUBLE, 0, MPI_COMM_WORLD);
+  return value;
+}
+
 } // namespace twinflow::study

@@ -31,6 +31,7 @@ int every_rank_runs(const std::function<int()>& work);
 
 // Rank 0's `text` on every rank (a decision only rank 0 can take: a file it read).
 std::string from_rank_zero(const std::string& text);
+double from_rank_zero(double value);
 
 // How a stage ran, for its summary.json ("execution"): MPI ranks, OpenMP threads per rank and
 // the particle decomposition ("1 rank" or "R slabs along <axis>").

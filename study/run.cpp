@@ -43,21 +43,15 @@ bool chooses_coefficient_source(const std::vector<std::string>& assignments) {
   return false;
 }
 
-int run_all(Case c, const RunOptions& options) {
-  const auto started = std::chrono::steady_clock::now();
-  CaseParameters& p = c.parameters;
-  const fs::path run_dir = run_directory(options, p.name);
-  const bool walls = p.scene.has_walls() && p.scene.heat_slabs.empty();
-  // Under mpirun every rank takes part in the particle runs (the particle stage, the transport
-  // stage's runs); rank 0 alone runs the continuum twins and the comparison, reads and writes
-  // every file and prints (study/ranks.hpp). The particle results are the expensive ones: kept
-  // unless their inputs are unchanged (reused) or --force / --restart says otherwise; checked
-  // before anything runs (bad input writes nothing). Later stages are derived from them and
-  // recomputed whenever their inputs changed.
-  const StageInputs particle_inputs = stage_inputs(c, {"Scene/", "Particle/"}, {});
+namespace {
+// The particle stage, kept unless its inputs changed (reused) or --force / --restart says
+// otherwise: the expensive results. Checked before anything runs (bad input writes nothing).
+// --restart continues what a stop left: the particle run from its checkpoint, or, when the
+// particle stage had finished (the stop came later), the stages after it.
+int particle_step(const Case& c, const RunOptions& options, const fs::path& run_dir, bool walls,
+                  const StageInputs& particle_inputs) {
+  const CaseParameters& p = c.parameters;
   const int ranks = rank_count();
-  // --restart continues what a stop left: the particle run from its checkpoint, or, when the
-  // particle stage had finished (the stop came later), the stages after it.
   bool rerun_particle = options.force;
   if (const int rc = rank_zero_runs([&] {
         rerun_particle =
@@ -74,58 +68,103 @@ int run_all(Case c, const RunOptions& options) {
       }))
     return rc;
   rerun_particle = from_rank_zero(rerun_particle ? "rerun" : "") == "rerun";
-  if (const int rc = run_or_reuse(
-          run_dir / "particle", particle_inputs, rerun_particle,
-          [&] { return particle_stage(c, options); }, Ranks::Every))
+  return run_or_reuse(
+      run_dir / "particle", particle_inputs, rerun_particle,
+      [&] { return particle_stage(c, options); }, Ranks::Every);
+}
+
+// The coefficients at the temperature the particle fluid has, unless the case says: its
+// measured mean to 4 digits (more would be noise, ~1e-3, and would defeat the transport cache).
+int take_particle_temperature(Case& c, const fs::path& run_dir) {
+  CaseParameters& p = c.parameters;
+  if (p.transport.temperature != 0) return 0;
+  double temperature = 0;
+  if (const int rc = rank_zero_runs([&] {
+        const double T = io::number(io::read_json(run_dir / "particle" / "summary.json"),
+                                    {"results", "T_kinetic"});
+        if (T > 0) temperature = std::stod(number_text(T, 4));
+        return 0;
+      }))
     return rc;
+  temperature = from_rank_zero(temperature);
+  if (temperature > 0) {
+    p.transport.temperature = temperature;
+    c.record_value("Transport/Temperature", number_text(temperature, 4));
+    if (on_rank_zero())
+      std::cout << "run: transport at the particle fluid's mean temperature: "
+                << "Transport/Temperature=" << number_text(temperature, 4) << "\n";
+  }
+  return 0;
+}
+
+// The transport stage: its folder is rewritten when its inputs changed, but its measurement may
+// come from the transport cache (later.force would bypass that): only the user's --force
+// measures again.
+int transport_step(const Case& c, const RunOptions& options, const RunOptions& later,
+                   const fs::path& run_dir, const StageInputs& transport_inputs) {
+  RunOptions transport_options = later;
+  transport_options.force = options.force;
+  return run_or_reuse(
+      run_dir / "transport", transport_inputs, false,
+      [&] {
+        if (on_rank_zero()) fs::remove(run_dir / "transport" / "summary.json"); // stale
+        return transport_stage(c, transport_options);
+      },
+      Ranks::Every);
+}
+
+// The nominal twin stands for the particle fluid: the transport stage's coefficients, the
+// particle walls' kinetic slip and their jumps from theory (the user's own --set wins).
+void twin_takes_the_particle_fluid(Case& c) {
+  CaseParameters& p = c.parameters;
+  if (chooses_coefficient_source(c.settings)) return;
+  p.twin.coefficients_from_transport = true;
+  c.record_value("Continuum/Coefficients/Source", "transport");
+  if (p.twin.kinetic_slip_automatically) continuum::take_kinetic_slip(p.continuum);
+  if (p.twin.wall_jumps_automatically) p.twin.wall_jumps_from_theory = true;
+}
+
+// The calibrated twin: a diagnostic built from the particle run's own wall measurements. When
+// those make no twin (a run too short or small for its walls: a wall temperature that leaves
+// the mesh unable to resolve the stratification, say), the nominal comparison still goes on.
+int calibrated_step(const Case& c, const RunOptions& later, const fs::path& run_dir,
+                    const StageInputs& transport_inputs, const StageInputs& particle_inputs) {
+  std::optional<Case> calibrated;
+  try {
+    calibrated = calibrated_case(c, run_dir);
+  } catch (const NoCalibratedTwin& e) {
+    std::cout << "run: " << e.what() << "; going on without the calibrated twin\n";
+    fs::remove_all(run_dir / "continuum_calibrated"); // compare must not read an old one
+    return 0;
+  }
+  const StageInputs calibrated_inputs =
+      stage_inputs(*calibrated, {"Scene/", "Transport/", "Continuum/"},
+                   {transport_inputs.hash, particle_inputs.hash});
+  return run_or_reuse(run_dir / "continuum_calibrated", calibrated_inputs, false,
+                      [&] { return continuum_stage(*calibrated, later, "continuum_calibrated"); });
+}
+} // namespace
+
+int run_all(Case c, const RunOptions& options) {
+  const auto started = std::chrono::steady_clock::now();
+  const fs::path run_dir = run_directory(options, c.parameters.name);
+  const bool walls = c.parameters.scene.has_walls() && c.parameters.scene.heat_slabs.empty();
+  // Under mpirun every rank takes part in the particle runs (the particle stage, the transport
+  // stage's runs); rank 0 alone runs the continuum twins and the comparison, reads and writes
+  // every file and prints (study/ranks.hpp). Later stages are derived from the particle results
+  // and recomputed whenever their inputs changed.
+  const StageInputs particle_inputs = stage_inputs(c, {"Scene/", "Particle/"}, {});
+  if (const int rc = particle_step(c, options, run_dir, walls, particle_inputs)) return rc;
   RunOptions later = options;
   later.restart = false;
   later.force = true; // derived from the particle results: recomputed when their inputs change
   later.out = run_dir;
-  // The coefficients at the temperature the particle fluid has, unless the case says: its
-  // measured mean to 4 digits (more would be noise, ~1e-3, and would defeat the transport cache).
-  if (p.transport.temperature == 0) {
-    std::string temperature;
-    if (const int rc = rank_zero_runs([&] {
-          const double T = io::number(io::read_json(run_dir / "particle" / "summary.json"),
-                                      {"results", "T_kinetic"});
-          if (T > 0) {
-            std::ostringstream text;
-            text << std::setprecision(4) << T;
-            temperature = text.str();
-            std::cout << "run: transport at the particle fluid's mean temperature: "
-                      << "Transport/Temperature=" << temperature << "\n";
-          }
-          return 0;
-        }))
-      return rc;
-    temperature = from_rank_zero(temperature);
-    if (!temperature.empty()) {
-      p.transport.temperature = std::stod(temperature);
-      c.record_value("Transport/Temperature", temperature);
-    }
-  }
+  if (const int rc = take_particle_temperature(c, run_dir)) return rc;
   const StageInputs transport_inputs =
       stage_inputs(c, {"Scene/", "Particle/", "Transport/"}, {particle_inputs.hash},
                    transport::kMeasurementMethod);
-  // Its folder is rewritten when its inputs changed, but its measurement may come from the
-  // transport cache (later.force would bypass that): only the user's --force measures again.
-  RunOptions transport_options = later;
-  transport_options.force = options.force;
-  if (const int rc = run_or_reuse(
-          run_dir / "transport", transport_inputs, false,
-          [&] {
-            if (on_rank_zero()) fs::remove(run_dir / "transport" / "summary.json"); // stale
-            return transport_stage(c, transport_options);
-          },
-          Ranks::Every))
-    return rc;
-  if (!chooses_coefficient_source(c.settings)) { // the user's own --set wins
-    p.twin.coefficients_from_transport = true;
-    c.record_value("Continuum/Coefficients/Source", "transport");
-    if (p.twin.kinetic_slip_automatically) continuum::take_kinetic_slip(p.continuum);
-    if (p.twin.wall_jumps_automatically) p.twin.wall_jumps_from_theory = true;
-  }
+  if (const int rc = transport_step(c, options, later, run_dir, transport_inputs)) return rc;
+  twin_takes_the_particle_fluid(c);
   // From here on rank 0 alone: the twins, the comparison, the report.
   return rank_zero_runs([&] {
     const StageInputs continuum_inputs =
@@ -133,31 +172,12 @@ int run_all(Case c, const RunOptions& options) {
     if (const int rc = run_or_reuse(run_dir / "continuum", continuum_inputs, false,
                                     [&] { return continuum_stage(c, later, "continuum"); }))
       return rc;
-    std::optional<Case> calibrated;
-    if (walls && fs::exists(run_dir / "particle" / "fields.h5")) {
-      // A diagnostic built from the particle run's own wall measurements: when those make no
-      // twin (a run too short or small for its walls: a wall temperature that leaves the mesh
-      // unable to resolve the stratification, say), the nominal comparison still goes on.
-      try {
-        calibrated = calibrated_case(c, run_dir);
-      } catch (const NoCalibratedTwin& e) {
-        std::cout << "run: " << e.what() << "; going on without the calibrated twin\n";
-        fs::remove_all(run_dir / "continuum_calibrated"); // compare must not read an old one
-      }
-    }
-    if (calibrated) {
-      const StageInputs calibrated_inputs =
-          stage_inputs(*calibrated, {"Scene/", "Transport/", "Continuum/"},
-                       {transport_inputs.hash, particle_inputs.hash});
-      if (const int rc =
-              run_or_reuse(run_dir / "continuum_calibrated", calibrated_inputs, false, [&] {
-                return continuum_stage(*calibrated, later, "continuum_calibrated");
-              }))
+    const bool binned = fs::exists(run_dir / "particle" / "fields.h5");
+    if (walls && binned)
+      if (const int rc = calibrated_step(c, later, run_dir, transport_inputs, particle_inputs))
         return rc;
-    }
-    if (fs::exists(run_dir / "particle" / "fields.h5")) { // else nothing binned to compare
+    if (binned) // else nothing binned to compare
       if (const int rc = compare_stage(c, run_dir)) return rc;
-    }
     print_ending(run_dir, started);
     return 0;
   });

@@ -38,6 +38,10 @@ std::vector<StabilityLimit> read_stability_limits(const std::filesystem::path& c
   return out;
 }
 
+std::filesystem::path shipped_case(const std::string& name) {
+  return std::filesystem::path(TWINFLOW_SOURCE_DIR) / "cases" / (name + ".prm");
+}
+
 const std::vector<StabilityLimit>& stability_limits() {
   static const std::vector<StabilityLimit> limits = read_stability_limits(
       std::filesystem::path(TWINFLOW_SOURCE_DIR) / "data" / "stability_limits.csv");

@@ -20,6 +20,8 @@ struct StabilityLimit {
 
 // The table (throws io::InputError on a malformed row, naming the file and line).
 std::vector<StabilityLimit> read_stability_limits(const std::filesystem::path& csv);
+// A shipped case file's path (cases/NAME.prm of the source tree).
+std::filesystem::path shipped_case(const std::string& name);
 // The shipped table (data/stability_limits.csv of the source tree).
 const std::vector<StabilityLimit>& stability_limits();
 

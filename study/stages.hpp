@@ -4,6 +4,7 @@
 // resolved once at the edge; bad input throws io::InputError (exit 2), and nothing is written
 // before every input is checked.
 
+#include <cstdio>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -53,6 +54,13 @@ void write_report(const std::filesystem::path& dir);
 
 // Whether the user's assignments (--set, a grid's --vary) choose Continuum/Coefficients/Source;
 // if not, `run` feeds the twin the transport stage's coefficients.
+// A number as a record or a console line states it: `digits` significant digits (%g).
+inline std::string number_text(double v, int digits = 6) {
+  char text[40];
+  std::snprintf(text, sizeof text, "%.*g", digits, v);
+  return text;
+}
+
 bool chooses_coefficient_source(const std::vector<std::string>& assignments);
 
 // All stages; a stage whose inputs are unchanged is reused.

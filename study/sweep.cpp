@@ -75,12 +75,6 @@ std::string status_of(int exit_code) {
   return "failed";
 }
 
-std::string number_text(double v) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.6g", v);
-  return text;
-}
-
 double magnitude(const std::array<double, 3>& v, int dim) {
   double s = 0;
   for (int d = 0; d < dim; ++d) s += v[d] * v[d];

@@ -503,6 +503,31 @@ TEST(Cli, SummarySaysHowTheRunRan) {
 #endif
 }
 
+// The transport stage's independent runs (bulk runs, relaxation repeats, the heat slabs) are
+// spread over the cores: its results are the same, byte for byte, whatever the threads.
+TEST(Cli, TransportIsTheSameWhateverTheThreads) {
+  const std::string tiny =
+      std::string(TWINFLOW_SOURCE_DIR) +
+      "/cases/heated_cavity_2d.prm --set 'Scene/Box size=8, 8' --set 'Scene/Density=2'"
+      " --set 'Transport/Flow particles=100' --set 'Transport/Flow repeats=3'"
+      " --set 'Transport/Diffusion repeats=2'";
+  std::string summary[2], table[2];
+  for (const int threads : {1, 2}) {
+    const fs::path dir = fresh_dir("transport_threads_" + std::to_string(threads));
+    const Result r = run("transport " + tiny + " --threads " + std::to_string(threads) + " --out " +
+                         dir.string());
+    ASSERT_EQ(r.code, 0) << r.output;
+    auto j = twinflow::io::read_json(dir / "transport" / "summary.json");
+    for (const char* timing : {"execution", "stage_wall_time_s", "provenance"}) j.erase(timing);
+    j["results"]["measured"]["slabs"].erase("seconds");
+    summary[threads - 1] = twinflow::io::dump(j);
+    table[threads - 1] = twinflow::io::read_file(dir / "transport" / "coefficients.csv");
+    EXPECT_NE(summary[threads - 1].find("conductivity_law"), std::string::npos);
+  }
+  EXPECT_EQ(table[0], table[1]);
+  EXPECT_EQ(summary[0], summary[1]);
+}
+
 // Idle OpenMP threads spin briefly, then sleep (app/main.cpp): twinflow sets GOMP_SPINCOUNT=1000
 // for itself unless the user chose how threads wait; bench records which way they waited.
 TEST(Cli, IdleThreadsSpinBrieflyUnlessTheUserChose) {

@@ -75,11 +75,11 @@ const std::string kTinyScene = shipped("heated_cavity_2d") +
                                " --set 'Continuum/Mesh/Refinements=1'";
 const std::string kTinyCavity = kTinyScene + " --set 'Transport/Measure kappa and eta=false'"
                                              " --set 'Transport/Kappa from walls=false'";
-// The same with the case's measured coefficients, shrunk: kappa by conduction between the walls
-// (1000 steps), eta by relaxation (2 runs of 100 particles).
+// The same with the case's measured coefficients, shrunk: kappa and eta by relaxation (2 runs of
+// 100 particles; the heat slabs at the scene's scale would be the run's longest part).
 const std::string kTinyMeasuredCavity = kTinyScene + " --set 'Transport/Flow particles=100'"
                                                      " --set 'Transport/Flow repeats=2'"
-                                                     " --set 'Transport/Wall steps=1000'";
+                                                     " --set 'Transport/Kappa from slabs=false'";
 
 } // namespace
 

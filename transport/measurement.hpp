@@ -50,8 +50,9 @@ WallKappa kappa_from_walls(const scene::SceneParameters& scene,
 // kappa without walls at the scene's own scale: the bulk fluid in a periodic box twice the
 // scene's heated length (the slab between two walls and its mirror image) and the scene's other
 // lengths, heat slabs (seed 002 III.B) with a power that spans the scene's thermal walls'
-// temperatures for a conductivity `kappa` (a guess), run for 3 + 10 decay times of the slowest
-// profile mode (heat_capacity_p: per particle, for that time).
+// temperatures for a conductivity `kappa` (a guess), settled for 3 decay times of the slowest
+// profile mode and sampled for the time that gives kappa's error ~1.5% (10 decay times of a
+// 20 rc slab; at least 3 of its own); heat_capacity_p: per particle, for those times.
 particle::ParticleParameters slab_fluid(const scene::SceneParameters& scene,
                                         const particle::ParticleParameters& bulk, double kappa,
                                         double heat_capacity_p);

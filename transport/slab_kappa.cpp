@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "io/files.hpp"
+#include "particle/simulation.hpp"
 #include "statistics/line_fit.hpp"
 #include "transport/measure.hpp"
 #include "transport/measurement.hpp"
@@ -87,11 +88,15 @@ particle::ParticleParameters slab_fluid(const scene::SceneParameters& scene,
   // large share of its energy to the cold slab in a step (a small box's would run dry).
   const double width = std::min(0.25 * half, std::max(0.5, 50 / (s.density * area)));
   s.heat_slabs = {{heated, half, half + width, power}, {heated, 0, width, -power}};
-  // Steady after a few decay times of the slowest mode, sin(pi x / half): half^2 / (pi^2 chi).
+  // Steady after 3 decay times of the slowest mode, sin(pi x / half): half^2 / (pi^2 chi). The
+  // error of kappa goes as 1 / sqrt(N t / decay) ~ 1 / sqrt(t): the sampled time that gave the
+  // default cavity's slab (half 20) 1.3-1.5% gives it at any size; at least 3 decay times so that
+  // the merged blocks outlast the slowest mode.
   const double chi = kappa / (s.density * heat_capacity_p);
   const double decay = half * half / (M_PI * M_PI * chi);
+  const double sampled = std::max(3 * decay, 10 * 20.0 * 20.0 / (M_PI * M_PI * chi));
   s.equilibration_steps = static_cast<long>(std::ceil(3 * decay / s.dt));
-  s.steps = static_cast<long>(std::ceil(10 * decay / s.dt));
+  s.steps = static_cast<long>(std::ceil(sampled / s.dt));
   s.sample_interval = std::max(1L, s.steps / 2000);
   return s;
 }
@@ -101,7 +106,20 @@ SlabKappa kappa_from_slabs(const particle::ParticleParameters& slab, double n0, 
   const int heated = slab.heat_slabs.front().direction;
   const double half = 0.5 * slab.box[heated];
   const double width = slab.heat_slabs.front().upper - slab.heat_slabs.front().lower;
-  const particle::RunOutput out = run_on_every_rank(slab);
+  // The longest run of the stage: a line a minute with its ETA.
+  particle::RunControl control;
+  control.progress = particle::RunControl::Progress::log;
+  control.progress_label = "transport: heat slabs: ";
+  particle::RunOutput out;
+  try {
+    out = run_on_every_rank(slab, control);
+  } catch (const particle::InstabilityError& e) {
+    // The power comes from a guess of kappa: a guess well above the fluid's drains the cold slab.
+    throw particle::InstabilityError(
+        std::string("the heat slabs for kappa went unstable (their power is set from a guess of "
+                    "kappa; a fluid that conducts much less drains the cold slab): ") +
+        e.what() + "; Transport/Kappa from slabs = false takes kappa from the relaxation runs");
+  }
   const io::Json& h = *io::find(out.summary, {"heat_slabs"});
   const double J0 = io::number(h, {"J0"});
   SlabKappa r;

@@ -41,7 +41,9 @@ particle::ParticleParameters resolve_particle(const Registry&, const scene::Scen
 void declare_continuum(Registry&);
 continuum::ContinuumParameters resolve_continuum(const Registry&, const scene::SceneParameters&,
                                                  const particle::ParticleParameters&);
-void declare_transport_and_compare(Registry&);
-void resolve_transport_and_compare(const Registry&, study::CaseParameters&);
+void declare_transport(Registry&);
+transport::TransportParameters resolve_transport(const Registry&);
+void declare_compare(Registry&);
+void resolve_compare(const Registry&, study::CaseParameters&); // compare and stability bounds
 
 } // namespace twinflow::app

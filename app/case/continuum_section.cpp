@@ -97,7 +97,9 @@ void resolve_wall_slip(const Registry& r, const particle::ParticleParameters& pa
 }
 } // namespace
 
-void declare_continuum(Registry& r) {
+namespace {
+// The model and its walls.
+void declare_model_and_walls(Registry& r) {
   using namespace dealii::Patterns;
   r.declare(s + "Model", "auto", Selection("auto|boussinesq|low-mach|compressible|heat-conduction"),
             "Equations of the continuum twin: Boussinesq natural convection (Taylor-Hood Q2/Q1 + "
@@ -184,7 +186,11 @@ void declare_continuum(Registry& r) {
             "scheme). Boussinesq in time "
             "writes time_series.csv (Nu, kinetic energy, max speed) and field snapshots "
             "(fields.xdmf, a ParaView time series).");
+}
 
+// eta, kappa, c_p, alpha and the equation of state, or where they come from.
+void declare_coefficients(Registry& r) {
+  using namespace dealii::Patterns;
   const std::string c = s + "Coefficients/";
   r.declare(c + "Source", "case", Selection("case|transport"),
             "case: the values below; transport: eta, kappa, c_p and alpha at the reference "
@@ -243,7 +249,11 @@ void declare_continuum(Registry& r) {
             "bulk runs instead.");
   r.declare_positive(c + "Reference temperature", "1",
                      "T_ref of the buoyancy and of the power laws (units of T0), > 0.");
+}
 
+// The mesh and the nonlinear and linear solvers.
+void declare_mesh_and_solver(Registry& r) {
+  using namespace dealii::Patterns;
   const std::string m = s + "Mesh/";
   r.declare(m + "Cells", "8", List(Integer(1, 4096), 1, 3),
             "Coarse cells: one value for the shortest box edge (others in proportion), or one per "
@@ -265,7 +275,11 @@ void declare_continuum(Registry& r) {
             "Boussinesq: direct (UMFPACK, one process) or iterative (p4est + Trilinos FGMRES with "
             "a block AMG preconditioner, 3D only, runs under mpirun); auto: direct in 2D, "
             "iterative in 3D.");
+}
 
+// In time, the initial state and the output.
+void declare_time_and_output(Registry& r) {
+  using namespace dealii::Patterns;
   const std::string t = s + "Time/";
   r.declare(t + "End time", "0", Double(0),
             "Mode transient: simulated time (tau), > 0 (unused when steady).");
@@ -298,23 +312,32 @@ void declare_continuum(Registry& r) {
   r.declare(o + "Profile samples", "401", Integer(3, 1000000),
             "Samples per mid-line before the velocity maximum is refined (10x zooms).");
 }
+} // namespace
 
-continuum::ContinuumParameters resolve_continuum(const Registry& r,
-                                                 const scene::SceneParameters& scene,
-                                                 const particle::ParticleParameters& particle) {
-  continuum::ContinuumParameters c;
-  c.dim = scene.dim;
-  c.box = scene.box;
+void declare_continuum(Registry& r) {
+  declare_model_and_walls(r);
+  declare_coefficients(r);
+  declare_mesh_and_solver(r);
+  declare_time_and_output(r);
+}
+
+namespace {
+// The model: as named, or chosen by the scene (study::automatic_model).
+continuum::Model resolve_model(const Registry& r, const scene::SceneParameters& scene) {
   const std::string model = r.get(s + "Model");
-  c.model = model == "heat-conduction" ? continuum::Model::HeatConduction
-            : model == "low-mach"      ? continuum::Model::LowMach
-            : model == "compressible"  ? continuum::Model::Compressible
-                                       : continuum::Model::Boussinesq;
   if (model == "auto")
-    c.model = study::automatic_model(
+    return study::automatic_model(
         scene, r.get_double("Particle/Mass"), r.get("Particle/Conservative force/Type") != "none",
         r.get_double(s + "Low-Mach threshold"), r.get_double(s + "Compressible threshold"));
-  c.gravity = scene.gravity;
+  return model == "heat-conduction" ? continuum::Model::HeatConduction
+         : model == "low-mach"      ? continuum::Model::LowMach
+         : model == "compressible"  ? continuum::Model::Compressible
+                                    : continuum::Model::Boussinesq;
+}
+
+// The scene's boundaries as the twin's, with the case's Kapitza conductances and their errors.
+void resolve_thermal_walls(const Registry& r, const scene::SceneParameters& scene,
+                           continuum::ContinuumParameters& c) {
   for (int d = 0; d < 3; ++d) {
     const auto& from = scene.boundary[d];
     auto& to = c.boundary[d];
@@ -345,6 +368,11 @@ continuum::ContinuumParameters resolve_continuum(const Registry& r,
     c.boundary[d].kapitza_conductance_stderr[side] = kapitza_errors[w];
   }
   for (auto& b : c.boundary) b.kapitza_inverse = r.get(s + "Kapitza law") == "inverse";
+}
+
+// Navier slip lengths (all no-slip walls or none), then the kinetic slip's choice.
+void resolve_slip(const Registry& r, const scene::SceneParameters& scene,
+                  const particle::ParticleParameters& particle, continuum::ContinuumParameters& c) {
   const std::vector<double> slips = r.get_doubles(s + "Slip lengths");
   int navier = 0, sticking = 0; // no-slip walls with and without a slip length
   for (std::size_t w = 0; w < slips.size(); ++w) {
@@ -364,6 +392,11 @@ continuum::ContinuumParameters resolve_continuum(const Registry& r,
   r.require(navier == 0 || sticking == 0, s + "Slip lengths",
             "> 0 at all of the twin's no-slip walls or at none");
   resolve_wall_slip(r, particle, navier > 0, c);
+}
+
+// Walls moved in from the scene's planes (a calibrated twin at the effective positions).
+std::array<double, 6> wall_distances(const Registry& r, const scene::SceneParameters& scene,
+                                     const continuum::ContinuumParameters& c) {
   const std::vector<double> positions = r.get_doubles(s + "Wall positions");
   std::array<double, 6> distance{};
   for (std::size_t w = 0; w < positions.size(); ++w) {
@@ -375,8 +408,12 @@ continuum::ContinuumParameters resolve_continuum(const Registry& r,
   for (int d = 0; d < scene.dim; ++d)
     r.require(scene.box[d] - distance[2 * d] - distance[2 * d + 1] > 0.5 * scene.box[d],
               s + "Wall positions", "two walls' distances together below half the box length");
+  return distance;
+}
 
-  // Same units as the particle twin: n from the scene, m from the particle section.
+// Same units as the particle twin: n from the scene, m from the particle section.
+void resolve_coefficients(const Registry& r, const scene::SceneParameters& scene,
+                          continuum::ContinuumParameters& c) {
   c.number_density = scene.density;
   c.particle_mass = r.get_double("Particle/Mass");
   const std::string k = s + "Coefficients/";
@@ -396,20 +433,24 @@ continuum::ContinuumParameters resolve_continuum(const Registry& r,
   c.bulk_viscosity = r.get_double(k + "Bulk viscosity");
   const std::vector<double> excess = r.get_doubles(k + "Excess pressure");
   c.equation_of_state = {excess[0], excess[1], excess[2], scene.density};
+}
 
+void resolve_mesh_and_solver(const Registry& r, const scene::SceneParameters& scene,
+                             continuum::ContinuumParameters& c) {
   c.cells = cells_per_direction(r, s + "Mesh/Cells", scene);
   c.refinements = static_cast<int>(r.get_integer(s + "Mesh/Refinements"));
   c.newton_tolerance = r.get_positive(s + "Solver/Newton tolerance");
   c.max_newton_iterations = static_cast<int>(r.get_integer(s + "Solver/Max Newton iterations"));
   c.continuation_start_rayleigh = r.get_positive(s + "Solver/Continuation start Rayleigh");
-
   const std::string solver = r.get(s + "Solver/Linear solver");
   c.linear_solver = solver == "direct"      ? continuum::LinearSolver::Direct
                     : solver == "iterative" ? continuum::LinearSolver::Iterative
                                             : continuum::LinearSolver::Automatic;
   r.require(!c.uses_iterative_solver() || scene.dim == 3, s + "Solver/Linear solver",
             "auto or direct in 2D (the iterative path is 3D only)");
+}
 
+void resolve_time(const Registry& r, continuum::ContinuumParameters& c) {
   c.mode = r.get(s + "Mode") == "transient" ? continuum::Mode::Transient : continuum::Mode::Steady;
   c.end_time = r.get_double(s + "Time/End time");
   r.require(c.transient() ? c.end_time > 0 : c.end_time == 0, s + "Time/End time",
@@ -428,7 +469,11 @@ continuum::ContinuumParameters resolve_continuum(const Registry& r,
       (c.transient() && c.model != continuum::Model::LowMach) || c.initial_temperature.empty(),
       s + "Initial temperature",
       "empty with Mode = steady and for low-Mach (which starts at the reference temperature)");
+}
 
+// The heat slabs, bins and probe points in the scene's frame, moved with the twin's walls.
+void resolve_output(const Registry& r, const scene::SceneParameters& scene,
+                    const std::array<double, 6>& distance, continuum::ContinuumParameters& c) {
   for (const auto& slab : scene.heat_slabs)
     c.heat_slabs.push_back({slab.direction, slab.lower, slab.upper, slab.power});
   for (int d = 0; d < scene.dim; ++d) c.bins[d] = static_cast<unsigned>(scene.bins[d]);
@@ -436,7 +481,24 @@ continuum::ContinuumParameters resolve_continuum(const Registry& r,
   continuum::move_walls_in(c, distance, scene.box); // slabs and points to this twin's frame
   c.write_fields = r.get_bool(s + "Output/Write fields");
   c.profile_samples = static_cast<int>(r.get_integer(s + "Output/Profile samples"));
+}
+} // namespace
 
+continuum::ContinuumParameters resolve_continuum(const Registry& r,
+                                                 const scene::SceneParameters& scene,
+                                                 const particle::ParticleParameters& particle) {
+  continuum::ContinuumParameters c;
+  c.dim = scene.dim;
+  c.box = scene.box;
+  c.model = resolve_model(r, scene);
+  c.gravity = scene.gravity;
+  resolve_thermal_walls(r, scene, c);
+  resolve_slip(r, scene, particle, c);
+  const std::array<double, 6> distance = wall_distances(r, scene, c);
+  resolve_coefficients(r, scene, c);
+  resolve_mesh_and_solver(r, scene, c);
+  resolve_time(r, c);
+  resolve_output(r, scene, distance, c);
   // Whatever the per-key checks above did not catch (e.g. a power law with a zero wall
   // temperature) is reported against the section.
   try {

@@ -10,7 +10,9 @@ const char* const kPositive = "a number > 0";
 
 using namespace twinflow::particle;
 
-void declare_particle(Registry& r) {
+namespace {
+// The integrator, its step and the run's length and start.
+void declare_integration(Registry& r) {
   using namespace dealii::Patterns;
   const std::string p = "Particle/";
   r.declare(p + "Integrator", "shardlow", Selection("euler|ec-verlet|shardlow"),
@@ -54,7 +56,12 @@ void declare_particle(Registry& r) {
             "isolated fluid stays at the scene temperature; theta: theta_i = T (u_i = c_v T, "
             "seed 002's start), after which an isolated ideal fluid settles at "
             "T (c_v + d/2) / (c_v + k + d/2) (8% low at c_v = 10 in 2D).");
+}
 
+// The fluid: internal energy and the pair terms.
+void declare_fluid(Registry& r) {
+  using namespace dealii::Patterns;
+  const std::string p = "Particle/";
   r.declare(p + "Internal energy/Model", "dpde", Selection("dpde|isothermal"),
             "dpde: every particle carries an internal energy u = c_v theta. isothermal: classical "
             "DPD with the fixed scene temperature in the fluctuation-dissipation relation.");
@@ -93,7 +100,12 @@ void declare_particle(Registry& r) {
             "seed-002-printed: (alpha^B)^2 = kappa_ij theta_i theta_j as printed in 002 (no 2k).");
   r.declare(p + "Heat conduction/Cutoff", "1", Double(), "Cutoff rc_H of w_H, > 0.", kPositive);
   r.declare(p + "Heat conduction/Exponent", "0.5", Double(0), "w_H = (1 - r/rc_H)^n_H.");
+}
 
+// The walls' model.
+void declare_walls(Registry& r) {
+  using namespace dealii::Patterns;
+  const std::string p = "Particle/";
   r.declare(p + "Walls/Model", "half-space", List(Selection("half-space|seed000"), 1, 6),
             "How a wall acts on the fluid: half-space: as the half-space of wall material beyond "
             "its plane (density Walls/Density, at rest, at the wall's temperature), every pair "
@@ -124,6 +136,12 @@ void declare_particle(Registry& r) {
   r.declare(p + "Walls/Range", "1", Double(),
             "seed000 walls: interaction range (repulsion, friction, heat exchange), > 0.",
             kPositive);
+}
+
+// What the run samples.
+void declare_diagnostics(Registry& r) {
+  using namespace dealii::Patterns;
+  const std::string p = "Particle/";
   r.declare(p + "Diagnostics/Sample interval", "10", Integer(1), "Steps between samples.");
   r.declare(p + "Diagnostics/Blocks", "20", Integer(2, 10000),
             "Number of blocks for block-averaged standard errors.");
@@ -135,6 +153,15 @@ void declare_particle(Registry& r) {
             "Length of the VACF / MSD window, in samples.");
 }
 
+} // namespace
+
+void declare_particle(Registry& r) {
+  declare_integration(r);
+  declare_fluid(r);
+  declare_walls(r);
+  declare_diagnostics(r);
+}
+
 namespace {
 WeightParameters weight(const Registry& r, const std::string& s) {
   WeightParameters w{r.get_double(s + "/Cutoff"), r.get_double(s + "/Exponent")};
@@ -143,16 +170,10 @@ WeightParameters weight(const Registry& r, const std::string& s) {
 }
 } // namespace
 
-ParticleParameters resolve_particle(const Registry& r, const scene::SceneParameters& scene) {
-  ParticleParameters p;
-  p.dim = scene.dim;
-  p.box = scene.box;
-  p.density = scene.density;
-  p.temperature = scene.temperature;
-  p.temperature_perturbation = scene.temperature_perturbation;
-  p.shear_perturbation = scene.shear_perturbation;
-  p.poiseuille_force = scene.poiseuille_force;
-  const std::string s = "Particle/";
+namespace {
+const std::string s = "Particle/";
+
+void resolve_integration(const Registry& r, ParticleParameters& p) {
   const std::string integrator = r.get(s + "Integrator");
   p.integrator = integrator == "euler"      ? Integrator::Euler
                  : integrator == "shardlow" ? Integrator::Shardlow
@@ -173,13 +194,14 @@ ParticleParameters resolve_particle(const Registry& r, const scene::SceneParamet
   p.initial_internal_energy = r.get(s + "Initial internal energy") == "theta"
                                   ? InitialInternalEnergy::Theta
                                   : InitialInternalEnergy::Equilibrium;
+}
 
+void resolve_fluid(const Registry& r, ParticleParameters& p) {
   p.energy = r.get(s + "Internal energy/Model") == "isothermal" ? EnergyModel::Isothermal
                                                                 : EnergyModel::Dpde;
   p.cv = r.get_double(s + "Internal energy/Heat capacity");
   r.require(p.cv > 1.0, s + "Internal energy/Heat capacity",
             "a number > 1 (c_v > k, 000 footnote 23)");
-
   const std::string c = r.get(s + "Conservative force/Type");
   p.conservative = c == "none"       ? ConservativeForce::None
                    : c == "constant" ? ConservativeForce::Constant
@@ -189,14 +211,12 @@ ParticleParameters resolve_particle(const Registry& r, const scene::SceneParamet
   r.require(p.conservative_cutoff > 0, s + "Conservative force/Cutoff", kPositive);
   p.reference_temperature = r.get_double(s + "Conservative force/Reference temperature");
   r.require(p.reference_temperature > 0, s + "Conservative force/Reference temperature", kPositive);
-
   p.friction = r.get(s + "Dissipation/Parametrisation") == "constant-gamma"
                    ? Friction::ConstantGamma
                    : Friction::ConstantSigma;
   p.sigma = r.get_double(s + "Dissipation/sigma");
   p.gamma = r.get_double(s + "Dissipation/gamma");
   p.dissipation = weight(r, s + "Dissipation");
-
   const std::string h = r.get(s + "Heat conduction/Law");
   p.heat = h == "none" ? HeatLaw::None : h == "linear" ? HeatLaw::Linear : HeatLaw::Inverse;
   p.heat_coefficient = r.get(s + "Heat conduction/Coefficient") == "constant"
@@ -206,16 +226,18 @@ ParticleParameters resolve_particle(const Registry& r, const scene::SceneParamet
   p.heat_weight = weight(r, s + "Heat conduction");
   p.linear_noise_factor = r.get(s + "Heat conduction/Linear noise") == "fdt" ? 2.0 : 1.0;
   if (p.energy == EnergyModel::Isothermal) p.heat = HeatLaw::None; // no internal energy at all
+}
 
+void resolve_diagnostics(const Registry& r, ParticleParameters& p) {
   p.sample_interval = r.get_integer(s + "Diagnostics/Sample interval");
   p.blocks = static_cast<int>(r.get_integer(s + "Diagnostics/Blocks"));
   p.histogram_bins = static_cast<int>(r.get_integer(s + "Diagnostics/Histogram bins"));
   p.rdf_bins = static_cast<int>(r.get_integer(s + "Diagnostics/RDF bins"));
   p.correlation_samples = static_cast<int>(r.get_integer(s + "Diagnostics/Correlation samples"));
+}
 
-  for (const auto& slab : scene.heat_slabs)
-    p.heat_slabs.push_back({slab.direction, slab.lower, slab.upper, slab.power});
-  p.bins = scene.bins;
+// The scene's walls with the case's wall model per wall, and gravity.
+void resolve_walls(const Registry& r, const scene::SceneParameters& scene, ParticleParameters& p) {
   p.wall_a0 = r.get_double(s + "Walls/Repulsion");
   p.wall_range = r.get_double(s + "Walls/Range");
   r.require(p.wall_range > 0, s + "Walls/Range", kPositive);
@@ -241,9 +263,12 @@ ParticleParameters resolve_particle(const Registry& r, const scene::SceneParamet
     r.require(!(b.periodic && scene.gravity[d] != 0), "Scene/Gravity",
               "no component along a periodic direction (its potential would jump at the wrap)");
   }
-  // Repulsion and Range shape seed 000's walls only (a half-space wall's pair terms are the
-  // fluid's own, integrated over the wall material): a value set for walls that ignore it is a
-  // mistake the user should hear of, not a silent no-op.
+}
+
+// What does not fit together: seed 000's wall keys for half-space walls (a value set for walls
+// that ignore it is a mistake the user should hear of, not a silent no-op), the scene's forcing
+// against its walls, and minimum image (every periodic edge >= 2 cutoffs).
+void check_particle(const Registry& r, const ParticleParameters& p) {
   bool walls_present = false, seed000_wall = false;
   for (int d = 0; d < p.dim; ++d)
     for (int side = 0; side < 2; ++side)
@@ -259,12 +284,30 @@ ParticleParameters resolve_particle(const Registry& r, const scene::SceneParamet
             "Scene/Reverse Poiseuille force", "0 with walls along y (it needs a periodic y)");
   r.require(p.shear_perturbation == 0 || (p.dim >= 2 && !p.walls[0].present && !p.walls[1].present),
             "Scene/Shear perturbation", "0 unless the scene is 2D or 3D with periodic x and y");
-
-  // Minimum image needs every periodic edge >= 2 cutoffs.
   const double rc = p.largest_cutoff();
   for (int d = 0; d < p.dim; ++d)
     r.require(p.box[d] >= 2 * rc, "Scene/Box size",
               "every edge >= 2 x the largest cutoff (" + std::to_string(2 * rc) + ")");
+}
+} // namespace
+
+ParticleParameters resolve_particle(const Registry& r, const scene::SceneParameters& scene) {
+  ParticleParameters p;
+  p.dim = scene.dim;
+  p.box = scene.box;
+  p.density = scene.density;
+  p.temperature = scene.temperature;
+  p.temperature_perturbation = scene.temperature_perturbation;
+  p.shear_perturbation = scene.shear_perturbation;
+  p.poiseuille_force = scene.poiseuille_force;
+  resolve_integration(r, p);
+  resolve_fluid(r, p);
+  resolve_diagnostics(r, p);
+  for (const auto& slab : scene.heat_slabs)
+    p.heat_slabs.push_back({slab.direction, slab.lower, slab.upper, slab.power});
+  p.bins = scene.bins;
+  resolve_walls(r, scene, p);
+  check_particle(r, p);
   return p;
 }
 

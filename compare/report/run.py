@@ -581,7 +581,21 @@ def verdict_section(doc, metrics):
                if isinstance(line, str)]
     if verdict:
         doc.heading("Verdict")
-        doc.bullets(verdict)
+        doc.bullets(verdict + prediction_lines(metrics))
+
+
+def prediction_lines(metrics):
+    """The nominal twin against the prediction suite's fixed tolerances (compare's "prediction"
+    block), beside the strict verdict; none for a run from before it."""
+    prediction = lookup(metrics, "prediction", optional=True)
+    if not isinstance(prediction, dict):
+        return []
+    failed = [name for name in ("nusselt", "temperature", "velocity", "density")
+              if isinstance(prediction.get(name), dict) and not prediction[name].get("pass")]
+    rule = prediction.get("rule", "")
+    if prediction.get("pass"):
+        return [f"prediction tolerances ({rule}): met"]
+    return [f"prediction tolerances ({rule}): not met ({', '.join(failed)})"]
 
 
 def dimensionless_numbers_section(doc, run):

@@ -298,6 +298,7 @@ def report_sweep(sweep_dir, out_dir):
     doc = Document(f"Sweep: {case_name}")
     doc.paragraph(f"Sweep directory: {os.path.abspath(sweep_dir)}. Case file: "
                   f"{lookup(sweep.grid, 'case_file') or '–'}. {UNITS_NOTE}.")
+    verdict_section(doc, sweep)
     grid_section(doc, sweep)
     figures = sweep_figures(out_dir, sweep, doc)
     points_section(doc, sweep)
@@ -309,6 +310,34 @@ def report_sweep(sweep_dir, out_dir):
         for name, caption in figures:
             doc.figure(name, caption + f" {UNITS_NOTE}.")
     write_documents(doc, out_dir)
+
+
+def verdict_section(doc, sweep):
+    """The sweep's verdict first: how many points finished, and at how many compare's strict
+    verdict and its prediction tolerances hold for the nominal twin (the points' own verdicts,
+    columns within_errors_nominal and prediction_pass)."""
+    done = sweep.done
+    total = len(sweep.table.rows)
+
+    def count(column):
+        known = [cell(r, column, optional=True) for r in done]
+        known = [v for v in known if v in ("true", "false")]
+        return (sum(v == "true" for v in known), len(known)) if known else None
+
+    line = f"verdict: {len(done)} of {total} points done"
+    for column, what in (("within_errors_nominal", "the nominal twin matches the particles "
+                                                    "within errors (compare's strict verdict)"),
+                         ("prediction_pass", "within the prediction tolerances")):
+        counted = count(column)
+        if counted:
+            line += f"; {what} at {counted[0]} of {counted[1]}"
+    doc.heading("Verdict")
+    items = [line + "."]
+    if sweep.not_done:
+        items.append("not done: " + ", ".join(
+            f"{plain(cell(r, 'point'))} ({plain(cell(r, 'status'))})" for r in sweep.not_done)
+            + " (the reasons: Points not done).")
+    doc.bullets(items)
 
 
 def grid_section(doc, sweep):

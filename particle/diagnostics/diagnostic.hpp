@@ -51,6 +51,7 @@ template <int D> struct Sample {
   const std::array<double, 6>& wall_momentum_in; // since the start, per wall 2 d + side
   const std::array<double, 6>& wall_energy_in;
   long wall_crossings = 0;
+  std::array<double, 12> wall_heat_moves{}; // per wall: proposed (0-5), accepted (6-11)
   double elapsed_seconds = 0; // wall clock since the run began, earlier parts of a restart too
 };
 

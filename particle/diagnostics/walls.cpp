@@ -42,6 +42,7 @@ public:
     }
     last_step_ = s.step;
     crossings_ = s.wall_crossings;
+    heat_moves_ = s.wall_heat_moves;
   }
   void finish(RunOutput& out) override {
     io::Json walls = io::Json::object();
@@ -60,6 +61,11 @@ public:
       j["heat_flux_in_stderr"] = jw.stderr_;
       // The same with 2 and 4 blocks merged: equal errors say the blocks are long enough.
       j["heat_flux_in_stderr_blocking"] = statistics::blocking_errors(heat_flux_[w], p_.blocks);
+      // The wall's heat exchange (a thermal half-space wall): its Metropolis moves accepted.
+      if (heat_moves_[w] > 0) {
+        j["heat_moves_proposed"] = heat_moves_[w];
+        j["heat_moves_acceptance"] = heat_moves_[6 + w] / heat_moves_[w];
+      }
     }
     out.summary["walls"] = walls;
     // The heat flow across each pair of walls with a thermal one, from lower to upper. Its
@@ -89,7 +95,7 @@ public:
   }
   template <class A> void archive(A& a) {
     a("last_momentum", last_momentum_), a("last_energy", last_energy_);
-    a("last_step", last_step_), a("crossings", crossings_);
+    a("last_step", last_step_), a("crossings", crossings_), a("heat_moves", heat_moves_);
     a("pressure", pressure_), a("heat_flux", heat_flux_);
   }
 
@@ -97,6 +103,7 @@ private:
   ParticleParameters p_;
   std::array<double, 6> last_momentum_{}, last_energy_{}; // at the last sample
   long last_step_ = 0, crossings_ = 0;
+  std::array<double, 12> heat_moves_{}; // as the simulation counted them at the last sample
   std::vector<std::vector<double>> pressure_ = std::vector<std::vector<double>>(6),
                                    heat_flux_ = std::vector<std::vector<double>>(6);
 };
@@ -108,7 +115,7 @@ public:
   WallLayers(const ParticleParameters& p, const RunFacts& m)
       : Archived<D, WallLayers<D>>("wall_layers"), p_(p), friction_(m.wall_friction),
         sampler_(box3(p), {{p.walls[0].present, p.walls[1].present, D == 3 && p.walls[2].present}},
-                 p.wall_range, 20, p.blocks, sampled_count(p), p.mass) {}
+                 p.wall_range, 20, p.blocks, sampled_count(p), p.mass, p.cv) {}
   void sample(const Sample<D>& s) override {
     if (s.sampled) sampler_.sample(s.state);
   }

@@ -22,14 +22,23 @@ if [ "${PREDICTION_TINY:-0}" = 1 ]; then
   extra=(--set 'Particle/Steps=4000')
 fi
 runs=()
+failed=() # a case whose run stopped stays in the table, failing, with the run's own reason
 for c in "${cases[@]}"; do
   echo "prediction: $c"
-  "$twinflow" run "$source_dir/cases/$c.prm" --out "$out/$c" "${extra[@]}" >"$out/$c.log" 2>&1 ||
-    { tail -20 "$out/$c.log"; echo "FAIL: twinflow run $c"; exit 1; }
-  runs+=("$out/$c")
+  start=$SECONDS
+  if "$twinflow" run "$source_dir/cases/$c.prm" --out "$out/$c" "${extra[@]}" >"$out/$c.log" 2>&1
+  then
+    runs+=("$out/$c")
+    echo "prediction: $c ran in $((SECONDS - start)) s"
+  else
+    tail -5 "$out/$c.log"
+    failed+=("| $c | the run stopped: $(grep -m1 -o 'failed:.*' "$out/$c.log" | cut -c1-200) |")
+  fi
 done
+[ ${#runs[@]} -gt 0 ] || { echo "FAIL: no case ran"; exit 1; }
 python3 "$source_dir/scripts/prediction_table.py" "${runs[@]}" --markdown "$out/table.md" \
   --json "$out/table.json" || exit 1
+for line in "${failed[@]}"; do echo "$line" >>"$out/table.md"; done
 if [ "${PREDICTION_TINY:-0}" = 1 ]; then
   grep -q "^| quickstart_2d " "$out/table.md" || { echo "FAIL: no table row"; exit 1; }
   exit 0

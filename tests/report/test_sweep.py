@@ -6,8 +6,10 @@ import unittest
 
 import report_path  # noqa: F401  (compare/ on sys.path)
 from report.data import MissingKey, Table, cell, strict_mode
-from report.sweep import (DE_VAHL_DAVIS_NUSSELT, in_range, landing_summary, metric, pareto_front,
-                          rayleigh_miss, source_style, sweep_groups, walls_no_slip)
+from report.document import Document
+from report.sweep import (DE_VAHL_DAVIS_NUSSELT, Sweep, in_range, landing_summary, metric,
+                          pareto_front, rayleigh_miss, source_style, sweep_groups, verdict_section,
+                          walls_no_slip)
 
 
 class Pareto(unittest.TestCase):
@@ -89,6 +91,24 @@ class Columns(unittest.TestCase):
             self.assertEqual(cell(row, "status"), "failed")
             with self.assertRaises(MissingKey):
                 cell(row, "target_rayleigh")
+
+
+class Verdict(unittest.TestCase):
+    def test_counts_the_points_own_verdicts(self):
+        folder = tempfile.mkdtemp()
+        with open(os.path.join(folder, "sweep.csv"), "w", encoding="utf-8") as f:
+            f.write("point,status,reason,exit_code,Particle/Seed,wall_seconds,"
+                    "within_errors_nominal,prediction_pass\n"
+                    "000,done,,0,1,3,true,true\n001,done,,0,2,3,false,true\n"
+                    "002,failed,unstable,4,3,1,,\n")
+        doc = Document("sweep")
+        verdict_section(doc, Sweep(folder))
+        self.assertEqual(doc.blocks[0], ("heading", 2, "Verdict"))
+        first, second = doc.blocks[1][1]
+        self.assertTrue(first.startswith("verdict: 2 of 3 points done"))
+        self.assertIn("within errors (compare's strict verdict) at 1 of 2", first)
+        self.assertIn("within the prediction tolerances at 2 of 2", first)
+        self.assertIn("002 (failed)", second)
 
 
 if __name__ == "__main__":

@@ -1,6 +1,7 @@
 // Full-size scene validations against the papers (label validation).
 #include "scene_run.hpp"
 
+#include <algorithm>
 #include <vector>
 
 #include "transport/measure.hpp"
@@ -91,4 +92,87 @@ TEST(ScenesValidation, ThermalRelaxationKappa) {
   std::cout << "kappa (relaxation, " << kappa.size() << " seeds) = " << mean << " +- " << sem
             << "\n";
   EXPECT_NEAR(mean, 150, 3 * sem);
+}
+
+namespace {
+// A column of wall_layers.csv within the first cutoff of a wall, weighted by its errors.
+struct LayerMean {
+  double mean = 0, stderr_ = 0;
+};
+LayerMean layer_mean(const std::string& csv, const std::string& wall, const std::string& column) {
+  std::istringstream in(csv);
+  std::vector<std::string> header;
+  double sw = 0, swx = 0;
+  for (std::string line; std::getline(in, line);) {
+    if (line.empty() || line[0] == '#') continue;
+    std::vector<std::string> cells;
+    std::istringstream row(line);
+    for (std::string cell; std::getline(row, cell, ',');) cells.push_back(cell);
+    if (header.empty()) {
+      header = cells;
+      continue;
+    }
+    const auto at = [&](const std::string& name) {
+      return std::stod(cells[std::find(header.begin(), header.end(), name) - header.begin()]);
+    };
+    if (cells[0] != wall || at("h") >= 1) continue;
+    const double se = at(column + "_se");
+    if (!(se > 0)) continue;
+    sw += 1 / (se * se), swx += at(column) / (se * se);
+  }
+  return {swx / sw, 1 / std::sqrt(sw)};
+}
+} // namespace
+
+// Issue 44: the shipped walls (the default cavity's: half-space, diffuse re-emission, conducting
+// 30x and 100x the fluid) hold a fluid started away from their temperature at it, in equilibrium
+// (the default fluid at 1.2 between walls at 0.8, no gravity; 2D, c_v = 10, dt 0.01; 600 tau, ~6
+// decay times of the slowest mode, to relax, 600 sampled). It relaxes
+// to T_w with T_kinetic = T_internal = T_w, the wall layer's first cutoff included (its internal
+// energies the Gamma law's, its velocities Gaussian), and no net heat into either wall; the
+// walls' Metropolis acceptance is printed.
+TEST(ScenesValidation, ShippedWallsHoldAFluidAtTheirTemperature) {
+  for (const char* factor : {"30", "100"}) {
+    std::filesystem::path dir;
+    const auto r = run_case(
+        "heated_cavity_2d",
+        std::string("--threads 2 --set 'Scene/Gravity=0, 0' --set 'Scene/Temperature=1.2' ") +
+            "--set 'Scene/x boundaries/Lower wall temperature=0.8' --set 'Scene/x boundaries/Upper "
+            "wall temperature=0.8' --set 'Particle/Equilibration steps=60000' --set "
+            "'Particle/Steps=60000' --set 'Particle/Walls/Heat conduction=" +
+            factor + "'",
+        &dir);
+    const double T_w = 0.8;
+    const auto near_wall = [&](double value, double se, const char* what) {
+      EXPECT_LT(std::fabs(value - T_w), 3 * se + 1e-3)
+          << "f " << factor << ": " << what << " " << value << " +- " << se;
+    };
+    near_wall(number(r, "T_kinetic"), number(r, "T_kinetic_stderr"), "T_kinetic");
+    near_wall(number(r, "T_internal"), number(r, "T_internal_stderr"), "T_internal");
+    const std::string layers = twinflow::io::read_file(dir / "particle" / "wall_layers.csv");
+    for (const char* wall : {"x_lower", "x_upper"}) {
+      const LayerMean tk = layer_mean(layers, wall, "T_kinetic");
+      const LayerMean ti = layer_mean(layers, wall, "T_internal");
+      const LayerMean gamma = layer_mean(layers, wall, "u_gamma_ratio");
+      const LayerMean kurtosis = layer_mean(layers, wall, "kurtosis");
+      const std::string name = std::string("walls.") + wall;
+      const double q = number(r, name + ".heat_flux_in"),
+                   q_se = number(r, name + ".heat_flux_in_stderr");
+      std::cout << "f " << factor << ", " << wall << " (h < 1): T_kinetic " << tk.mean << " +- "
+                << tk.stderr_ << ", T_internal " << ti.mean << " +- " << ti.stderr_
+                << ", Var(u)(c_v+1)/<u>^2 " << gamma.mean << " +- " << gamma.stderr_
+                << ", kurtosis " << kurtosis.mean << " +- " << kurtosis.stderr_ << "; heat in " << q
+                << " +- " << q_se << "; Metropolis acceptance "
+                << number(r, name + ".heat_moves_acceptance") << "\n";
+      near_wall(tk.mean, tk.stderr_, "layer T_kinetic");
+      near_wall(ti.mean, ti.stderr_, "layer T_internal");
+      EXPECT_LT(std::fabs(gamma.mean - 1), 3 * gamma.stderr_ + 0.01) << wall;
+      EXPECT_LT(std::fabs(kurtosis.mean - 3), 3 * kurtosis.stderr_ + 0.02) << wall;
+      // No net heat either way: the sign of a wall's flow in equilibrium is noise.
+      EXPECT_LT(std::fabs(q), 3 * q_se) << wall;
+      const double acceptance = number(r, name + ".heat_moves_acceptance");
+      EXPECT_GT(acceptance, 0.5) << wall;
+      EXPECT_LE(acceptance, 1.0) << wall;
+    }
+  }
 }

@@ -1,0 +1,6 @@
+// The particle models of 2D with temperature conservative force (run_models.tpp).
+#include "particle/run_models.tpp"
+
+namespace twinflow::particle::detail {
+TWINFLOW_PARTICLE_FAMILY(2, TemperatureRepulsion)
+} // namespace twinflow::particle::detail

@@ -1,0 +1,6 @@
+// The particle models of 3D with no conservative force (run_models.tpp).
+#include "particle/run_models.tpp"
+
+namespace twinflow::particle::detail {
+TWINFLOW_PARTICLE_FAMILY(3, NoConservative)
+} // namespace twinflow::particle::detail

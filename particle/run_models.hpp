@@ -1,0 +1,31 @@
+#pragma once
+// The families of compiled particle models (run_models.tpp): one per dimension and conservative
+// force, each instantiated in its own unit (run_2d_none.cpp, ...).
+
+#include "particle/pair_terms.hpp"
+#include "particle/run.hpp"
+
+namespace twinflow::particle::detail {
+
+template <int D, class C>
+RunOutput run_family(const ParticleParameters& p, const C& conservative, const RunControl& control);
+template <int D, class C>
+BenchResult bench_family(const ParticleParameters& p, const C& conservative, long steps);
+
+// The families (each instantiated once, in its unit).
+#define TWINFLOW_PARTICLE_FAMILY(D, C)                                                             \
+  template RunOutput run_family<D, C>(const ParticleParameters&, const C&, const RunControl&);     \
+  template BenchResult bench_family<D, C>(const ParticleParameters&, const C&, long);
+#define TWINFLOW_EXTERN_PARTICLE_FAMILY(D, C)                                                      \
+  extern template RunOutput run_family<D, C>(const ParticleParameters&, const C&,                  \
+                                             const RunControl&);                                   \
+  extern template BenchResult bench_family<D, C>(const ParticleParameters&, const C&, long);
+TWINFLOW_EXTERN_PARTICLE_FAMILY(2, NoConservative)
+TWINFLOW_EXTERN_PARTICLE_FAMILY(2, ConstantRepulsion)
+TWINFLOW_EXTERN_PARTICLE_FAMILY(2, TemperatureRepulsion)
+TWINFLOW_EXTERN_PARTICLE_FAMILY(3, NoConservative)
+TWINFLOW_EXTERN_PARTICLE_FAMILY(3, ConstantRepulsion)
+TWINFLOW_EXTERN_PARTICLE_FAMILY(3, TemperatureRepulsion)
+#undef TWINFLOW_EXTERN_PARTICLE_FAMILY
+
+} // namespace twinflow::particle::detail

@@ -206,9 +206,12 @@ const std::vector<Command>& commands() {
        "twinflow bench [--out DIR] [--set 'Bench/Key=value' ...]\n\n"
        "Particle-steps/s per integrator, scene, size and thread count into DIR/bench/\n"
        "(default twinflow-runs/bench). Keys: Bench/N, Bench/N2D, Bench/Scenes,\n"
-       "Bench/Integrators, Bench/Threads, Bench/Skin, Bench/Noise, Bench/Steps, Bench/Thermo.\n"
+       "Bench/Integrators, Bench/Threads, Bench/Skin, Bench/Noise, Bench/Steps, Bench/Thermo;\n"
+       "Bench/Cavity (particle counts of the default cavity, walled beside its bulk fluid).\n"
        "\nexample:\n"
-       "  twinflow bench --set 'Bench/N=6000' --set 'Bench/Threads=1,2'\n\n" TWINFLOW_EXIT_CODES},
+       "  twinflow bench --set 'Bench/N=6000' --set 'Bench/Threads=1,2'\n"
+       "  twinflow bench --set 'Bench/Cavity=1600,6400' --set "
+       "'Bench/Threads=1,2'\n\n" TWINFLOW_EXIT_CODES},
       {"check-case", "CASE", "validate a case file and print its resolved parameters", check_case,
        "twinflow check-case CASE [--set 'Section/Key=value' ...]\n\n"
        "Loads the case as every stage would (includes, --set, every value checked) and prints\n"

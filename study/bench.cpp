@@ -22,6 +22,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <functional>
 #include <iostream>
 #include <sstream>
 
@@ -103,88 +104,110 @@ struct Options {
   std::vector<long> cavity_sizes; // Bench/Cavity: the default cavity walled and periodic
 };
 
+using Bad = std::function<io::InputError(const std::string& allowed)>;
+
+void parse_sizes(Options& o, const std::string& key, const std::string& value, const Bad& bad) {
+  if (!o.sizes_given) o.sizes.clear(); // the default matrix
+  o.sizes_given = true;
+  for (const auto& n : split(value)) {
+    if (key == "Bench/N2D") { // rho = 3, box 2L x L
+      const double l = std::sqrt(std::stod(n) / (2 * 3.0));
+      if (!(l >= 4)) throw bad("N >= 96");
+      o.sizes.push_back({2, {{2 * l, l, 1}}});
+      continue;
+    }
+    const double l = std::cbrt(std::stod(n) / (2 * 3.0)); // rho = 3, box 2L x L x L
+    if (!(l >= 4)) throw bad("N >= 384");
+    o.sizes.push_back({3, {{2 * l, l, l}}});
+  }
+}
+
+void parse_scenes(Options& o, const std::string& value, const Bad& bad) {
+  o.scenes.clear();
+  for (const auto& name : split(value)) {
+    const Scene* found = nullptr;
+    for (const auto& s : all_scenes)
+      if (name == s.name) found = &s;
+    if (!found) throw bad("ideal, ideal+heat, a0=15, a0=15+heat");
+    o.scenes.push_back(found);
+  }
+}
+
+void parse_integrators(Options& o, const std::string& value, const Bad& bad) {
+  o.integrators.clear();
+  for (const auto& name : split(value)) {
+    if (name == "shardlow")
+      o.integrators.push_back(Integrator::Shardlow);
+    else if (name == "ec-verlet")
+      o.integrators.push_back(Integrator::EcVerlet);
+    else if (name == "euler")
+      o.integrators.push_back(Integrator::Euler);
+    else
+      throw bad("shardlow, ec-verlet, euler");
+  }
+}
+
+void parse_cavity(Options& o, const std::string& value, const Bad& bad) {
+  for (const auto& n : split(value)) {
+    o.cavity_sizes.push_back(std::stol(n));
+    if (o.cavity_sizes.back() < 64) throw bad("N >= 64");
+  }
+  if (!o.sizes_given) o.sizes.clear(); // the cavity alone unless sizes are given too
+  o.sizes_given = true;
+}
+
+// One --set 'Bench/KEY=VALUE' into the options.
+void parse_setting(Options& o, const std::string& key, const std::string& value, const Bad& bad) {
+  if (key == "Bench/N" || key == "Bench/N2D") {
+    parse_sizes(o, key, value, bad);
+  } else if (key == "Bench/Scenes") {
+    parse_scenes(o, value, bad);
+  } else if (key == "Bench/Integrators") {
+    parse_integrators(o, value, bad);
+  } else if (key == "Bench/Threads") {
+    o.threads.clear();
+    for (const auto& t : split(value)) {
+      o.threads.push_back(std::stoi(t));
+      if (o.threads.back() < 1) throw bad("threads >= 1");
+    }
+  } else if (key == "Bench/Skin") {
+    o.skins.clear();
+    for (const auto& t : split(value)) {
+      o.skins.push_back(std::stod(t));
+      if (!(o.skins.back() >= 0 && o.skins.back() < 1)) throw bad("skins in [0, 1)");
+    }
+  } else if (key == "Bench/Noise") {
+    o.uniform_noise.clear();
+    for (const auto& t : split(value)) {
+      if (t != "gaussian" && t != "uniform") throw bad("gaussian, uniform");
+      o.uniform_noise.push_back(t == "uniform");
+    }
+  } else if (key == "Bench/Steps") {
+    o.steps = std::stol(value);
+    if (o.steps < 1) throw bad("steps >= 1");
+  } else if (key == "Bench/Cavity") {
+    parse_cavity(o, value, bad);
+  } else if (key == "Bench/Thermo") {
+    o.thermo = std::stol(value);
+    if (o.thermo < 10) throw bad("steps >= 10");
+  } else {
+    throw bad("Bench/N, Bench/N2D, Bench/Scenes, Bench/Integrators, Bench/Threads, Bench/Skin, "
+              "Bench/Noise, Bench/Steps, Bench/Thermo, Bench/Cavity");
+  }
+}
+
 Options parse(const RunOptions& cl, const std::vector<std::string>& settings) {
   Options o;
   const int max_threads = cl.threads > 0 ? cl.threads : omp_get_num_procs();
   for (int t = 1; t <= std::min(2, max_threads); ++t) o.threads.push_back(t);
   for (const auto& setting : settings) {
     const auto eq = setting.find('=');
-    const std::string key = setting.substr(0, eq), value = setting.substr(eq + 1);
-    const auto bad = [&](const std::string& allowed) {
+    const Bad bad = [&](const std::string& allowed) {
       return io::InputError("--set '" + setting + "': allowed: " + allowed);
     };
     if (eq == std::string::npos) throw bad("Bench/KEY=VALUE");
     try {
-      if (key == "Bench/N" || key == "Bench/N2D") {
-        if (!o.sizes_given) o.sizes.clear(); // the default matrix
-        o.sizes_given = true;
-        for (const auto& n : split(value)) {
-          if (key == "Bench/N2D") { // rho = 3, box 2L x L
-            const double l = std::sqrt(std::stod(n) / (2 * 3.0));
-            if (!(l >= 4)) throw bad("N >= 96");
-            o.sizes.push_back({2, {{2 * l, l, 1}}});
-            continue;
-          }
-          const double l = std::cbrt(std::stod(n) / (2 * 3.0)); // rho = 3, box 2L x L x L
-          if (!(l >= 4)) throw bad("N >= 384");
-          o.sizes.push_back({3, {{2 * l, l, l}}});
-        }
-      } else if (key == "Bench/Scenes") {
-        o.scenes.clear();
-        for (const auto& name : split(value)) {
-          const Scene* found = nullptr;
-          for (const auto& s : all_scenes)
-            if (name == s.name) found = &s;
-          if (!found) throw bad("ideal, ideal+heat, a0=15, a0=15+heat");
-          o.scenes.push_back(found);
-        }
-      } else if (key == "Bench/Integrators") {
-        o.integrators.clear();
-        for (const auto& name : split(value)) {
-          if (name == "shardlow")
-            o.integrators.push_back(Integrator::Shardlow);
-          else if (name == "ec-verlet")
-            o.integrators.push_back(Integrator::EcVerlet);
-          else if (name == "euler")
-            o.integrators.push_back(Integrator::Euler);
-          else
-            throw bad("shardlow, ec-verlet, euler");
-        }
-      } else if (key == "Bench/Threads") {
-        o.threads.clear();
-        for (const auto& t : split(value)) {
-          o.threads.push_back(std::stoi(t));
-          if (o.threads.back() < 1) throw bad("threads >= 1");
-        }
-      } else if (key == "Bench/Skin") {
-        o.skins.clear();
-        for (const auto& t : split(value)) {
-          o.skins.push_back(std::stod(t));
-          if (!(o.skins.back() >= 0 && o.skins.back() < 1)) throw bad("skins in [0, 1)");
-        }
-      } else if (key == "Bench/Noise") {
-        o.uniform_noise.clear();
-        for (const auto& t : split(value)) {
-          if (t != "gaussian" && t != "uniform") throw bad("gaussian, uniform");
-          o.uniform_noise.push_back(t == "uniform");
-        }
-      } else if (key == "Bench/Steps") {
-        o.steps = std::stol(value);
-        if (o.steps < 1) throw bad("steps >= 1");
-      } else if (key == "Bench/Cavity") {
-        for (const auto& n : split(value)) {
-          o.cavity_sizes.push_back(std::stol(n));
-          if (o.cavity_sizes.back() < 64) throw bad("N >= 64");
-        }
-        if (!o.sizes_given) o.sizes.clear(); // the cavity alone unless sizes are given too
-        o.sizes_given = true;
-      } else if (key == "Bench/Thermo") {
-        o.thermo = std::stol(value);
-        if (o.thermo < 10) throw bad("steps >= 10");
-      } else {
-        throw bad("Bench/N, Bench/N2D, Bench/Scenes, Bench/Integrators, Bench/Threads, Bench/Skin, "
-                  "Bench/Noise, Bench/Steps, Bench/Thermo, Bench/Cavity");
-      }
+      parse_setting(o, setting.substr(0, eq), setting.substr(eq + 1), bad);
     } catch (const std::logic_error&) { // stoi/stod
       throw bad("numbers");
     }
@@ -232,26 +255,58 @@ std::string timed_row(const ParticleParameters& p, const std::string& scene, int
   row["noise"] = p.uniform_noise ? "uniform" : "gaussian";
   return line;
 }
-} // namespace
 
-int bench(const RunOptions& cl, const std::vector<std::string>& settings,
-          const ParticleParameters& cavity) {
-  const io::StageDirectory stage(
-      cl.out.empty() ? std::filesystem::path("twinflow-runs/bench") : cl.out, "bench", cl.force);
-  const Options o = parse(cl, settings);
+// Instead of timing: equilibrate and sample `steps` steps each, the thermodynamics as one row.
+std::string thermo_row(ParticleParameters p, const std::string& scene, int threads, long steps,
+                       io::Json& row) {
+  p.equilibration_steps = steps;
+  p.steps = steps;
+  p.sample_interval = std::max(1L, steps / 200);
+  const io::Json s = run_particles(p).summary;
+  auto num = [&](const char* k) { return io::number(s, {k}); };
+  char line[512];
+  std::snprintf(line, sizeof line,
+                "| %d | %ld | %s | %s | %d | %g | %s | %ld | %.2e | %.5f +- %.5f | %.5f +- %.5f | "
+                "%.4f +- %.4f |\n",
+                p.dim, p.particle_count(), scene.c_str(), to_string(p.integrator), threads,
+                p.neighbour_skin, p.uniform_noise ? "uniform" : "gaussian", 2 * steps,
+                num("energy_relative_drift_max"), num("T_kinetic"), num("T_kinetic_stderr"),
+                num("T_internal"), num("T_internal_stderr"), num("pressure"),
+                num("pressure_stderr"));
+  row = s;
+  row["dim"] = p.dim;
+  row["scene"] = scene;
+  row["integrator"] = to_string(p.integrator);
+  row["threads"] = threads;
+  row["skin"] = p.neighbour_skin;
+  row["noise"] = p.uniform_noise ? "uniform" : "gaussian";
+  return line;
+}
+
+std::string table_header(bool thermo) {
+  if (thermo)
+    return "| dim | N | scene | integrator | threads | skin | noise | steps | max dE/E0 | "
+           "T_kinetic | T_internal | pressure "
+           "|\n|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  return "| dim | N | scene | integrator | threads | skin | noise | particle-steps/s | steps per "
+         "list | peak RSS kB | MPI ranks | array bytes per particle "
+         "|\n|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+}
+
+// The table so far and the rows, printed as they come (rank 0) and kept for the files.
+struct Rows {
+  bool root = particle::Slabs::world_rank() == 0; // under mpirun every rank runs each point
   std::ostringstream table;
-  if (o.thermo > 0)
-    table << "| dim | N | scene | integrator | threads | skin | noise | steps | max dE/E0 | "
-             "T_kinetic | T_internal | pressure "
-             "|\n|---|---|---|---|---|---|---|---|---|---|---|---|\n";
-  else
-    table << "| dim | N | scene | integrator | threads | skin | noise | particle-steps/s | steps "
-             "per list | peak RSS kB | MPI ranks | array bytes per particle "
-             "|\n|---|---|---|---|---|---|---|---|---|---|---|---|\n";
-  // Under mpirun every rank runs each point (particle/decomposition.hpp); rank 0 reports.
-  const bool root = particle::Slabs::world_rank() == 0;
-  if (root) std::cout << table.str() << std::flush;
-  io::Json rows = io::Json::array();
+  io::Json json = io::Json::array();
+  void add(const std::string& line, io::Json row) {
+    if (root) std::cout << line << std::flush;
+    table << line;
+    json.push_back(std::move(row));
+  }
+};
+
+// Every point of the matrix: sizes x scenes x integrators x threads x skins x noises.
+void bench_matrix(const Options& o, Rows& rows) {
   for (const auto& size : o.sizes)
     for (const Scene* scene : o.scenes)
       for (const auto integrator : o.integrators)
@@ -262,41 +317,17 @@ int bench(const RunOptions& cl, const std::vector<std::string>& settings,
               auto p = bench_case(size.dim, size.box, *scene, integrator);
               p.neighbour_skin = skin;
               p.uniform_noise = uniform;
-              const char* noise = uniform ? "uniform" : "gaussian";
               io::Json row = io::Json::object();
-              char line[512];
-              if (o.thermo > 0) {
-                p.equilibration_steps = o.thermo;
-                p.steps = o.thermo;
-                p.sample_interval = std::max(1L, o.thermo / 200);
-                const io::Json s = run_particles(p).summary;
-                if (!root) continue; // its summary is rank 0's
-                auto num = [&](const char* k) { return io::number(s, {k}); };
-                const double drift = num("energy_relative_drift_max");
-                std::snprintf(line, sizeof line,
-                              "| %d | %ld | %s | %s | %d | %g | %s | %ld | %.2e | %.5f +- %.5f | "
-                              "%.5f +- %.5f | %.4f +- %.4f |\n",
-                              size.dim, p.particle_count(), scene->name, to_string(integrator),
-                              threads, skin, noise, 2 * o.thermo, drift, num("T_kinetic"),
-                              num("T_kinetic_stderr"), num("T_internal"), num("T_internal_stderr"),
-                              num("pressure"), num("pressure_stderr"));
-                row = s;
-                row["dim"] = size.dim;
-                row["scene"] = scene->name;
-                row["integrator"] = to_string(integrator);
-                row["threads"] = threads;
-                row["skin"] = skin;
-                row["noise"] = noise;
-              } else {
-                std::snprintf(line, sizeof line, "%s",
-                              timed_row(p, scene->name, threads, o.steps, row).c_str());
-              }
-              if (root) std::cout << line << std::flush;
-              table << line;
-              rows.push_back(row);
+              const std::string line = o.thermo > 0
+                                           ? thermo_row(p, scene->name, threads, o.thermo, row)
+                                           : timed_row(p, scene->name, threads, o.steps, row);
+              rows.add(line, std::move(row));
             }
-  // The walls' cost: the cavity walled beside its fluid periodic, at each N and thread count,
-  // interleaved (walled, bulk, walled, bulk, ...).
+}
+
+// The walls' cost: the cavity walled beside its fluid periodic, at each N and thread count,
+// interleaved (walled, bulk, walled, bulk, ...).
+void bench_cavity(const Options& o, const ParticleParameters& cavity, Rows& rows) {
   for (const long n : o.cavity_sizes)
     for (const int threads : o.threads)
       for (const bool walls : {true, false}) {
@@ -305,11 +336,11 @@ int bench(const RunOptions& cl, const std::vector<std::string>& settings,
         const std::string line =
             timed_row(cavity_case(cavity, n, walls), walls ? "cavity walled" : "cavity bulk",
                       threads, o.steps, row);
-        if (root) std::cout << line << std::flush;
-        table << line;
-        rows.push_back(row);
+        rows.add(line, std::move(row));
       }
-  if (!root) return 0;
+}
+
+void write_bench(const io::StageDirectory& stage, const Rows& rows) {
   stage.create();
   io::Json summary = io::Json::object();
   summary["stage"] = "bench";
@@ -320,10 +351,25 @@ int bench(const RunOptions& cl, const std::vector<std::string>& settings,
   for (const char* name : {"OMP_WAIT_POLICY", "GOMP_SPINCOUNT"})
     if (const char* value = std::getenv(name)) wait[name] = std::string(value);
   summary["openmp_wait"] = wait;
-  summary["results"] = rows;
-  io::write_file_atomically(stage.file("bench.md"), table.str());
+  summary["results"] = rows.json;
+  io::write_file_atomically(stage.file("bench.md"), rows.table.str());
   io::write_file_atomically(stage.file("summary.json"), io::dump(summary));
   std::cout << "outputs: " << std::filesystem::absolute(stage.path()).string() << "\n";
+}
+} // namespace
+
+int bench(const RunOptions& cl, const std::vector<std::string>& settings,
+          const ParticleParameters& cavity) {
+  const io::StageDirectory stage(
+      cl.out.empty() ? std::filesystem::path("twinflow-runs/bench") : cl.out, "bench", cl.force);
+  const Options o = parse(cl, settings);
+  Rows rows;
+  const std::string header = table_header(o.thermo > 0);
+  if (rows.root) std::cout << header << std::flush;
+  rows.table << header;
+  bench_matrix(o, rows);
+  bench_cavity(o, cavity, rows);
+  if (rows.root) write_bench(stage, rows);
   return 0;
 }
 

@@ -407,13 +407,71 @@ std::string error_vs_time(const ParticleRecord& run, const std::vector<TwinRecor
   }
   return series.str();
 }
+
+// The particles' heat flow and wall jumps; their cost and Nu in the table.
+io::Json particle_results(const ParticleRecord& run, const BinnedState& final_state,
+                          const std::vector<char>& interior, const scene::SceneParameters& scene,
+                          const Scales& scales, double q0, io::Json& table) {
+  const io::Json& presults = run.summary.at("results");
+  table["wall_seconds_particle"] = io::number(presults, {"wall_seconds"});
+  table["particle_steps"] =
+      io::number(presults, {"N"}) *
+      (io::number(presults, {"steps"}) + io::number(presults, {"equilibration_steps"}));
+  io::Json particle = particle_heat_flow(presults, scene, scales.heated, q0);
+  if (scales.heated >= 0) {
+    table["nusselt_particle"] = particle["nusselt"];
+    table["nusselt_particle_stderr"] = particle["nusselt_stderr"];
+  }
+  particle["wall_temperature_jumps"] =
+      wall_temperature_jumps(final_state, interior, scene, presults);
+  particle["wall_seconds"] = io::number(presults, {"wall_seconds"});
+  return particle;
+}
+
+void log_particles(std::ostream& log, const io::Json& particle, const std::vector<char>& interior,
+                   double wall_layer, const Scales& scales) {
+  long n_interior = 0;
+  for (char c : interior) n_interior += c;
+  log << std::setprecision(4);
+  log << "compare: " << n_interior << " interior bins (wall layer " << wall_layer
+      << "), temperature scale " << scales.temperature;
+  if (scales.velocity) log << ", velocity scale " << scales.speed;
+  log << "\n";
+  if (scales.heated >= 0)
+    log << "compare: particle Nu = " << io::number(particle, {"nusselt"}) << " +- "
+        << io::number(particle, {"nusselt_stderr"}) << " (hot wall "
+        << io::number(particle, {"nusselt_hot_wall"}) << ", cold wall "
+        << io::number(particle, {"nusselt_cold_wall"}) << "; with 20 blocks: +- "
+        << io::number(particle, {"nusselt_stderr_20_blocks"}) << ")\n";
+}
+
+// One twin against the particles: its distances, heat flow and verdict; its columns in the table.
+io::Json twin_results(const TwinRecord& t, const BinnedState& final_state,
+                      const std::vector<char>& interior, const Scales& scales,
+                      const scene::SceneParameters& scene, const io::Json& particle, double q0,
+                      const CompareParameters& compare, const TwinFacts& twin, io::Json& table,
+                      TwinVerdict& verdict, std::ostream& log) {
+  io::Json j = io::Json::object();
+  j["stage"] = t.stage;
+  if (t.name == "calibrated") j["calibration"] = calibration_description(compare, twin);
+  field_distances(t, final_state, interior, scales, scene.density, j, table, verdict, log);
+  twin_heat_flow(t, scene, particle, q0, compare, j, table, verdict, log);
+  if (verdict.line.rfind("; ", 0) == 0) verdict.line.erase(0, 2);
+  verdict.line = "particle vs " + t.name + " twin: " + verdict.line;
+  j["within_errors"] = verdict.agrees; // the strict verdict, as a sweep's table reads it
+  table["within_errors_" + t.name] = verdict.agrees;
+  j["rayleigh"] = io::number(t.summary, {"dimensionless", "rayleigh"});
+  table["rayleigh_" + t.name] = io::number(t.summary, {"dimensionless", "rayleigh"});
+  table["wall_seconds_continuum" + std::string(t.name == "nominal" ? "" : "_" + t.name)] =
+      io::number(t.summary, {"stage_wall_time_s"});
+  return j;
+}
 } // namespace
 
 Comparison compare_twins(const ParticleRecord& run, const std::vector<TwinRecord>& twins,
                          const scene::SceneParameters& scene, const CompareParameters& compare,
                          const TwinFacts& twin, const std::string& case_name) {
   Comparison out;
-  std::ostringstream& log = out.log;
   const io::Grid& grid = run.fields.grid;
   const auto interior = interior_bins(grid, run.walled, compare.wall_layer);
   const TwinRecord& nominal = twins.front();
@@ -425,57 +483,20 @@ Comparison compare_twins(const ParticleRecord& run, const std::vector<TwinRecord
   metrics["provenance"] = io::provenance();
   describe_comparison(metrics, grid, run, interior, compare.wall_layer, scales, scene);
 
-  const io::Json& presults = run.summary.at("results");
   io::Json table = io::Json::object();
-  table["wall_seconds_particle"] = io::number(presults, {"wall_seconds"});
-  table["particle_steps"] =
-      io::number(presults, {"N"}) *
-      (io::number(presults, {"steps"}) + io::number(presults, {"equilibration_steps"}));
   const double q0 = std::abs(io::number(nominal.summary, {"dimensionless", "conduction_flux"}));
-  io::Json particle = particle_heat_flow(presults, scene, scales.heated, q0);
-  if (scales.heated >= 0) {
-    table["nusselt_particle"] = particle["nusselt"];
-    table["nusselt_particle_stderr"] = particle["nusselt_stderr"];
-  }
   const BinnedState final_state = run.final_state();
-  particle["wall_temperature_jumps"] =
-      wall_temperature_jumps(final_state, interior, scene, presults);
-  particle["wall_seconds"] = io::number(presults, {"wall_seconds"});
+  const io::Json particle = particle_results(run, final_state, interior, scene, scales, q0, table);
   metrics["particle"] = particle;
-
-  long n_interior = 0;
-  for (char c : interior) n_interior += c;
-  log << std::setprecision(4);
-  log << "compare: " << n_interior << " interior bins (wall layer " << compare.wall_layer
-      << "), temperature scale " << scales.temperature;
-  if (scales.velocity) log << ", velocity scale " << scales.speed;
-  log << "\n";
-  if (scales.heated >= 0)
-    log << "compare: particle Nu = " << io::number(particle, {"nusselt"}) << " +- "
-        << io::number(particle, {"nusselt_stderr"}) << " (hot wall "
-        << io::number(particle, {"nusselt_hot_wall"}) << ", cold wall "
-        << io::number(particle, {"nusselt_cold_wall"}) << "; with 20 blocks: +- "
-        << io::number(particle, {"nusselt_stderr_20_blocks"}) << ")\n";
+  log_particles(out.log, particle, interior, compare.wall_layer, scales);
 
   io::Json twins_json = io::Json::object();
   std::vector<std::pair<std::string, TwinVerdict>> verdicts;
   for (const TwinRecord& t : twins) {
-    io::Json j = io::Json::object();
     TwinVerdict verdict;
-    j["stage"] = t.stage;
-    if (t.name == "calibrated") j["calibration"] = calibration_description(compare, twin);
-    field_distances(t, final_state, interior, scales, scene.density, j, table, verdict, log);
-    twin_heat_flow(t, scene, particle, q0, compare, j, table, verdict, log);
-    if (verdict.line.rfind("; ", 0) == 0) verdict.line.erase(0, 2);
-    verdict.line = "particle vs " + t.name + " twin: " + verdict.line;
+    twins_json[t.name] = twin_results(t, final_state, interior, scales, scene, particle, q0,
+                                      compare, twin, table, verdict, out.log);
     verdicts.emplace_back(t.name, verdict);
-    j["within_errors"] = verdict.agrees; // the strict verdict, as a sweep's table reads it
-    table["within_errors_" + t.name] = verdict.agrees;
-    j["rayleigh"] = io::number(t.summary, {"dimensionless", "rayleigh"});
-    table["rayleigh_" + t.name] = io::number(t.summary, {"dimensionless", "rayleigh"});
-    table["wall_seconds_continuum" + std::string(t.name == "nominal" ? "" : "_" + t.name)] =
-        io::number(t.summary, {"stage_wall_time_s"});
-    twins_json[t.name] = j;
   }
   table["rayleigh"] = io::number(nominal.summary, {"dimensionless", "rayleigh"});
   table["prandtl"] = io::number(nominal.summary, {"dimensionless", "prandtl"});

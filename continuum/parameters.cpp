@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <string>
+#include <utility>
 
 namespace twinflow::continuum {
 
@@ -109,10 +111,13 @@ int take_kinetic_slip(ContinuumParameters& p) {
   return taken;
 }
 
-void check(const ContinuumParameters& p) {
-  auto require = [](bool ok, const std::string& what) {
-    if (!ok) throw std::invalid_argument("continuum parameters: " + what);
-  };
+namespace {
+
+void require(bool ok, const std::string& what) {
+  if (!ok) throw std::invalid_argument("continuum parameters: " + what);
+}
+
+void check_geometry(const ContinuumParameters& p) {
   require(p.dim >= 1 && p.dim <= 3, "dim must be 1, 2 or 3");
   for (const auto& b : p.boundary)
     require(!(b.kinetic_slip[0] || b.kinetic_slip[1]) || has_robin_walls(p.model),
@@ -132,51 +137,65 @@ void check(const ContinuumParameters& p) {
               "Kapitza conductances must be finite, and != 0 only in the Boussinesq and "
               "compressible models");
   }
+  for (const auto& s : p.heat_slabs) {
+    require(s.direction >= 0 && s.direction < p.dim, "heat slab direction within dim");
+    require(s.lower >= 0 && s.lower < s.upper && s.upper <= p.box[s.direction],
+            "heat slab 0 <= lower < upper <= box length");
+  }
+}
+
+// The thermal walls' temperature range (else T_ref's).
+std::pair<double, double> wall_temperature_range(const ContinuumParameters& p) {
+  double T_min = p.reference_temperature, T_max = T_min;
+  bool walls = false;
+  for (int d = 0; d < p.dim; ++d)
+    for (int side = 0; side < 2; ++side)
+      if (!p.boundary[d].periodic && p.boundary[d].fixed_temperature[side]) {
+        const double T = p.boundary[d].temperature[side];
+        T_min = walls ? std::min(T_min, T) : T, T_max = walls ? std::max(T_max, T) : T;
+        walls = true;
+      }
+  return {T_min, T_max};
+}
+
+void check_compressible(const ContinuumParameters& p) {
+  require(p.bulk_viscosity >= 0, "bulk viscosity must be >= 0");
+  const auto [T_min, T_max] = wall_temperature_range(p);
+  // Mechanical stability: dp/dn > 0 for 0 < n <= 3 n0 over the range (linear in T: its ends
+  // suffice; quadratic in n: sampled), so p > 0 there too.
+  for (const double T : {T_min, T_max})
+    for (int i = 1; i <= 60; ++i) {
+      const double n = 3 * p.number_density * i / 60;
+      const double p_n = pressure(p.equation_of_state, n, T).p_n;
+      require(p_n > 0, "Coefficients/Excess pressure: p = n T + n^2 (b0 + b1 T + b2 (n - n0)) is "
+                       "unstable in range: dp/dn = " +
+                           std::to_string(p_n) + " <= 0 at T = " + std::to_string(T) +
+                           ", n = " + std::to_string(n) +
+                           " (checked for 0 < n <= 3 n0 between the walls' temperatures)");
+    }
+  // The barometric scale height (dp/dn) / (m g_d) at T_min (k T_min / (m g_d) for the ideal
+  // fluid; the smaller of that and the value at n0) must span 4 cells of the finest mesh: Q1
+  // then interpolates exp(-z / H_s) to < 1%.
+  const double p_n_min =
+      std::min(T_min, pressure(p.equation_of_state, p.number_density, T_min).p_n);
+  for (int d = 0; d < p.dim; ++d) {
+    if (p.gravity[d] == 0 || p.uniform_along(d)) continue;
+    const double h = p.box[d] / (p.cells[d] * std::pow(2.0, p.refinements));
+    const double scale_height = p_n_min / (p.particle_mass * std::abs(p.gravity[d]));
+    require(h <= 0.25 * scale_height,
+            "mesh too coarse for the stratification: the finest cell along gravity (" +
+                std::to_string(h) + ") must be <= 1/4 of the scale height (dp/dn) / (m g) = " +
+                std::to_string(scale_height) + " (more Mesh/Cells or Refinements)");
+  }
+}
+
+void check_fluid(const ContinuumParameters& p) {
   const EquationOfState& eos = p.equation_of_state;
   require(std::isfinite(eos.b0) && std::isfinite(eos.b1) && std::isfinite(eos.b2) && eos.n_ref > 0,
           "Coefficients/Excess pressure: b0, b1, b2 must be finite (a failed fit gives NaN)");
   require(p.model == Model::Compressible || p.equation_of_state.ideal(),
           "Coefficients/Excess pressure: b0, b1, b2 != 0 need the compressible model (the "
           "low-Mach model takes the ideal fluid only); allowed here: 0, 0, 0");
-  if (p.model == Model::Compressible) {
-    require(p.bulk_viscosity >= 0, "bulk viscosity must be >= 0");
-    // The temperature range: the thermal walls' (else T_ref).
-    double T_min = p.reference_temperature, T_max = T_min;
-    bool walls = false;
-    for (int d = 0; d < p.dim; ++d)
-      for (int side = 0; side < 2; ++side)
-        if (!p.boundary[d].periodic && p.boundary[d].fixed_temperature[side]) {
-          const double T = p.boundary[d].temperature[side];
-          T_min = walls ? std::min(T_min, T) : T, T_max = walls ? std::max(T_max, T) : T;
-          walls = true;
-        }
-    // Mechanical stability: dp/dn > 0 for 0 < n <= 3 n0 over the range (linear in T: its ends
-    // suffice; quadratic in n: sampled), so p > 0 there too.
-    for (const double T : {T_min, T_max})
-      for (int i = 1; i <= 60; ++i) {
-        const double n = 3 * p.number_density * i / 60;
-        const double p_n = pressure(p.equation_of_state, n, T).p_n;
-        require(p_n > 0, "Coefficients/Excess pressure: p = n T + n^2 (b0 + b1 T + b2 (n - n0)) is "
-                         "unstable in range: dp/dn = " +
-                             std::to_string(p_n) + " <= 0 at T = " + std::to_string(T) +
-                             ", n = " + std::to_string(n) +
-                             " (checked for 0 < n <= 3 n0 between the walls' temperatures)");
-      }
-    // The barometric scale height (dp/dn) / (m g_d) at T_min (k T_min / (m g_d) for the ideal
-    // fluid; the smaller of that and the value at n0) must span 4 cells of the finest mesh: Q1
-    // then interpolates exp(-z / H_s) to < 1%.
-    const double p_n_min =
-        std::min(T_min, pressure(p.equation_of_state, p.number_density, T_min).p_n);
-    for (int d = 0; d < p.dim; ++d) {
-      if (p.gravity[d] == 0 || p.uniform_along(d)) continue;
-      const double h = p.box[d] / (p.cells[d] * std::pow(2.0, p.refinements));
-      const double scale_height = p_n_min / (p.particle_mass * std::abs(p.gravity[d]));
-      require(h <= 0.25 * scale_height,
-              "mesh too coarse for the stratification: the finest cell along gravity (" +
-                  std::to_string(h) + ") must be <= 1/4 of the scale height (dp/dn) / (m g) = " +
-                  std::to_string(scale_height) + " (more Mesh/Cells or Refinements)");
-    }
-  }
   require(p.number_density > 0 && p.particle_mass > 0 && p.heat_capacity > 0,
           "n, m and c_p must be > 0");
   require(p.viscosity.value_at_reference > 0 && p.conductivity.value_at_reference > 0,
@@ -187,6 +206,9 @@ void check(const ContinuumParameters& p) {
     require(law->pair_fraction >= 0 && law->pair_fraction <= 1 && std::isfinite(law->pair_exponent),
             "pair fractions in [0, 1] (the compressible twin's; the others leave them out)");
   require(p.reference_temperature > 0, "reference temperature must be > 0");
+}
+
+void check_solver(const ContinuumParameters& p) {
   require(p.refinements >= 0 && p.refinements <= 12, "refinements in [0, 12]");
   require(p.newton_tolerance > 0 && p.max_newton_iterations >= 1, "Newton tolerance > 0");
   require(p.continuation_start_rayleigh > 0, "continuation start Ra > 0");
@@ -198,11 +220,15 @@ void check(const ContinuumParameters& p) {
   require(p.theta >= 0.5 && p.theta <= 1.0, "theta in [0.5, 1]");
   require(p.profile_samples >= 3, "profile samples >= 3");
   require(!p.uses_iterative_solver() || p.dim == 3, "the iterative Boussinesq solver is 3D only");
-  for (const auto& s : p.heat_slabs) {
-    require(s.direction >= 0 && s.direction < p.dim, "heat slab direction within dim");
-    require(s.lower >= 0 && s.lower < s.upper && s.upper <= p.box[s.direction],
-            "heat slab 0 <= lower < upper <= box length");
-  }
+}
+
+} // namespace
+
+void check(const ContinuumParameters& p) {
+  check_geometry(p);
+  check_fluid(p);
+  if (p.model == Model::Compressible) check_compressible(p);
+  check_solver(p);
 }
 
 } // namespace twinflow::continuum

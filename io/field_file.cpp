@@ -484,13 +484,97 @@ void write_hdf5_datasets(const fs::path& path, const std::vector<Hdf5Dataset>& d
       }));
 }
 
+namespace {
+
+Grid read_grid(const Reader& r, hid_t file) {
+  if (H5Lexists(file, "grid", H5P_DEFAULT) <= 0) r.fail("missing group /grid");
+  Hid g(r.check(H5Gopen2(file, "grid", H5P_DEFAULT), "group /grid"), H5Gclose);
+  Grid grid;
+  grid.dim = r.scalar_attribute<int>(g.get(), "/grid", "dim", H5T_NATIVE_INT);
+  if (grid.dim < 1 || grid.dim > 3) r.fail("/grid@dim is not 1, 2 or 3");
+  const auto d = static_cast<std::size_t>(grid.dim);
+  auto counts = r.attribute<std::int64_t>(g.get(), "/grid", "counts", H5T_NATIVE_INT64);
+  auto origin = r.attribute<double>(g.get(), "/grid", "origin", H5T_NATIVE_DOUBLE);
+  auto spacing = r.attribute<double>(g.get(), "/grid", "spacing", H5T_NATIVE_DOUBLE);
+  if (counts.size() != d || origin.size() != d || spacing.size() != d)
+    r.fail("/grid@counts, origin and spacing must have dim entries");
+  for (std::size_t k = 0; k < d; ++k)
+    grid.counts[k] = counts[k], grid.origin[k] = origin[k], grid.spacing[k] = spacing[k];
+  try {
+    grid.validate();
+  } catch (const std::invalid_argument& e) {
+    r.fail(std::string("/grid: ") + e.what());
+  }
+  return grid;
+}
+
+// The group's links in creation order: the order the writer added the fields.
+std::vector<std::string> link_names(const Reader& r, hid_t group, const std::string& where) {
+  H5G_info_t info;
+  if (H5Gget_info(group, &info) < 0) r.fail("cannot list " + where);
+  std::vector<std::string> names;
+  for (hsize_t k = 0; k < info.nlinks; ++k) {
+    ssize_t length =
+        H5Lget_name_by_idx(group, ".", H5_INDEX_CRT_ORDER, H5_ITER_INC, k, nullptr, 0, H5P_DEFAULT);
+    if (length < 0) r.fail("cannot list " + where + " in creation order");
+    std::string name(static_cast<std::size_t>(length) + 1, '\0');
+    H5Lget_name_by_idx(group, ".", H5_INDEX_CRT_ORDER, H5_ITER_INC, k, name.data(), name.size(),
+                       H5P_DEFAULT);
+    name.resize(static_cast<std::size_t>(length));
+    names.push_back(std::move(name));
+  }
+  return names;
+}
+
+// A field, or the standard error of the field written just before it.
+void add_dataset(const Reader& r, const Grid& grid, hid_t group, const std::string& where,
+                 const std::string& name, Snapshot& s) {
+  std::vector<hsize_t> dims;
+  std::vector<double> values = r.dataset(group, name, where, &dims);
+  const std::string what = "dataset " + where + "/" + name;
+  int components = dims.size() == 4 ? static_cast<int>(dims[3]) : 1;
+  if ((dims.size() != 3 && dims.size() != 4) || field_shape(grid, components) != dims ||
+      (components != 1 && components != grid.dim))
+    r.fail(what + " has shape [" + join(dims) + "], the grid needs [" + join(field_shape(grid, 1)) +
+           "] (+ [dim] for vectors)");
+  if (!ends_with(name, kStderrSuffix)) {
+    s.fields.push_back(Field{name, components, std::move(values), {}});
+    return;
+  }
+  const std::string base = name.substr(0, name.size() - std::string(kStderrSuffix).size());
+  Field* f = nullptr;
+  for (Field& candidate : s.fields)
+    if (candidate.name == base) f = &candidate;
+  if (!f || !f->standard_error.empty() || f->components != components)
+    r.fail(what + " does not match a field " + base + " written before it");
+  f->standard_error = std::move(values);
+}
+
+Snapshot read_snapshot(const Reader& r, const Grid& grid, hid_t snapshots, std::size_t i,
+                       double time) {
+  const std::string name = snapshot_group_name(i);
+  const std::string where = "/snapshots/" + name;
+  if (H5Lexists(snapshots, name.c_str(), H5P_DEFAULT) <= 0) r.fail("missing group " + where);
+  Hid g(r.check(H5Gopen2(snapshots, name.c_str(), H5P_DEFAULT), "group " + where), H5Gclose);
+  Snapshot s;
+  s.time = r.scalar_attribute<double>(g.get(), where, "time", H5T_NATIVE_DOUBLE);
+  s.wall_seconds = r.scalar_attribute<double>(g.get(), where, "wall_seconds", H5T_NATIVE_DOUBLE);
+  s.particle_steps =
+      r.scalar_attribute<std::int64_t>(g.get(), where, "particle_steps", H5T_NATIVE_INT64);
+  if (!(s.time == time)) r.fail(where + "@time differs from /times[" + std::to_string(i) + "]");
+  for (const std::string& dataset : link_names(r, g.get(), where))
+    add_dataset(r, grid, g.get(), where, dataset, s);
+  return s;
+}
+
+} // namespace
+
 FieldFile::Contents FieldFile::read(const fs::path& h5_path) {
   QuietHdf5Errors quiet;
   Reader r(h5_path);
   if (!fs::exists(h5_path)) r.fail("no such file");
   if (H5Fis_hdf5(h5_path.c_str()) <= 0) r.fail("not an HDF5 file (truncated or corrupt?)");
   Hid file(r.check(H5Fopen(h5_path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), "the file"), H5Fclose);
-
   if (r.string_attribute(file.get(), "/", "format") != kFormatName)
     r.fail("not a twinflow field file (attribute /@format)");
   const int version = r.scalar_attribute<int>(file.get(), "/", "format_version", H5T_NATIVE_INT);
@@ -499,26 +583,7 @@ FieldFile::Contents FieldFile::read(const fs::path& h5_path) {
            std::to_string(kFormatVersion) + ")");
 
   Contents c;
-  {
-    if (H5Lexists(file.get(), "grid", H5P_DEFAULT) <= 0) r.fail("missing group /grid");
-    Hid g(r.check(H5Gopen2(file.get(), "grid", H5P_DEFAULT), "group /grid"), H5Gclose);
-    c.grid.dim = r.scalar_attribute<int>(g.get(), "/grid", "dim", H5T_NATIVE_INT);
-    if (c.grid.dim < 1 || c.grid.dim > 3) r.fail("/grid@dim is not 1, 2 or 3");
-    const auto d = static_cast<std::size_t>(c.grid.dim);
-    auto counts = r.attribute<std::int64_t>(g.get(), "/grid", "counts", H5T_NATIVE_INT64);
-    auto origin = r.attribute<double>(g.get(), "/grid", "origin", H5T_NATIVE_DOUBLE);
-    auto spacing = r.attribute<double>(g.get(), "/grid", "spacing", H5T_NATIVE_DOUBLE);
-    if (counts.size() != d || origin.size() != d || spacing.size() != d)
-      r.fail("/grid@counts, origin and spacing must have dim entries");
-    for (std::size_t k = 0; k < d; ++k)
-      c.grid.counts[k] = counts[k], c.grid.origin[k] = origin[k], c.grid.spacing[k] = spacing[k];
-    try {
-      c.grid.validate();
-    } catch (const std::invalid_argument& e) {
-      r.fail(std::string("/grid: ") + e.what());
-    }
-  }
-
+  c.grid = read_grid(r, file.get());
   if (H5Lexists(file.get(), "times", H5P_DEFAULT) <= 0) r.fail("missing dataset /times");
   const std::vector<double> times = r.dataset(file.get(), "times", "", nullptr);
   if (H5Lexists(file.get(), "snapshots", H5P_DEFAULT) <= 0) r.fail("missing group /snapshots");
@@ -528,56 +593,8 @@ FieldFile::Contents FieldFile::read(const fs::path& h5_path) {
   if (all_info.nlinks != times.size())
     r.fail("/snapshots has " + std::to_string(all_info.nlinks) + " groups but /times " +
            std::to_string(times.size()) + " entries");
-
-  for (std::size_t i = 0; i < times.size(); ++i) {
-    const std::string where = "/snapshots/" + snapshot_group_name(i);
-    if (H5Lexists(all.get(), snapshot_group_name(i).c_str(), H5P_DEFAULT) <= 0)
-      r.fail("missing group " + where);
-    Hid g(
-        r.check(H5Gopen2(all.get(), snapshot_group_name(i).c_str(), H5P_DEFAULT), "group " + where),
-        H5Gclose);
-    Snapshot s;
-    s.time = r.scalar_attribute<double>(g.get(), where, "time", H5T_NATIVE_DOUBLE);
-    s.wall_seconds = r.scalar_attribute<double>(g.get(), where, "wall_seconds", H5T_NATIVE_DOUBLE);
-    s.particle_steps =
-        r.scalar_attribute<std::int64_t>(g.get(), where, "particle_steps", H5T_NATIVE_INT64);
-    if (!(s.time == times[i]))
-      r.fail(where + "@time differs from /times[" + std::to_string(i) + "]");
-
-    H5G_info_t info;
-    if (H5Gget_info(g.get(), &info) < 0) r.fail("cannot list " + where);
-    for (hsize_t k = 0; k < info.nlinks; ++k) {
-      ssize_t length = H5Lget_name_by_idx(g.get(), ".", H5_INDEX_CRT_ORDER, H5_ITER_INC, k, nullptr,
-                                          0, H5P_DEFAULT);
-      if (length < 0) r.fail("cannot list " + where + " in creation order");
-      std::string name(static_cast<std::size_t>(length) + 1, '\0');
-      H5Lget_name_by_idx(g.get(), ".", H5_INDEX_CRT_ORDER, H5_ITER_INC, k, name.data(), name.size(),
-                         H5P_DEFAULT);
-      name.resize(static_cast<std::size_t>(length));
-
-      std::vector<hsize_t> dims;
-      std::vector<double> values = r.dataset(g.get(), name, where, &dims);
-      const std::string what = "dataset " + where + "/" + name;
-      int components = dims.size() == 4 ? static_cast<int>(dims[3]) : 1;
-      if ((dims.size() != 3 && dims.size() != 4) || field_shape(c.grid, components) != dims ||
-          (components != 1 && components != c.grid.dim))
-        r.fail(what + " has shape [" + join(dims) + "], the grid needs [" +
-               join(field_shape(c.grid, 1)) + "] (+ [dim] for vectors)");
-
-      if (ends_with(name, kStderrSuffix)) {
-        const std::string base = name.substr(0, name.size() - std::string(kStderrSuffix).size());
-        Field* f = nullptr;
-        for (Field& candidate : s.fields)
-          if (candidate.name == base) f = &candidate;
-        if (!f || !f->standard_error.empty() || f->components != components)
-          r.fail(what + " does not match a field " + base + " written before it");
-        f->standard_error = std::move(values);
-      } else {
-        s.fields.push_back(Field{name, components, std::move(values), {}});
-      }
-    }
-    c.snapshots.push_back(std::move(s));
-  }
+  for (std::size_t i = 0; i < times.size(); ++i)
+    c.snapshots.push_back(read_snapshot(r, c.grid, all.get(), i, times[i]));
   return c;
 }
 

@@ -254,11 +254,79 @@ template <int D> void WallLayerSampler<D>::sample(const State<D>& s) {
 }
 
 template <int D>
+typename WallLayerSampler<D>::Block WallLayerSampler<D>::block_profile(
+    int b, std::size_t k, double area, const std::vector<double>& h,
+    const std::function<double(int, double, double)>& friction) const {
+  const std::size_t base = (static_cast<std::size_t>(b) * walls_.size() + k) * slices_;
+  Block out;
+  out.n.assign(slices_, 0.0), out.v.assign(static_cast<std::size_t>(slices_) * D, 0.0);
+  for (auto* f : {&out.t, &out.ti, &out.gamma, &out.kurtosis}) f->assign(slices_, 0.0);
+  for (int j = 0; j < slices_; ++j) {
+    out.n[j] = n_[base + j] / (block_samples_[b] * area * slice_);
+    for (int e = 0; e < D; ++e)
+      out.v[j * D + e] = n_[base + j] > 0 ? v_[(base + j) * D + e] / n_[base + j] : 0.0;
+    if (j >= slices_ / 2) out.reference += out.n[j] / (slices_ - slices_ / 2);
+    out.t[j] = rest_frame_temperature<D>(mass_, n_[base + j], &v_[(base + j) * D], v2_[base + j]);
+    const double c = n_[base + j];
+    if (c < 2) continue;
+    out.ti[j] = inv_theta_[base + j] > 0 ? c / inv_theta_[base + j] : 0.0;
+    const double mean_u = u_[base + j] / c;
+    out.gamma[j] =
+        mean_u > 0 ? (u2_[base + j] / c - mean_u * mean_u) * (cv_ + 1) / (mean_u * mean_u) : 0.0;
+    const double v2 = v2_[base + j] / (c * D), v4 = v4_[base + j] / (c * D);
+    out.kurtosis[j] = v2 > 0 ? v4 / (v2 * v2) : 0.0;
+  }
+  // The Gibbs depth and the wall friction integrated over the layer (the inner half).
+  double zeta_h = 0;
+  for (int j = 0; j < slices_ / 2; ++j) {
+    out.depth += (1 - out.n[j] / out.reference) * slice_;
+    if (n_[base + j] < 2) continue;
+    const double z = out.n[j] * friction(walls_[k], out.t[j], h[j]) * slice_;
+    out.zeta += z, zeta_h += z * h[j];
+  }
+  out.zeta_depth = out.zeta > 0 ? zeta_h / out.zeta : 0.0;
+  return out;
+}
+
+template <int D>
+void WallLayerSampler<D>::block_statistics(const std::vector<Block>& blocks,
+                                           WallLayerProfile& p) const {
+  auto mean_se = [&](auto value, double& mean, double& se) {
+    std::vector<double> per_block(blocks.size());
+    for (std::size_t b = 0; b < blocks.size(); ++b) per_block[b] = value(blocks[b]);
+    const statistics::Estimate e = statistics::block_estimate(per_block);
+    mean = e.mean, se = e.stderr_;
+  };
+  for (auto* f : {&p.density, &p.temperature, &p.temperature_internal, &p.gamma_ratio, &p.kurtosis})
+    f->mean.resize(slices_), f->stderr_.resize(slices_);
+  p.velocity.mean.resize(static_cast<std::size_t>(slices_) * D);
+  p.velocity.stderr_.resize(static_cast<std::size_t>(slices_) * D);
+  for (int j = 0; j < slices_; ++j) {
+    mean_se([&](const Block& b) { return b.n[j]; }, p.density.mean[j], p.density.stderr_[j]);
+    mean_se([&](const Block& b) { return b.t[j]; }, p.temperature.mean[j],
+            p.temperature.stderr_[j]);
+    mean_se([&](const Block& b) { return b.ti[j]; }, p.temperature_internal.mean[j],
+            p.temperature_internal.stderr_[j]);
+    mean_se([&](const Block& b) { return b.gamma[j]; }, p.gamma_ratio.mean[j],
+            p.gamma_ratio.stderr_[j]);
+    mean_se([&](const Block& b) { return b.kurtosis[j]; }, p.kurtosis.mean[j],
+            p.kurtosis.stderr_[j]);
+    for (int e = 0; e < D; ++e)
+      mean_se([&](const Block& b) { return b.v[j * D + e]; }, p.velocity.mean[j * D + e],
+              p.velocity.stderr_[j * D + e]);
+  }
+  double unused = 0;
+  mean_se([](const Block& b) { return b.reference; }, p.reference, p.reference_stderr);
+  mean_se([](const Block& b) { return b.depth; }, p.effective_position,
+          p.effective_position_stderr);
+  mean_se([](const Block& b) { return b.zeta; }, p.friction, p.friction_stderr);
+  mean_se([](const Block& b) { return b.zeta_depth; }, p.friction_depth, unused);
+}
+
+template <int D>
 std::vector<WallLayerProfile>
 WallLayerSampler<D>::result(const std::function<double(int, double, double)>& friction) const {
   std::vector<WallLayerProfile> out;
-  int used = 0; // blocks with samples
-  for (int b = 0; b < blocks_; ++b) used += block_samples_[b] > 0;
   for (std::size_t k = 0; k < walls_.size(); ++k) {
     const int d = walls_[k] / 2;
     double area = 1; // of the wall plane
@@ -268,77 +336,10 @@ WallLayerSampler<D>::result(const std::function<double(int, double, double)>& fr
     p.wall = walls_[k];
     p.slice = slice_;
     for (int j = 0; j < slices_; ++j) p.h.push_back((j + 0.5) * slice_);
-    // Per block: density and mean velocity per slice, the reference density, the Gibbs depth.
-    std::vector<std::vector<double>> n_blocks, v_blocks, t_blocks, ti_blocks, g_blocks, k_blocks;
-    std::vector<double> ref_blocks, depth_blocks, zeta_blocks, zeta_h_blocks;
-    for (int b = 0; b < blocks_; ++b) {
-      if (block_samples_[b] == 0) continue;
-      const std::size_t base = (static_cast<std::size_t>(b) * walls_.size() + k) * slices_;
-      std::vector<double> n(slices_), v(static_cast<std::size_t>(slices_) * D, 0.0);
-      std::vector<double> t(slices_, 0.0), ti(slices_, 0.0), gamma(slices_, 0.0),
-          kurt(slices_, 0.0);
-      double ref = 0;
-      for (int j = 0; j < slices_; ++j) {
-        n[j] = n_[base + j] / (block_samples_[b] * area * slice_);
-        for (int e = 0; e < D; ++e)
-          v[j * D + e] = n_[base + j] > 0 ? v_[(base + j) * D + e] / n_[base + j] : 0.0;
-        if (j >= slices_ / 2) ref += n[j] / (slices_ - slices_ / 2);
-        t[j] = rest_frame_temperature<D>(mass_, n_[base + j], &v_[(base + j) * D], v2_[base + j]);
-        const double c = n_[base + j];
-        if (c < 2) continue;
-        ti[j] = inv_theta_[base + j] > 0 ? c / inv_theta_[base + j] : 0.0;
-        const double mean_u = u_[base + j] / c;
-        gamma[j] = mean_u > 0
-                       ? (u2_[base + j] / c - mean_u * mean_u) * (cv_ + 1) / (mean_u * mean_u)
-                       : 0.0;
-        const double v2 = v2_[base + j] / (c * D), v4 = v4_[base + j] / (c * D);
-        kurt[j] = v2 > 0 ? v4 / (v2 * v2) : 0.0;
-      }
-      double depth = 0, zeta = 0, zeta_h = 0;
-      for (int j = 0; j < slices_ / 2; ++j) {
-        depth += (1 - n[j] / ref) * slice_;
-        if (n_[base + j] < 2) continue;
-        const double z = n[j] * friction(walls_[k], t[j], p.h[j]) * slice_;
-        zeta += z, zeta_h += z * p.h[j];
-      }
-      n_blocks.push_back(std::move(n)), v_blocks.push_back(std::move(v));
-      t_blocks.push_back(std::move(t));
-      ti_blocks.push_back(std::move(ti)), g_blocks.push_back(std::move(gamma));
-      k_blocks.push_back(std::move(kurt));
-      ref_blocks.push_back(ref), depth_blocks.push_back(depth);
-      zeta_blocks.push_back(zeta), zeta_h_blocks.push_back(zeta > 0 ? zeta_h / zeta : 0.0);
-    }
-    auto mean_se = [&](auto value, double& mean, double& se) { // over the used blocks
-      std::vector<double> per_block(used);
-      for (int b = 0; b < used; ++b) per_block[b] = value(b);
-      const statistics::Estimate e = statistics::block_estimate(per_block);
-      mean = e.mean, se = e.stderr_;
-    };
-    p.density.mean.resize(slices_), p.density.stderr_.resize(slices_);
-    p.temperature.mean.resize(slices_), p.temperature.stderr_.resize(slices_);
-    for (auto* f : {&p.temperature_internal, &p.gamma_ratio, &p.kurtosis})
-      f->mean.resize(slices_), f->stderr_.resize(slices_);
-    p.velocity.mean.resize(static_cast<std::size_t>(slices_) * D);
-    p.velocity.stderr_.resize(static_cast<std::size_t>(slices_) * D);
-    for (int j = 0; j < slices_; ++j) {
-      mean_se([&](int b) { return n_blocks[b][j]; }, p.density.mean[j], p.density.stderr_[j]);
-      mean_se([&](int b) { return t_blocks[b][j]; }, p.temperature.mean[j],
-              p.temperature.stderr_[j]);
-      mean_se([&](int b) { return ti_blocks[b][j]; }, p.temperature_internal.mean[j],
-              p.temperature_internal.stderr_[j]);
-      mean_se([&](int b) { return g_blocks[b][j]; }, p.gamma_ratio.mean[j],
-              p.gamma_ratio.stderr_[j]);
-      mean_se([&](int b) { return k_blocks[b][j]; }, p.kurtosis.mean[j], p.kurtosis.stderr_[j]);
-      for (int e = 0; e < D; ++e)
-        mean_se([&](int b) { return v_blocks[b][j * D + e]; }, p.velocity.mean[j * D + e],
-                p.velocity.stderr_[j * D + e]);
-    }
-    double unused = 0;
-    mean_se([&](int b) { return ref_blocks[b]; }, p.reference, p.reference_stderr);
-    mean_se([&](int b) { return depth_blocks[b]; }, p.effective_position,
-            p.effective_position_stderr);
-    mean_se([&](int b) { return zeta_blocks[b]; }, p.friction, p.friction_stderr);
-    mean_se([&](int b) { return zeta_h_blocks[b]; }, p.friction_depth, unused);
+    std::vector<Block> blocks; // the blocks with samples
+    for (int b = 0; b < blocks_; ++b)
+      if (block_samples_[b] > 0) blocks.push_back(block_profile(b, k, area, p.h, friction));
+    block_statistics(blocks, p);
     out.push_back(std::move(p));
   }
   return out;

@@ -145,6 +145,15 @@ public:
   }
 
 private:
+  // One block's slice profiles at one wall, and the layer's integrals.
+  struct Block {
+    std::vector<double> n, v, t, ti, gamma, kurtosis;
+    double reference = 0, depth = 0, zeta = 0, zeta_depth = 0;
+  };
+  Block block_profile(int block, std::size_t wall, double area, const std::vector<double>& h,
+                      const std::function<double(int, double, double)>& friction) const;
+  void block_statistics(const std::vector<Block>& blocks, WallLayerProfile& p) const;
+
   std::array<double, 3> box_;
   std::vector<int> walls_; // 2 d + side of each wall present
   double slice_;

@@ -1,3 +1,4 @@
+#include <charconv>
 #include <chrono>
 #include <cstdlib>
 #include <iomanip>
@@ -20,6 +21,74 @@ compare::TwinFacts twin_facts(const continuum::ContinuumParameters& p, double vi
   return {continuum::has_robin_walls(p.model), p.boundary[0].kapitza_inverse, viscosity};
 }
 
+// A number as the case record keeps it: the shortest text that reads back to the same double, so
+// the record reproduces the twin exactly.
+std::string exact_text(double v) {
+  char text[40];
+  const auto end = std::to_chars(text, text + sizeof text, v).ptr;
+  return std::string(text, end);
+}
+
+// One value per wall in the case record's list form, "v0, v1, ..." (x lower, x upper, y ...).
+template <class Member>
+std::string wall_list(const compare::CalibratedWalls& walls, int dim, Member member) {
+  std::string text;
+  for (int w = 0; w < 2 * dim; ++w)
+    text += (w ? ", " : "") + exact_text(member(walls.wall[w / 2][w % 2]));
+  return text;
+}
+
+void record(Case& out, const std::string& path, const std::string& text) {
+  out.record_value(path, text);
+  std::cout << "run: calibrated twin: " << path << "=" << text << "\n";
+}
+
+// Walls without a usable jump: at the fluid's temperature beside them.
+void set_wall_temperatures(const compare::CalibratedWalls& walls, Case& out) {
+  CaseParameters& p = out.parameters;
+  for (int d = 0; d < p.scene.dim; ++d)
+    for (int side = 0; side < 2; ++side) {
+      const double T = walls.wall[d][side].fluid_temperature;
+      if (!std::isfinite(T)) continue;
+      record(out,
+             std::string("Scene/") + "xyz"[d] + " boundaries/" + (side ? "Upper" : "Lower") +
+                 " wall temperature",
+             exact_text(T));
+      p.scene.boundary[d].temperature[side] = T;
+      p.continuum.boundary[d].temperature[side] = T;
+    }
+}
+
+// The measured wall positions, slip lengths and Kapitza conductances.
+void set_wall_laws(const compare::CalibratedWalls& walls, Case& out) {
+  CaseParameters& p = out.parameters;
+  const int dim = p.scene.dim;
+  if (walls.effective_positions) {
+    record(out, "Continuum/Wall positions",
+           wall_list(walls, dim, [](auto& w) { return w.position; }));
+    std::array<double, 6> distance{};
+    for (int w = 0; w < 2 * dim; ++w) distance[w] = walls.wall[w / 2][w % 2].position;
+    continuum::move_walls_in(p.continuum, distance, p.scene.box);
+  }
+  if (walls.slip) {
+    record(out, "Continuum/Slip lengths",
+           wall_list(walls, dim, [](auto& w) { return w.slip_length; }));
+    for (int w = 0; w < 2 * dim; ++w)
+      p.continuum.boundary[w / 2].slip_length[w % 2] = walls.wall[w / 2][w % 2].slip_length;
+  }
+  if (walls.kapitza) {
+    record(out, "Continuum/Kapitza conductances",
+           wall_list(walls, dim, [](auto& w) { return w.conductance; }));
+    record(out, "Continuum/Kapitza conductance errors",
+           wall_list(walls, dim, [](auto& w) { return w.conductance_stderr; }));
+    for (int w = 0; w < 2 * dim; ++w) {
+      auto& b = p.continuum.boundary[w / 2];
+      b.kapitza_conductance[w % 2] = walls.wall[w / 2][w % 2].conductance;
+      b.kapitza_conductance_stderr[w % 2] = walls.wall[w / 2][w % 2].conductance_stderr;
+    }
+  }
+}
+
 } // namespace
 
 Case calibrated_case(const Case& nominal, const fs::path& run_dir) {
@@ -36,33 +105,7 @@ Case calibrated_case(const Case& nominal, const fs::path& run_dir) {
       compare::calibrate_walls(run.summary.at("results"), run.final_state(), p.scene, p.compare,
                                twin_facts(p.continuum, viscosity));
   for (const auto& note : walls.notes) std::cout << "run: calibrated twin: " << note << "\n";
-  // Each value as recorded, so that the record reproduces the twin.
-  const int dim = p.scene.dim;
-  const auto list = [&](auto member, int digits) {
-    std::string text;
-    std::array<double, 6> values{};
-    for (int w = 0; w < 2 * dim; ++w) {
-      const std::string v = number_text(member(walls.wall[w / 2][w % 2]), digits);
-      values[w] = std::stod(v);
-      text += (w ? ", " : "") + v;
-    }
-    return std::pair{text, values};
-  };
-  const auto set = [&](const std::string& path, const std::string& text) {
-    out.record_value(path, text);
-    std::cout << "run: calibrated twin: " << path << "=" << text << "\n";
-  };
-  for (int d = 0; d < dim; ++d)
-    for (int side = 0; side < 2; ++side) {
-      const double T = walls.wall[d][side].fluid_temperature;
-      if (!std::isfinite(T)) continue;
-      const std::string text = number_text(T, 10);
-      set(std::string("Scene/") + "xyz"[d] + " boundaries/" + (side ? "Upper" : "Lower") +
-              " wall temperature",
-          text);
-      p.scene.boundary[d].temperature[side] = std::stod(text);
-      p.continuum.boundary[d].temperature[side] = std::stod(text);
-    }
+  set_wall_temperatures(walls, out);
   if (p.twin.model_chosen_automatically) // the walls' epsilon may have moved past the threshold
     p.continuum.model =
         automatic_model(p.scene, p.continuum.particle_mass,
@@ -71,26 +114,7 @@ Case calibrated_case(const Case& nominal, const fs::path& run_dir) {
   // The measured slip lengths take the walls; a re-chosen low-Mach twin has no Navier walls.
   if (walls.slip || !continuum::has_robin_walls(p.continuum.model))
     for (auto& b : p.continuum.boundary) b.kinetic_slip = {{false, false}};
-  if (walls.effective_positions) {
-    const auto [text, distance] = list([](const auto& w) { return w.position; }, 6);
-    set("Continuum/Wall positions", text);
-    continuum::move_walls_in(p.continuum, distance, p.scene.box);
-  }
-  if (walls.slip) {
-    const auto [text, b] = list([](const auto& w) { return w.slip_length; }, 6);
-    set("Continuum/Slip lengths", text);
-    for (int w = 0; w < 2 * dim; ++w) p.continuum.boundary[w / 2].slip_length[w % 2] = b[w];
-  }
-  if (walls.kapitza) {
-    const auto [text, h] = list([](const auto& w) { return w.conductance; }, 8);
-    const auto [error_text, h_stderr] = list([](const auto& w) { return w.conductance_stderr; }, 4);
-    set("Continuum/Kapitza conductances", text);
-    set("Continuum/Kapitza conductance errors", error_text);
-    for (int w = 0; w < 2 * dim; ++w) {
-      p.continuum.boundary[w / 2].kapitza_conductance[w % 2] = h[w];
-      p.continuum.boundary[w / 2].kapitza_conductance_stderr[w % 2] = h_stderr[w];
-    }
-  }
+  set_wall_laws(walls, out);
   try {
     continuum::check(p.continuum);
   } catch (const std::invalid_argument& e) {

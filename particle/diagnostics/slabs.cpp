@@ -21,8 +21,81 @@ std::array<int, 3> slab_bins(const ParticleParameters& p) { // 0.5 rc along the 
   return bins;
 }
 
-// Seed 002 section III.B: linear fits of T_internal(x) in the central 60% of both halves between
-// the slabs; kappa = J0 / |dT/dx| with J0 = power / (2 A).
+// One half between the slabs, from `a` to `b` along the slab direction.
+struct HalfFit {
+  double slope = 0, kappa = 0, kappa_fit_se = 0;
+  std::vector<double> block_slopes;
+  io::Json json;
+};
+
+// Seed 002 section III.B: a linear fit of T_internal(x) in the central 60% of the half;
+// kappa = J0 / |dT/dx|.
+HalfFit half_fit(const BinnedFields& f, int dir, double length, double a, double b, double j0) {
+  if (b <= a) b += length; // the half wraps around the periodic box
+  const double lo = a + 0.2 * (b - a), hi = b - 0.2 * (b - a);
+  // The same weights for the mean profile and each block's, so that the blocks' slopes
+  // average to the mean profile's (the fit is linear in the temperatures).
+  const auto line = [&](const std::vector<double>& temperature) {
+    statistics::LineFit fit;
+    for (int bin = 0; bin < f.bin_count(); ++bin) {
+      double x = f.centre(bin, dir);
+      if (x < a) x += length;
+      if (x >= lo && x <= hi) fit.add(x, temperature[bin], f.temperature_internal.stderr_[bin]);
+    }
+    return fit;
+  };
+  HalfFit h;
+  const statistics::LineFit fit = line(f.temperature_internal.mean);
+  for (const auto& block : f.temperature_internal_blocks)
+    h.block_slopes.push_back(line(block).slope());
+  h.slope = fit.slope();
+  const double slope_fit_se = fit.slope_stderr();
+  h.kappa = j0 / std::fabs(h.slope);
+  h.kappa_fit_se = h.kappa * slope_fit_se / std::fabs(h.slope);
+  // The half's own error, from its blocks' slopes (1, 2, 4 blocks merged, the largest): the
+  // bins share the profile's slow modes, which the fit over independent bins leaves out.
+  double slope_se = slope_fit_se;
+  const auto levels = statistics::merged_blocking_errors(h.block_slopes);
+  for (const double se : levels) slope_se = std::max(slope_se, se);
+  h.json = io::Json::object();
+  h.json["fit_from"] = lo, h.json["fit_to"] = hi;
+  h.json["slope"] = h.slope, h.json["slope_stderr"] = slope_se;
+  h.json["intercept"] = fit.intercept();
+  h.json["slope_stderr_fit"] = slope_fit_se, h.json["slope_stderr_blocking"] = levels;
+  h.json["kappa"] = h.kappa;
+  h.json["kappa_stderr"] = h.kappa * slope_se / std::fabs(h.slope);
+  return h;
+}
+
+// kappa from both halves, weighted by their fit errors (fixed weights: the combination is then
+// a fixed function of the two slopes). Its error from the same combination block by block,
+// linearised about the means (kappa_b = kappa (2 - |s_b| / |s|) per half, the delta method):
+// the slowest profile mode steepens one half and flattens the other, so the halves'
+// fluctuations partly cancel, which their errors taken as independent would miss.
+void combine_halves(const HalfFit (&halves)[2], io::Json& out) {
+  double wsum = 0, ksum = 0;
+  double weight[2];
+  for (int half = 0; half < 2; ++half) {
+    weight[half] = 1 / (halves[half].kappa_fit_se * halves[half].kappa_fit_se);
+    wsum += weight[half], ksum += weight[half] * halves[half].kappa;
+  }
+  std::vector<double> block_kappa(halves[0].block_slopes.size(), 0.0);
+  for (std::size_t b = 0; b < block_kappa.size(); ++b)
+    for (int half = 0; half < 2; ++half) {
+      const HalfFit& h = halves[half];
+      block_kappa[b] +=
+          weight[half] / wsum * h.kappa * (2 - std::fabs(h.block_slopes[b]) / std::fabs(h.slope));
+    }
+  const auto levels = statistics::merged_blocking_errors(block_kappa);
+  double kappa_se = 1 / std::sqrt(wsum);
+  out["kappa_stderr_fit"] = kappa_se;
+  for (const double se : levels) kappa_se = std::max(kappa_se, se);
+  out["kappa"] = ksum / wsum;
+  out["kappa_stderr"] = kappa_se;
+  out["kappa_stderr_blocking"] = levels;
+}
+
+// Seed 002 section III.B: kappa from both halves between the slabs, J0 = power / (2 A).
 io::Json slab_fit(const ParticleParameters& p, const BinnedFields& f) {
   const HeatSlab& hot = p.heat_slabs[0];
   const HeatSlab& cold = p.heat_slabs[1];
@@ -34,67 +107,11 @@ io::Json slab_fit(const ParticleParameters& p, const BinnedFields& f) {
   const double j0 = std::fabs(hot.power) / (2 * area);
   io::Json out = io::Json::object();
   out["J0"] = j0;
-  const char* names[2] = {"hot_to_cold", "cold_to_hot"};
-  const double starts[2] = {hot.upper, cold.upper}, ends[2] = {cold.lower, hot.lower};
-  double kappa[2], kappa_fit_se[2], slope[2];
-  std::vector<double> block_slopes[2];
-  for (int half = 0; half < 2; ++half) {
-    double a = starts[half], b = ends[half];
-    if (b <= a) b += length; // the half wraps around the periodic box
-    const double lo = a + 0.2 * (b - a), hi = b - 0.2 * (b - a);
-    // The same weights for the mean profile and each block's, so that the blocks' slopes
-    // average to the mean profile's (the fit is linear in the temperatures).
-    const auto line = [&](const std::vector<double>& temperature) {
-      statistics::LineFit fit;
-      for (int bin = 0; bin < f.bin_count(); ++bin) {
-        double x = f.centre(bin, dir);
-        if (x < a) x += length;
-        if (x >= lo && x <= hi) fit.add(x, temperature[bin], f.temperature_internal.stderr_[bin]);
-      }
-      return fit;
-    };
-    const statistics::LineFit fit = line(f.temperature_internal.mean);
-    for (const auto& block : f.temperature_internal_blocks)
-      block_slopes[half].push_back(line(block).slope());
-    slope[half] = fit.slope();
-    const double slope_fit_se = fit.slope_stderr();
-    kappa[half] = j0 / std::fabs(slope[half]);
-    kappa_fit_se[half] = kappa[half] * slope_fit_se / std::fabs(slope[half]);
-    // Each half's own error, from its blocks' slopes (1, 2, 4 blocks merged, the largest): the
-    // bins share the profile's slow modes, which the fit over independent bins leaves out.
-    double slope_se = slope_fit_se;
-    const auto levels = statistics::merged_blocking_errors(block_slopes[half]);
-    for (const double se : levels) slope_se = std::max(slope_se, se);
-    io::Json h = io::Json::object();
-    h["fit_from"] = lo, h["fit_to"] = hi;
-    h["slope"] = slope[half], h["slope_stderr"] = slope_se, h["intercept"] = fit.intercept();
-    h["slope_stderr_fit"] = slope_fit_se, h["slope_stderr_blocking"] = levels;
-    h["kappa"] = kappa[half], h["kappa_stderr"] = kappa[half] * slope_se / std::fabs(slope[half]);
-    out[names[half]] = h;
-  }
-  // kappa from both halves, weighted by their fit errors (fixed weights: the combination is then
-  // a fixed function of the two slopes). Its error from the same combination block by block,
-  // linearised about the means (kappa_b = kappa (2 - |s_b| / |s|) per half, the delta method):
-  // the slowest profile mode steepens one half and flattens the other, so the halves'
-  // fluctuations partly cancel, which their errors taken as independent would miss.
-  double wsum = 0, ksum = 0;
-  double weight[2];
-  for (int half = 0; half < 2; ++half) {
-    weight[half] = 1 / (kappa_fit_se[half] * kappa_fit_se[half]);
-    wsum += weight[half], ksum += weight[half] * kappa[half];
-  }
-  std::vector<double> block_kappa(block_slopes[0].size(), 0.0);
-  for (std::size_t b = 0; b < block_kappa.size(); ++b)
-    for (int half = 0; half < 2; ++half)
-      block_kappa[b] += weight[half] / wsum * kappa[half] *
-                        (2 - std::fabs(block_slopes[half][b]) / std::fabs(slope[half]));
-  const auto levels = statistics::merged_blocking_errors(block_kappa);
-  double kappa_se = 1 / std::sqrt(wsum);
-  out["kappa_stderr_fit"] = kappa_se;
-  for (const double se : levels) kappa_se = std::max(kappa_se, se);
-  out["kappa"] = ksum / wsum;
-  out["kappa_stderr"] = kappa_se;
-  out["kappa_stderr_blocking"] = levels;
+  const HalfFit halves[2] = {half_fit(f, dir, length, hot.upper, cold.lower, j0),
+                             half_fit(f, dir, length, cold.upper, hot.lower, j0)};
+  out["hot_to_cold"] = halves[0].json;
+  out["cold_to_hot"] = halves[1].json;
+  combine_halves(halves, out);
   // Blocks must outlast the slowest profile mode that moves kappa: the fundamental of the
   // periodic profile, k = 2 pi / L, decays in 1 / (chi k^2), chi = kappa / (rho c), c = c_v + 1
   // + d/2 per particle (000:(3.21), kinetic part d/2). The stated error holds when the longest

@@ -25,6 +25,7 @@
 #include <deal.II/numerics/vector_tools_evaluate.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <vector>
 
@@ -278,8 +279,87 @@ consistent_wall_nusselt(const dealii::DoFHandler<dim>& dofs, const dealii::Vecto
 }
 
 // 2D walled cavities: -Laplace psi = omega = dv/dx - du/dy, psi = 0 on the walls
-// (u = dpsi/dy, v = -dpsi/dx, for div u = 0); the vortex centre is where |psi| is largest.
-// Serial vectors.
+// (u = dpsi/dy, v = -dpsi/dx, for div u = 0), on Q2 over the flow's mesh. Serial vectors.
+inline void solve_stream_function(const dealii::DoFHandler<2>& flow_dofs,
+                                  const dealii::Vector<double>& x,
+                                  const dealii::DoFHandler<2>& psi_dofs,
+                                  dealii::Vector<double>& psi) {
+  constexpr int dim = 2;
+  const auto& triangulation = flow_dofs.get_triangulation();
+  const auto& fe_psi = psi_dofs.get_fe();
+  dealii::AffineConstraints<double> constraints;
+  for (dealii::types::boundary_id id = 0; id < 4; ++id)
+    dealii::VectorTools::interpolate_boundary_values(
+        psi_dofs, id, dealii::Functions::ZeroFunction<dim>(), constraints);
+  constraints.close();
+  dealii::DynamicSparsityPattern dsp(psi_dofs.n_dofs());
+  dealii::DoFTools::make_sparsity_pattern(psi_dofs, dsp, constraints, false);
+  dealii::SparsityPattern sparsity;
+  sparsity.copy_from(dsp);
+  dealii::SparseMatrix<double> matrix(sparsity);
+  dealii::Vector<double> rhs(psi_dofs.n_dofs());
+  psi.reinit(psi_dofs.n_dofs());
+  const dealii::QGauss<dim> quadrature(3);
+  dealii::FEValues<dim> psi_values(fe_psi, quadrature,
+                                   dealii::update_values | dealii::update_gradients |
+                                       dealii::update_JxW_values);
+  dealii::FEValues<dim> flow_values(flow_dofs.get_fe(), quadrature, dealii::update_gradients);
+  const dealii::FEValuesExtractors::Vector velocities(0);
+  std::vector<dealii::Tensor<2, dim>> grad_u(quadrature.size());
+  const unsigned n = fe_psi.n_dofs_per_cell();
+  dealii::FullMatrix<double> cell_matrix(n, n);
+  dealii::Vector<double> cell_rhs(n);
+  std::vector<dealii::types::global_dof_index> dofs(n);
+  for (const auto& cell : psi_dofs.active_cell_iterators()) {
+    const typename dealii::DoFHandler<dim>::active_cell_iterator flow_cell(
+        &triangulation, cell->level(), cell->index(), &flow_dofs);
+    psi_values.reinit(cell);
+    flow_values.reinit(flow_cell);
+    flow_values[velocities].get_function_gradients(x, grad_u);
+    cell_matrix = 0;
+    cell_rhs = 0;
+    for (unsigned q = 0; q < quadrature.size(); ++q) {
+      const double vorticity = grad_u[q][1][0] - grad_u[q][0][1];
+      for (unsigned i = 0; i < n; ++i) {
+        for (unsigned j = 0; j < n; ++j)
+          cell_matrix(i, j) +=
+              psi_values.shape_grad(i, q) * psi_values.shape_grad(j, q) * psi_values.JxW(q);
+        cell_rhs(i) += vorticity * psi_values.shape_value(i, q) * psi_values.JxW(q);
+      }
+    }
+    cell->get_dof_indices(dofs);
+    constraints.distribute_local_to_global(cell_matrix, cell_rhs, dofs, matrix, rhs);
+  }
+  dealii::SparseDirectUMFPACK solver;
+  solver.initialize(matrix);
+  solver.vmult(psi, rhs);
+  constraints.distribute(psi);
+}
+
+// Where |psi| is largest in the box: a grid search, then two zooms by 10 around the best point.
+// Returns the maximum and its position.
+inline std::array<double, 3> largest_magnitude(const dealii::DoFHandler<2>& psi_dofs,
+                                               const dealii::Vector<double>& psi, double Lx,
+                                               double Ly) {
+  dealii::Functions::FEFieldFunction<2> field(psi_dofs, psi);
+  auto abs_psi = [&](double px, double py) {
+    return std::abs(field.value(dealii::Point<2>(px, py)));
+  };
+  double best = -1, bx = 0.5 * Lx, by = 0.5 * Ly, hx = Lx / 100, hy = Ly / 100;
+  double cx = 0.5 * Lx, cy = 0.5 * Ly;
+  for (int zoom = 0; zoom < 3; ++zoom) {
+    const int half = zoom == 0 ? 49 : 10;
+    for (int i = -half; i <= half; ++i)
+      for (int j = -half; j <= half; ++j) {
+        const double px = std::clamp(cx + i * hx, 0.0, Lx), py = std::clamp(cy + j * hy, 0.0, Ly);
+        if (const double v = abs_psi(px, py); v > best) best = v, bx = px, by = py;
+      }
+    cx = bx, cy = by, hx /= 10, hy /= 10;
+  }
+  return {{best, bx, by}};
+}
+
+// The 2D walled cavity's stream function maximum and vortex centre.
 template <int dim>
 void stream_function(const dealii::DoFHandler<dim>& flow_dofs, const dealii::Vector<double>& x,
                      const ContinuumParameters& prm, const DimensionlessNumbers& numbers,
@@ -289,74 +369,13 @@ void stream_function(const dealii::DoFHandler<dim>& flow_dofs, const dealii::Vec
     return;
   } else {
     if (prm.boundary[0].periodic || prm.boundary[1].periodic) return;
-    const auto& triangulation = flow_dofs.get_triangulation();
     const dealii::FE_Q<dim> fe_psi(2);
-    dealii::DoFHandler<dim> psi_dofs(triangulation);
+    dealii::DoFHandler<dim> psi_dofs(flow_dofs.get_triangulation());
     psi_dofs.distribute_dofs(fe_psi);
-    dealii::AffineConstraints<double> constraints;
-    for (dealii::types::boundary_id id = 0; id < 4; ++id)
-      dealii::VectorTools::interpolate_boundary_values(
-          psi_dofs, id, dealii::Functions::ZeroFunction<dim>(), constraints);
-    constraints.close();
-    dealii::DynamicSparsityPattern dsp(psi_dofs.n_dofs());
-    dealii::DoFTools::make_sparsity_pattern(psi_dofs, dsp, constraints, false);
-    dealii::SparsityPattern sparsity;
-    sparsity.copy_from(dsp);
-    dealii::SparseMatrix<double> matrix(sparsity);
-    dealii::Vector<double> rhs(psi_dofs.n_dofs()), psi(psi_dofs.n_dofs());
-    const dealii::QGauss<dim> quadrature(3);
-    dealii::FEValues<dim> psi_values(fe_psi, quadrature,
-                                     dealii::update_values | dealii::update_gradients |
-                                         dealii::update_JxW_values);
-    dealii::FEValues<dim> flow_values(flow_dofs.get_fe(), quadrature, dealii::update_gradients);
-    const dealii::FEValuesExtractors::Vector velocities(0);
-    std::vector<dealii::Tensor<2, dim>> grad_u(quadrature.size());
-    const unsigned n = fe_psi.n_dofs_per_cell();
-    dealii::FullMatrix<double> cell_matrix(n, n);
-    dealii::Vector<double> cell_rhs(n);
-    std::vector<dealii::types::global_dof_index> dofs(n);
-    for (const auto& cell : psi_dofs.active_cell_iterators()) {
-      const typename dealii::DoFHandler<dim>::active_cell_iterator flow_cell(
-          &triangulation, cell->level(), cell->index(), &flow_dofs);
-      psi_values.reinit(cell);
-      flow_values.reinit(flow_cell);
-      flow_values[velocities].get_function_gradients(x, grad_u);
-      cell_matrix = 0;
-      cell_rhs = 0;
-      for (unsigned q = 0; q < quadrature.size(); ++q) {
-        const double vorticity = grad_u[q][1][0] - grad_u[q][0][1];
-        for (unsigned i = 0; i < n; ++i) {
-          for (unsigned j = 0; j < n; ++j)
-            cell_matrix(i, j) +=
-                psi_values.shape_grad(i, q) * psi_values.shape_grad(j, q) * psi_values.JxW(q);
-          cell_rhs(i) += vorticity * psi_values.shape_value(i, q) * psi_values.JxW(q);
-        }
-      }
-      cell->get_dof_indices(dofs);
-      constraints.distribute_local_to_global(cell_matrix, cell_rhs, dofs, matrix, rhs);
-    }
-    dealii::SparseDirectUMFPACK solver;
-    solver.initialize(matrix);
-    solver.vmult(psi, rhs);
-    constraints.distribute(psi);
-
-    dealii::Functions::FEFieldFunction<dim> field(psi_dofs, psi);
+    dealii::Vector<double> psi;
+    solve_stream_function(flow_dofs, x, psi_dofs, psi);
     const double Lx = prm.box[0], Ly = prm.box[1];
-    auto abs_psi = [&](double px, double py) {
-      return std::abs(field.value(dealii::Point<dim>(px, py)));
-    };
-    // Grid search, then two zooms by 10 around the best point.
-    double best = -1, bx = 0.5 * Lx, by = 0.5 * Ly, hx = Lx / 100, hy = Ly / 100;
-    double cx = 0.5 * Lx, cy = 0.5 * Ly;
-    for (int zoom = 0; zoom < 3; ++zoom) {
-      const int half = zoom == 0 ? 49 : 10;
-      for (int i = -half; i <= half; ++i)
-        for (int j = -half; j <= half; ++j) {
-          const double px = std::clamp(cx + i * hx, 0.0, Lx), py = std::clamp(cy + j * hy, 0.0, Ly);
-          if (const double v = abs_psi(px, py); v > best) best = v, bx = px, by = py;
-        }
-      cx = bx, cy = by, hx /= 10, hy /= 10;
-    }
+    const auto [best, bx, by] = largest_magnitude(psi_dofs, psi, Lx, Ly);
     // psi / chi (de Vahl Davis 1983 scaling), chi = velocity_scale * H.
     result.stream_function_max = best / (numbers.velocity_scale * numbers.height);
     result.vortex_centre = {{bx / Lx, by / Ly}};

@@ -98,8 +98,8 @@ void resolve_wall_slip(const Registry& r, const particle::ParticleParameters& pa
 } // namespace
 
 namespace {
-// The model and its walls.
-void declare_model_and_walls(Registry& r) {
+// The model, and how `auto` chooses it.
+void declare_model(Registry& r) {
   using namespace dealii::Patterns;
   r.declare(s + "Model", "auto", Selection("auto|boussinesq|low-mach|compressible|heat-conduction"),
             "Equations of the continuum twin: Boussinesq natural convection (Taylor-Hood Q2/Q1 + "
@@ -122,6 +122,11 @@ void declare_model_and_walls(Registry& r) {
             "Model = auto: the stratification g H / c^2 above which the twin is compressible "
             "(0.1: the density falls by ~10% from bottom to top, which the low-Mach and "
             "Boussinesq twins do not have).");
+}
+
+// The twin's walls: Kapitza jumps, positions, slip.
+void declare_walls(Registry& r) {
+  using namespace dealii::Patterns;
   r.declare(s + "Kapitza conductances", "", List(Double(0), 0, 6),
             "Kapitza (Robin) walls of the Boussinesq and compressible twins: h_K per wall in the "
             "order x lower, "
@@ -176,6 +181,10 @@ void declare_model_and_walls(Registry& r) {
             "inverse heat law against a wall particle at T_wall), whose conductance grows where "
             "the fluid is colder; the same h_K at T = T_wall. `run`'s calibrated twin sets h_K "
             "for the law chosen here.");
+}
+
+void declare_mode(Registry& r) {
+  using namespace dealii::Patterns;
   r.declare(s + "Mode", "steady", Selection("steady|transient"),
             "steady: the stationary state (Newton, with continuation in Ra and the mesh study "
             "over the refinement levels); transient: march in time from the initial state to "
@@ -315,7 +324,9 @@ void declare_time_and_output(Registry& r) {
 } // namespace
 
 void declare_continuum(Registry& r) {
-  declare_model_and_walls(r);
+  declare_model(r);
+  declare_walls(r);
+  declare_mode(r);
   declare_coefficients(r);
   declare_mesh_and_solver(r);
   declare_time_and_output(r);

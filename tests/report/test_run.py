@@ -8,9 +8,10 @@ import report_path  # noqa: F401  (compare/ on sys.path)
 from report import data
 from report.data import MissingKey, strict_mode
 from report.document import Document
-from report.run import (RunGeometry, calibration_text, heat_flow_optional, nusselt_sentence,
+from report.run import (calibration_text, heat_flow_optional, nusselt_sentence,
                         parameter_differences, rayleigh_explanation, steady_verdict,
-                        wall_layer_table, within_noise_sentence)
+                        within_noise_sentence)
+from report.run_figures import RunGeometry, wall_layer_table
 
 
 def metrics_json(tree):

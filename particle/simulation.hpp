@@ -186,6 +186,11 @@ private:
   PairForce pair_force(const PairNoise& noise, std::size_t i, std::size_t j, const double* dx,
                        double r2, const std::array<std::vector<double>, D>& v) const;
 
+  // The initial state of this rank's particles: positions uniform, velocities Maxwell at T with
+  // no net momentum, the internal energies at equilibrium or c_v T.
+  void place_particles();
+  void euler_impulses(const PairNoise& noise);
+  void euler_energy_increments(const PairNoise& noise);
   bool update_neighbours(bool force);
   bool list_still_complete(double largest, std::size_t moved);
   // |x_i - x_listed_i|^2, minimum image: how far particle i moved since the list was built.

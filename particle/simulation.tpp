@@ -33,9 +33,28 @@ Simulation<M>::Simulation(const M& model, const ParticleParameters& p)
   dt_ = p.dt;
   sqrt_dt_ = std::sqrt(dt_);
   inv_sqrt_dt_ = 1 / sqrt_dt_;
-  const std::size_t n = static_cast<std::size_t>(p.particle_count());
   // Several MPI ranks: each keeps the particles of its slab's planes.
   slabs_ = Slabs::split(grid_.counts()[D - 1], !p.walls[D - 1].present, D == 2 ? "y" : "z");
+  place_particles();
+  owned_ = state_.id.size();
+  for (int d = 0; d < D; ++d) carried_.f[d].assign(owned_, 0.0);
+  if (p_.integrator != Integrator::Shardlow) carried_.q.assign(owned_, 0.0); // heat rates
+  carried_.potential.assign(owned_, 0.0);
+  if (slabs_.active()) {
+    tally_.start_logging();
+    grid_.restrict_to_slab(slabs_.begin(), slabs_.end() - slabs_.begin(),
+                           slabs_.upper != MPI_PROC_NULL);
+    halo_.sim = this;
+    grid_.set_phase_hook(&halo_);
+    if (listed_key()) list_positions();
+  }
+  update_neighbours(true);
+  prepare();
+}
+
+template <class M> void Simulation<M>::place_particles() {
+  const ParticleParameters& p = p_;
+  const std::size_t n = static_cast<std::size_t>(p.particle_count());
   // Positions uniform, velocities Maxwell at T: counter-based, so independent of threads and
   // ranks. Two passes over the ids, so that no rank ever holds all N: the first sums the
   // velocities (the same sum in the same order on every rank), the second keeps a rank's own.
@@ -88,20 +107,6 @@ Simulation<M>::Simulation(const M& model, const ParticleParameters& p)
     state_.id.push_back(static_cast<std::uint32_t>(i));
     if constexpr (M::has_energy) state_.u.push_back(u);
   }
-  owned_ = state_.id.size();
-  for (int d = 0; d < D; ++d) carried_.f[d].assign(owned_, 0.0);
-  if (p_.integrator != Integrator::Shardlow) carried_.q.assign(owned_, 0.0); // heat rates
-  carried_.potential.assign(owned_, 0.0);
-  if (slabs_.active()) {
-    tally_.start_logging();
-    grid_.restrict_to_slab(slabs_.begin(), slabs_.end() - slabs_.begin(),
-                           slabs_.upper != MPI_PROC_NULL);
-    halo_.sim = this;
-    grid_.set_phase_hook(&halo_);
-    if (listed_key()) list_positions();
-  }
-  update_neighbours(true);
-  prepare();
 }
 
 // Verlet list: the pairs closer than rc + skin, kept while no pair closer than rc can be missing:
@@ -423,16 +428,14 @@ template <class M> void Simulation<M>::step_ec_verlet() {
 // Explicit first-order update: 001 eqs. (1)-(2) (isothermal); 000:(2.23)-(2.25) / 003:(15)-(17)
 // for DPDE, with the dissipative+random work split equally and exactly: du_i += -1/2 dp_ij.(vbar_i
 // - vbar_j).
-template <class M> void Simulation<M>::step_euler() {
-  ++step_;
-  const std::size_t n = owned_;
-  const PairNoise noise = pair_noise();
+// Euler's impulses dp and heat rates q of every pair at the current state (001:(2)).
+template <class M> void Simulation<M>::euler_impulses(const PairNoise& noise) {
   auto& v = state_.v;
+  auto& x = state_.x;
   auto& dp = carried_.f;
   auto& q = carried_.q;
   for (int d = 0; d < D; ++d) std::fill(dp[d].begin(), dp[d].end(), 0.0);
   std::fill(q.begin(), q.end(), 0.0);
-  auto& x = state_.x;
   if constexpr (D == 2)
     halo({&x[0], &x[1], &v[0], &v[1], &state_.u, &dp[0], &dp[1], &q}, {&dp[0], &dp[1], &q});
   else
@@ -449,43 +452,61 @@ template <class M> void Simulation<M>::step_euler() {
         q[i] += pf.heat;
         q[j] -= pf.heat;
       });
+}
+
+// The internal energies' increments du (in carried_.q) after the velocity update: the heat, less
+// each pair's dissipative work split evenly (a second pass over the same pairs and noise), or
+// 002 Appendix A's offset.
+template <class M> void Simulation<M>::euler_energy_increments(const PairNoise& noise) {
+  const std::size_t n = owned_;
+  auto& v = state_.v;
+  auto& x = state_.x;
+  std::vector<double>& du = carried_.q; // heat rates become the energy increments
+  for (std::size_t i = 0; i < n; ++i) du[i] *= dt_;
+  if (p_.energy_offset) {
+    for (std::size_t i = 0; i < n; ++i) { // 002 Appendix A offset: -dK_i
+      double k_old = 0, k_new = 0;
+      for (int d = 0; d < D; ++d) k_old += v_old_[d][i] * v_old_[d][i], k_new += v[d][i] * v[d][i];
+      du[i] -= 0.5 * model_.mass * (k_new - k_old);
+    }
+    return;
+  }
+  // Counter-based noise: recomputed, not stored.
+  if constexpr (D == 2)
+    halo({&x[0], &x[1], &v[0], &v[1], &v_old_[0], &v_old_[1], &state_.u, &du}, {&du});
+  else
+    halo({&x[0], &x[1], &x[2], &v[0], &v[1], &v[2], &v_old_[0], &v_old_[1], &v_old_[2], &state_.u,
+          &du},
+         {&du});
+  grid_.for_each_pair(
+      state_, model_.rc, [&](std::size_t i, std::size_t j, const double* dx, double r2) {
+        const PairForce pf = pair_force(noise, i, j, dx, r2, v_old_);
+        const double inv_r = 1 / std::sqrt(r2);
+        double rel = 0; // e_ij . (vbar_i - vbar_j)
+        for (int d = 0; d < D; ++d)
+          rel += dx[d] * inv_r * 0.5 * (v_old_[d][i] + v[d][i] - v_old_[d][j] - v[d][j]);
+        const double work = pf.dissipative_random * dt_ * rel; // dK of the pair, docs/theory.md
+        du[i] -= 0.5 * work;
+        du[j] -= 0.5 * work;
+      });
+  if (p_.has_walls()) wall_work_split(du);
+}
+
+template <class M> void Simulation<M>::step_euler() {
+  ++step_;
+  const std::size_t n = owned_;
+  const PairNoise noise = pair_noise();
+  auto& v = state_.v;
+  euler_impulses(noise);
+  auto& dp = carried_.f;
   if (has_external_) external_forces(dt_, false); // their impulses; potentials are up to date
   if (p_.has_walls()) wall_forces(v, dp, dt_);
   for (int d = 0; d < D; ++d) v_old_[d] = v[d];
   for (std::size_t i = 0; i < n; ++i)
     for (int d = 0; d < D; ++d) v[d][i] += dp[d][i] / model_.mass; // 001:(2)
   if constexpr (M::has_energy) {
-    std::vector<double>& du = q; // heat rates become the energy increments
-    for (std::size_t i = 0; i < n; ++i) du[i] *= dt_;
-    if (!p_.energy_offset) {
-      // Second pass over the same pairs and noise (counter-based: recomputed, not stored).
-      if constexpr (D == 2)
-        halo({&x[0], &x[1], &v[0], &v[1], &v_old_[0], &v_old_[1], &state_.u, &du}, {&du});
-      else
-        halo({&x[0], &x[1], &x[2], &v[0], &v[1], &v[2], &v_old_[0], &v_old_[1], &v_old_[2],
-              &state_.u, &du},
-             {&du});
-      grid_.for_each_pair(
-          state_, model_.rc, [&](std::size_t i, std::size_t j, const double* dx, double r2) {
-            const PairForce pf = pair_force(noise, i, j, dx, r2, v_old_);
-            const double inv_r = 1 / std::sqrt(r2);
-            double rel = 0; // e_ij . (vbar_i - vbar_j)
-            for (int d = 0; d < D; ++d)
-              rel += dx[d] * inv_r * 0.5 * (v_old_[d][i] + v[d][i] - v_old_[d][j] - v[d][j]);
-            const double work = pf.dissipative_random * dt_ * rel; // dK of the pair, docs/theory.md
-            du[i] -= 0.5 * work;
-            du[j] -= 0.5 * work;
-          });
-      if (p_.has_walls()) wall_work_split(du);
-    } else {
-      for (std::size_t i = 0; i < n; ++i) { // 002 Appendix A offset: -dK_i
-        double k_old = 0, k_new = 0;
-        for (int d = 0; d < D; ++d)
-          k_old += v_old_[d][i] * v_old_[d][i], k_new += v[d][i] * v[d][i];
-        du[i] -= 0.5 * model_.mass * (k_new - k_old);
-      }
-    }
-    for (std::size_t i = 0; i < n; ++i) state_.u[i] += du[i];
+    euler_energy_increments(noise);
+    for (std::size_t i = 0; i < n; ++i) state_.u[i] += carried_.q[i];
     if (p_.has_walls()) wall_heat_pass(); // split off the step, as ec-verlet's
   }
   for (std::size_t i = 0; i < n; ++i)

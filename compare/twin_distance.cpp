@@ -5,6 +5,7 @@
 #include <iomanip>
 #include <sstream>
 
+#include "io/csv.hpp"
 #include "io/files.hpp"
 #include "statistics/blocking.hpp"
 
@@ -28,14 +29,6 @@ const io::Field& require_field(const io::Snapshot& s, const std::string& name) {
   const io::Field* f = s.find(name);
   if (!f) throw io::InputError("particle fields: no field '" + name + "' in the snapshot");
   return *f;
-}
-
-std::vector<std::string> split(const std::string& line, char sep) {
-  std::vector<std::string> out;
-  std::stringstream in(line);
-  std::string item;
-  while (std::getline(in, item, sep)) out.push_back(item);
-  return out;
 }
 
 // Central layer(s) of an axis with n bins: one when n is odd, two when it is even.
@@ -70,18 +63,9 @@ BinnedState particle_state(const io::Grid& grid, const io::Snapshot& snapshot) {
 }
 
 BinnedState continuum_state(const io::Grid& grid, const std::filesystem::path& bins_csv) {
-  std::istringstream in(io::read_file(bins_csv));
-  std::string line;
-  std::vector<std::string> header;
-  while (std::getline(in, line))
-    if (!line.empty() && line[0] != '#') {
-      header = split(line, ',');
-      break;
-    }
-  auto column = [&](const std::string& name) {
-    const auto it = std::find(header.begin(), header.end(), name);
-    return it == header.end() ? -1 : static_cast<int>(it - header.begin());
-  };
+  const io::CsvTable table = io::parse_csv(io::read_file(bins_csv));
+  const auto& header = table.header;
+  const auto column = [&](const std::string& name) { return table.find(name); };
   const char* index_names[3] = {"ix", "iy", "iz"};
   const char* velocity_names[3] = {"u_x", "u_y", "u_z"};
   std::array<int, 3> index_column{{-1, -1, -1}}, velocity_column{{-1, -1, -1}};
@@ -104,9 +88,7 @@ BinnedState continuum_state(const io::Grid& grid, const std::filesystem::path& b
   if (has_velocity) s.velocity.assign(cells * grid.dim, std::nan(""));
   if (n_column >= 0) s.density.assign(cells, std::nan(""));
   long rows = 0;
-  while (std::getline(in, line)) {
-    if (line.empty() || line[0] == '#') continue;
-    const auto v = split(line, ',');
+  for (const auto& v : table.rows) {
     if (v.size() != header.size())
       throw io::InputError(bins_csv.string() + ": a row has " + std::to_string(v.size()) +
                            " values, the header " + std::to_string(header.size()));
@@ -269,17 +251,11 @@ WallFluidTemperature wall_fluid_temperature(const BinnedState& p, const std::vec
 
 std::vector<std::vector<double>> read_temperature_blocks(const io::Grid& grid,
                                                          const std::filesystem::path& blocks_csv) {
-  std::istringstream in(io::read_file(blocks_csv));
+  const io::CsvTable table = io::parse_csv(io::read_file(blocks_csv)); // block,bin,T_kinetic
   std::vector<std::vector<double>> blocks;
-  std::string line;
-  bool header = false;
-  while (std::getline(in, line)) {
-    if (line.empty() || line[0] == '#') continue;
-    if (!header) { // block,bin,T_kinetic
-      header = true;
-      continue;
-    }
-    const auto f = split(line, ',');
+  for (const auto& f : table.rows) {
+    std::string line;
+    for (std::size_t k = 0; k < f.size(); ++k) line += (k ? "," : "") + f[k];
     std::size_t block = 0, bin = 0;
     double t = 0;
     try {

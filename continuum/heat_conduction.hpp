@@ -8,6 +8,7 @@
 #include <deal.II/base/function.h>
 #include <deal.II/dofs/dof_handler.h>
 #include <deal.II/fe/fe_q.h>
+#include <deal.II/fe/fe_values.h>
 #include <deal.II/grid/tria.h>
 #include <deal.II/lac/affine_constraints.h>
 #include <deal.II/lac/sparse_direct.h>
@@ -46,6 +47,10 @@ private:
   void initial_condition();
   // Residual (and Jacobian) of the steady or theta-scheme equation at `evaluation_point_`.
   double assemble(bool with_jacobian);
+  // Prescribed heat flux h into the domain through the cell's flux walls: - int_Gamma h phi.
+  void add_wall_heat_flux(const typename dealii::DoFHandler<dim>::active_cell_iterator& cell,
+                          dealii::FEFaceValues<dim>& fe_face_values,
+                          dealii::Vector<double>& cell_rhs) const;
   void solve_linear_system(bool factorize);
   void newton(); // throws std::runtime_error if it does not converge
   void solve_steady();

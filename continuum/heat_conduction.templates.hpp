@@ -145,6 +145,23 @@ template <int dim> void HeatConductionProblem<dim>::initial_condition() {
   old_solution_ = solution_;
 }
 
+template <int dim>
+void HeatConductionProblem<dim>::add_wall_heat_flux(
+    const typename dealii::DoFHandler<dim>::active_cell_iterator& cell,
+    dealii::FEFaceValues<dim>& fe_face_values, dealii::Vector<double>& cell_rhs) const {
+  const unsigned n = fe_.n_dofs_per_cell(), nq = fe_face_values.n_quadrature_points;
+  for (const auto& face : cell->face_iterators()) {
+    if (!face->at_boundary()) continue;
+    const int d = face->boundary_id() / 2, side = face->boundary_id() % 2;
+    const auto& b = prm_.boundary[d];
+    if (b.periodic || b.fixed_temperature[side] || b.heat_flux[side] == 0.0) continue;
+    fe_face_values.reinit(cell, face);
+    for (unsigned q = 0; q < nq; ++q)
+      for (unsigned i = 0; i < n; ++i)
+        cell_rhs(i) += b.heat_flux[side] * fe_face_values.shape_value(i, q) * fe_face_values.JxW(q);
+  }
+}
+
 template <int dim> double HeatConductionProblem<dim>::assemble(bool with_jacobian) {
   detail::ScopedTimer timer(times_.assembly);
   if (with_jacobian) jacobian_ = 0;
@@ -202,18 +219,7 @@ template <int dim> double HeatConductionProblem<dim>::assemble(bool with_jacobia
               JxW;
       }
     }
-    // Prescribed heat flux h into the domain through flux walls: - int_Gamma h phi.
-    for (const auto& face : cell->face_iterators()) {
-      if (!face->at_boundary()) continue;
-      const int d = face->boundary_id() / 2, side = face->boundary_id() % 2;
-      const auto& b = prm_.boundary[d];
-      if (b.periodic || b.fixed_temperature[side] || b.heat_flux[side] == 0.0) continue;
-      fe_face_values.reinit(cell, face);
-      for (unsigned q = 0; q < face_quadrature.size(); ++q)
-        for (unsigned i = 0; i < n; ++i)
-          cell_rhs(i) +=
-              b.heat_flux[side] * fe_face_values.shape_value(i, q) * fe_face_values.JxW(q);
-    }
+    add_wall_heat_flux(cell, fe_face_values, cell_rhs);
     cell->get_dof_indices(dofs);
     if (with_jacobian)
       zero_constraints_.distribute_local_to_global(cell_matrix, cell_rhs, dofs, jacobian_,

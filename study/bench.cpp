@@ -227,6 +227,17 @@ ParticleParameters cavity_case(const ParticleParameters& cavity, long n, bool wa
   return p;
 }
 
+// What a row ran: the scene, integrator, threads and settings.
+void describe_row(const ParticleParameters& p, const std::string& scene, int threads,
+                  io::Json& row) {
+  row["dim"] = p.dim;
+  row["scene"] = scene;
+  row["integrator"] = to_string(p.integrator);
+  row["threads"] = threads;
+  row["skin"] = p.neighbour_skin;
+  row["noise"] = p.uniform_noise ? "uniform" : "gaussian";
+}
+
 // One timed row: particle-steps/s of `p` over `steps` steps.
 std::string timed_row(const ParticleParameters& p, const std::string& scene, int threads,
                       long steps_given, io::Json& row) {
@@ -247,12 +258,7 @@ std::string timed_row(const ParticleParameters& p, const std::string& scene, int
   row["seconds"] = r.seconds;
   row["particle_steps_per_second"] = r.particle_steps_per_second;
   row["peak_rss_kb"] = peak_rss_kb();
-  row["dim"] = p.dim;
-  row["scene"] = scene;
-  row["integrator"] = to_string(p.integrator);
-  row["threads"] = threads;
-  row["skin"] = p.neighbour_skin;
-  row["noise"] = p.uniform_noise ? "uniform" : "gaussian";
+  describe_row(p, scene, threads, row);
   return line;
 }
 
@@ -274,12 +280,7 @@ std::string thermo_row(ParticleParameters p, const std::string& scene, int threa
                 num("T_internal"), num("T_internal_stderr"), num("pressure"),
                 num("pressure_stderr"));
   row = s;
-  row["dim"] = p.dim;
-  row["scene"] = scene;
-  row["integrator"] = to_string(p.integrator);
-  row["threads"] = threads;
-  row["skin"] = p.neighbour_skin;
-  row["noise"] = p.uniform_noise ? "uniform" : "gaussian";
+  describe_row(p, scene, threads, row);
   return line;
 }
 

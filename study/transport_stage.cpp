@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "io/csv.hpp"
 #include "io/files.hpp"
 #include "study/ranks.hpp"
 #include "study/stages.hpp"
@@ -90,20 +91,9 @@ fs::path cache_directory(const std::string& hash) {
 // coefficients.csv as a person reads it on the console: aligned columns, "n/a (why)" where the
 // file has nan (a coefficient not measured, or without an estimate to compare with).
 std::string console_table(const std::string& csv) {
-  std::vector<std::vector<std::string>> rows;
-  std::string comment;
-  std::istringstream in(csv);
-  for (std::string line; std::getline(in, line);) {
-    if (line.empty()) continue;
-    if (line[0] == '#') {
-      comment += line + "\n";
-      continue;
-    }
-    std::vector<std::string> cells;
-    std::istringstream cells_in(line);
-    for (std::string cell; std::getline(cells_in, cell, ',');) cells.push_back(cell);
-    rows.push_back(cells);
-  }
+  const io::CsvTable table = io::parse_csv(csv, false);
+  std::vector<std::vector<std::string>> rows = table.rows;
+  const std::string& comment = table.comments;
   if (rows.empty()) return csv;
   const auto is_nan = [](const std::string& text) {
     return text == "nan" || text == "-nan" || text == "inf" || text == "-inf";

@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <sstream>
 
+#include "io/csv.hpp"
 #include "io/files.hpp"
 #include "particle/simulation.hpp"
 #include "statistics/line_fit.hpp"
@@ -17,24 +18,15 @@ struct Profile {
   std::vector<double> x, n, T, T_se;
 };
 Profile read_profile(const std::string& csv) {
+  const io::CsvTable table = io::parse_csv(csv);
+  const std::size_t x = table.column("x", "slab_profile.csv"),
+                    n = table.column("density", "slab_profile.csv"),
+                    T = table.column("T_kinetic", "slab_profile.csv"),
+                    T_se = table.column("T_kinetic_se", "slab_profile.csv");
   Profile p;
-  std::istringstream in(csv);
-  std::vector<std::string> header;
-  for (std::string line; std::getline(in, line);) {
-    if (line.empty() || line[0] == '#') continue;
-    std::vector<std::string> cells;
-    std::istringstream row(line);
-    for (std::string cell; std::getline(row, cell, ',');) cells.push_back(cell);
-    if (header.empty()) {
-      header = cells;
-      continue;
-    }
-    const auto at = [&](const char* name) {
-      const auto k = std::find(header.begin(), header.end(), name) - header.begin();
-      return std::stod(cells.at(static_cast<std::size_t>(k)));
-    };
-    p.x.push_back(at("x")), p.n.push_back(at("density"));
-    p.T.push_back(at("T_kinetic")), p.T_se.push_back(at("T_kinetic_se"));
+  for (const auto& row : table.rows) {
+    p.x.push_back(std::stod(row.at(x))), p.n.push_back(std::stod(row.at(n)));
+    p.T.push_back(std::stod(row.at(T))), p.T_se.push_back(std::stod(row.at(T_se)));
   }
   return p;
 }

@@ -17,14 +17,8 @@ done
   echo "skipped: no python3-selenium (Debian: apt-get install python3-selenium)"
   exit 77
 }
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-export TWINFLOW_CACHE=off
-tiny=(--threads 2 --set 'Scene/Box size=10, 10' --set 'Scene/Density=2'
-  --set 'Scene/Field bins=5, 5' --set 'Particle/Equilibration steps=200'
-  --set 'Particle/Steps=1000' --set 'Continuum/Mesh/Cells=8' --set 'Continuum/Mesh/Refinements=0'
-  --set 'Transport/Measure kappa and eta=false')
-case="$source_dir/cases/heated_cavity_2d.prm"
+source "$(dirname "$0")/tiny_case.sh"
+tiny+=(--set 'Transport/Measure kappa and eta=false')
 "$twinflow" run "$case" "${tiny[@]}" --out "$work/run" >"$work/run.log" 2>&1 ||
   { cat "$work/run.log"; echo "FAIL: twinflow run"; exit 1; }
 "$twinflow" sweep "$case" "${tiny[@]}" --vary 'Particle/Seed=1,2' --jobs 1 \

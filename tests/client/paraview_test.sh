@@ -14,14 +14,8 @@ for tool in pvbatch xvfb-run; do
     exit 77
   }
 done
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-export TWINFLOW_CACHE=off
-tiny=(--threads 2 --set 'Scene/Box size=10, 10' --set 'Scene/Density=2'
-  --set 'Scene/Field bins=5, 5' --set 'Particle/Equilibration steps=200'
-  --set 'Particle/Steps=1000' --set 'Continuum/Mesh/Cells=8' --set 'Continuum/Mesh/Refinements=0'
-  --set 'Transport/Source=estimated')
-case="$source_dir/cases/heated_cavity_2d.prm"
+source "$(dirname "$0")/tiny_case.sh"
+tiny+=(--set 'Transport/Source=estimated')
 for stage in particle continuum; do
   "$twinflow" $stage "$case" "${tiny[@]}" --out "$work/run" >"$work/$stage.log" 2>&1 ||
     { cat "$work/$stage.log"; echo "FAIL: twinflow $stage"; exit 1; }

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <vector>
 
+#include "io/csv.hpp"
 #include "transport/measure.hpp"
 
 using namespace twinflow::testing;
@@ -100,25 +101,16 @@ struct LayerMean {
   double mean = 0, stderr_ = 0;
 };
 LayerMean layer_mean(const std::string& csv, const std::string& wall, const std::string& column) {
-  std::istringstream in(csv);
-  std::vector<std::string> header;
+  const twinflow::io::CsvTable table = twinflow::io::parse_csv(csv);
+  const std::size_t h = table.column("h", "wall_layers.csv"),
+                    value = table.column(column, "wall_layers.csv"),
+                    error = table.column(column + "_se", "wall_layers.csv");
   double sw = 0, swx = 0;
-  for (std::string line; std::getline(in, line);) {
-    if (line.empty() || line[0] == '#') continue;
-    std::vector<std::string> cells;
-    std::istringstream row(line);
-    for (std::string cell; std::getline(row, cell, ',');) cells.push_back(cell);
-    if (header.empty()) {
-      header = cells;
-      continue;
-    }
-    const auto at = [&](const std::string& name) {
-      return std::stod(cells[std::find(header.begin(), header.end(), name) - header.begin()]);
-    };
-    if (cells[0] != wall || at("h") >= 1) continue;
-    const double se = at(column + "_se");
+  for (const auto& row : table.rows) {
+    if (row[0] != wall || std::stod(row[h]) >= 1) continue;
+    const double se = std::stod(row[error]);
     if (!(se > 0)) continue;
-    sw += 1 / (se * se), swx += at(column) / (se * se);
+    sw += 1 / (se * se), swx += std::stod(row[value]) / (se * se);
   }
   return {swx / sw, 1 / std::sqrt(sw)};
 }

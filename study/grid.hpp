@@ -67,6 +67,9 @@ struct Axis {
 // an unknown key, a value outside its key's pattern or a key given twice throws io::InputError.
 std::vector<Axis> parse_axes(const GridOptions&, const CaseReader&);
 
+// The grid as its table's JSON records it: the case file, its resolved parameters, the axes.
+io::Json grid_description(const GridOptions&, const CaseReader&, const std::vector<Axis>&);
+
 struct Point {
   std::string name;                      // "007": its run directory DIR/points/007
   std::vector<std::size_t> value_index;  // per axis

@@ -1,6 +1,7 @@
 #include "study/grid.hpp"
 
 #include <algorithm>
+#include <filesystem>
 #include <set>
 #include <sstream>
 
@@ -59,6 +60,19 @@ std::string read_error(const GridOptions& o, const CaseReader& reader,
 }
 
 } // namespace
+
+io::Json grid_description(const GridOptions& o, const CaseReader& reader,
+                          const std::vector<Axis>& axes) {
+  io::Json grid = io::Json::object();
+  grid["case_file"] = std::filesystem::absolute(o.case_file).lexically_normal().string();
+  grid["base_parameters"] = reader.record(o.settings);
+  grid["vary"] = io::Json::object();
+  for (const auto& a : axes) {
+    grid["vary"][a.key] = io::Json::array();
+    for (const auto& v : a.shown) grid["vary"][a.key].push_back(v);
+  }
+  return grid;
+}
 
 std::vector<Axis> parse_axes(const GridOptions& o, const CaseReader& reader) {
   reader.check(

@@ -186,14 +186,7 @@ int stability(const GridOptions& cl, const CaseReader& reader) {
                            "T_internal",
                            "T_target",
                            "temperature_relative_error"};
-  s.grid = io::Json::object();
-  s.grid["case_file"] = fs::absolute(cl.case_file).lexically_normal().string();
-  s.grid["base_parameters"] = reader.record(cl.settings);
-  s.grid["vary"] = io::Json::object();
-  for (const auto& a : axes) {
-    s.grid["vary"][a.key] = io::Json::array();
-    for (const auto& v : a.shown) s.grid["vary"][a.key].push_back(v);
-  }
+  s.grid = grid_description(cl, reader, axes);
   for (auto& p : points) {
     if (!p.rejected.empty()) continue;
     const Prediction prediction = predict(p.resolved);

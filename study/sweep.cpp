@@ -126,14 +126,7 @@ Study sweep_study(const GridOptions& cl, const CaseReader& reader, const std::ve
   // The achieved Ra (the nominal twin's) beside the target.
   s.columns_before_wall = {"target_rayleigh", "gravity"};
   if (!cl.rayleigh.empty()) s.columns_before_wall = {"target_rayleigh", "rayleigh", "gravity"};
-  s.grid = io::Json::object();
-  s.grid["case_file"] = fs::absolute(cl.case_file).lexically_normal().string();
-  s.grid["base_parameters"] = reader.record(cl.settings);
-  s.grid["vary"] = io::Json::object();
-  for (const auto& a : axes) {
-    s.grid["vary"][a.key] = io::Json::array();
-    for (const auto& v : a.shown) s.grid["vary"][a.key].push_back(v);
-  }
+  s.grid = grid_description(cl, reader, axes);
   s.grid["rayleigh"] = io::Json(cl.rayleigh);
   return s;
 }

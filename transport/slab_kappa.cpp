@@ -13,13 +13,15 @@
 namespace twinflow::transport {
 
 namespace {
-// The binned profile of slab_profile.csv: x, n, T_kinetic and its error.
+// The binned profile of slab_profile.csv along the slabs' direction: position, n, T_kinetic and
+// its error.
 struct Profile {
   std::vector<double> x, n, T, T_se;
 };
-Profile read_profile(const std::string& csv) {
+Profile read_profile(const std::string& csv, int direction) {
   const io::CsvTable table = io::parse_csv(csv);
-  const std::size_t x = table.column("x", "slab_profile.csv"),
+  const char* axes[3] = {"x", "y", "z"};
+  const std::size_t x = table.column(axes[direction], "slab_profile.csv"),
                     n = table.column("density", "slab_profile.csv"),
                     T = table.column("T_kinetic", "slab_profile.csv"),
                     T_se = table.column("T_kinetic_se", "slab_profile.csv");
@@ -116,7 +118,7 @@ SlabKappa kappa_from_slabs(const particle::ParticleParameters& slab, double n0, 
   const double J0 = io::number(h, {"J0"});
   SlabKappa r;
   r.kappa = {io::number(h, {"kappa"}), io::number(h, {"kappa_stderr"})};
-  r.points = local_conductivities(read_profile(out.slab_profile_csv), half, width, J0);
+  r.points = local_conductivities(read_profile(out.slab_profile_csv, heated), half, width, J0);
   r.law = fit_law(r.points, n0, T0, pair_at_reference, pair_exponent, a_fallback);
   // The windows' errors are the bins' block errors, which see less of the profile's slow modes
   // than the whole run's blockings: K's error is at least the slab's kappa error, relatively.

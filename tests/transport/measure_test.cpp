@@ -1,6 +1,7 @@
 // Measured coefficients: repeats and their error, and the relaxation runs behind kappa and eta.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -11,6 +12,7 @@
 #include "particle/seeds.hpp"
 #include "transport/estimates.hpp"
 #include "transport/measure.hpp"
+#include "transport/measurement.hpp"
 
 using namespace twinflow;
 using namespace twinflow::transport;
@@ -206,4 +208,28 @@ TEST(ExcessPressureFit, SoftRepulsionFluidIsDescribed) {
       EXPECT_LT(std::abs(B), 4 * B_stderr);
     }
   }
+}
+
+// The slabs' profile is read along their own direction: the same fluid with its slabs along x and
+// along y gives the same windows (the column case's slabs, along y, were once read along x's
+// single bin: one window at the box's mean, K off by 5x).
+TEST(SlabKappa, WindowsFollowTheSlabsDirection) {
+  std::array<std::vector<StatePoint>, 2> points;
+  for (int dir : {0, 1}) {
+    auto p = particle::testing::ideal(2, particle::Integrator::Shardlow, 10);
+    const double half = 10;
+    p.box = {{4, 4, 1}};
+    p.box[dir] = 2 * half;
+    p.bins = {{1, 1, 1}};
+    p.bins[dir] = 40;
+    p.heat_slabs = {{dir, half, half + 1, 2.0}, {dir, 0, 1, -2.0}};
+    p.equilibration_steps = 2000, p.steps = 4000, p.sample_interval = 10;
+    const SlabKappa r = kappa_from_slabs(p, p.density, p.temperature, 0, -1, 1);
+    points[dir] = r.points;
+    ASSERT_EQ(r.points.size(), 4u) << "direction " << dir; // 2 windows of 3 rc per half
+    double lo = HUGE_VAL, hi = -HUGE_VAL;
+    for (const StatePoint& s : r.points) lo = std::min(lo, s.T), hi = std::max(hi, s.T);
+    EXPECT_GT(hi - lo, 0.05) << "the windows see the profile's span, direction " << dir;
+  }
+  ASSERT_EQ(points[0].size(), points[1].size());
 }

@@ -21,15 +21,17 @@ struct TransportParameters {
 
 // The version of the measurement: part of its cache key and of its stage inputs in `run`, bumped
 // when a measurement changes (results of an older method are not reused).
-constexpr int kMeasurementMethod = 9; // 3: relaxation fit window from the noise (decay_fit.hpp);
-                                      // 4: the wall run's slope and flux errors from the blockings;
-                                      // 5: D over independent repeats;
-                                      // 6: D's error the repeats' spread alone, their
-                                      //    seeds hashed (particle/seeds.hpp);
-                                      // 7: the excess pressure's fit (the compressible
-                                      //    twin's equation of state)
-                                      // 8: the laws c(n, T) (laws.hpp), kappa from heat
-                                      //    slabs at the scene's scale, D's power of T
-                                      // 9: the slabs' sampled time from the error they need
+constexpr int kMeasurementMethod =
+    10; // 3: relaxation fit window from the noise (decay_fit.hpp);
+        // 4: the wall run's slope and flux errors from the blockings;
+        // 5: D over independent repeats;
+        // 6: D's error the repeats' spread alone, their
+        //    seeds hashed (particle/seeds.hpp);
+        // 7: the excess pressure's fit (the compressible
+        //    twin's equation of state)
+        // 8: the laws c(n, T) (laws.hpp), kappa from heat
+        //    slabs at the scene's scale, D's power of T
+        // 9: the slabs' sampled time from the error they need
+        // 10: the slabs' profile read along their direction
 
 } // namespace twinflow::transport

@@ -1,4 +1,3 @@
-#include <charconv>
 #include <chrono>
 #include <cstdlib>
 #include <iomanip>
@@ -19,14 +18,6 @@ namespace fs = std::filesystem;
 namespace {
 compare::TwinFacts twin_facts(const continuum::ContinuumParameters& p, double viscosity) {
   return {continuum::has_robin_walls(p.model), p.boundary[0].kapitza_inverse, viscosity};
-}
-
-// A number as the case record keeps it: the shortest text that reads back to the same double, so
-// the record reproduces the twin exactly.
-std::string exact_text(double v) {
-  char text[40];
-  const auto end = std::to_chars(text, text + sizeof text, v).ptr;
-  return std::string(text, end);
 }
 
 // One value per wall in the case record's list form, "v0, v1, ..." (x lower, x upper, y ...).

@@ -4,6 +4,7 @@
 // resolved once at the edge; bad input throws io::InputError (exit 2), and nothing is written
 // before every input is checked.
 
+#include <charconv>
 #include <cstdio>
 #include <filesystem>
 #include <string>
@@ -52,8 +53,6 @@ int compare_stage(const Case& c, const std::filesystem::path& run_dir);
 // package compare/report/; a missing python3 with matplotlib is said, not an error.
 void write_report(const std::filesystem::path& dir);
 
-// Whether the user's assignments (--set, a grid's --vary) choose Continuum/Coefficients/Source;
-// if not, `run` feeds the twin the transport stage's coefficients.
 // A number as a record or a console line states it: `digits` significant digits (%g).
 inline std::string number_text(double v, int digits = 6) {
   char text[40];
@@ -61,6 +60,15 @@ inline std::string number_text(double v, int digits = 6) {
   return text;
 }
 
+// A number as a record keeps it exactly: the shortest text that reads back to the same double.
+inline std::string exact_text(double v) {
+  char text[40];
+  const auto end = std::to_chars(text, text + sizeof text, v).ptr;
+  return std::string(text, end);
+}
+
+// Whether the user's assignments (--set, a grid's --vary) choose Continuum/Coefficients/Source;
+// if not, `run` feeds the twin the transport stage's coefficients.
 bool chooses_coefficient_source(const std::vector<std::string>& assignments);
 
 // All stages; a stage whose inputs are unchanged is reused.

@@ -41,6 +41,14 @@ double SceneParameters::thermal_wall_mean() const {
   return walls > 0 ? sum / walls : 0;
 }
 
+double SceneParameters::density_on_isobar(double T) const {
+  const int heated = heated_direction();
+  if (heated < 0) return density;
+  const auto& t = boundary[heated].temperature;
+  const double hot = std::max(t[0], t[1]), cold = std::min(t[0], t[1]);
+  return density * (hot - cold) / std::log(hot / cold) / T; // the ideal gas's p / T
+}
+
 double SceneParameters::stratification(double particle_mass) const {
   double g = 0;
   int up = -1;

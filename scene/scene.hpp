@@ -42,6 +42,10 @@ struct SceneParameters {
   double thermal_wall_epsilon() const;
   // The mean temperature of the thermal walls; 0 without any.
   double thermal_wall_mean() const;
+  // The density at temperature T on the isobar of the box at rest with a linear temperature
+  // between the heated direction's walls (ideal gas, int n dV = N): p = n0 (T_h - T_c) /
+  // ln(T_h / T_c), n = p / T. The scene's density without a heated direction.
+  double density_on_isobar(double T) const;
   // Stratification g H / c^2 (docs/theory.md, "What a convection scene costs"): g the largest
   // gravity component, H the box along it, c^2 = k T / m the ideal DPDE fluid's isothermal sound
   // speed at the thermal walls' mean temperature (else the scene's); 0 without gravity.

@@ -8,19 +8,6 @@
 
 namespace twinflow::study {
 
-namespace {
-// The fluid's density at a wall of temperature T_w, on the isobar of the box at rest with a
-// linear temperature between its thermal walls: p = n0 (T_h - T_c) / ln(T_h / T_c) (ideal gas,
-// int n dV = N), n = p / T_w. The twin has not run yet; its own density replaces this later.
-double density_at_wall(const scene::SceneParameters& scene, int heated, double T_w) {
-  const auto& b = scene.boundary[heated];
-  const double hot = std::max(b.temperature[0], b.temperature[1]);
-  const double cold = std::min(b.temperature[0], b.temperature[1]);
-  const double mean = hot > cold ? (hot - cold) / std::log(hot / cold) : hot;
-  return scene.density * mean / T_w;
-}
-} // namespace
-
 int take_wall_jumps(const CaseParameters& c, const transport::Coefficients& k,
                     continuum::ContinuumParameters& twin) {
   const particle::ParticleParameters& p = c.particle;
@@ -33,7 +20,8 @@ int take_wall_jumps(const CaseParameters& c, const transport::Coefficients& k,
     for (int side = 0; side < 2; ++side) {
       if (!walls.thermal[side] || walls.model[side] != particle::WallModel::HalfSpace) continue;
       const double T_w = walls.temperature[side];
-      const double n = density_at_wall(c.scene, heated, T_w);
+      // The twin has not run yet; its own density replaces this later.
+      const double n = c.scene.density_on_isobar(T_w);
       transport::WallLayerInput in;
       in.dim = p.dim;
       in.density = n, in.temperature = T_w;

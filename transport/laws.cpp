@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <Eigen/Dense>
+
 namespace twinflow::transport {
 
 double CoefficientLaw::at(double n, double T) const {
@@ -21,7 +23,8 @@ io::Json CoefficientLaw::json() const {
   j["T0"] = T0, j["n0"] = n0;
   j["K"] = K, j["K_stderr"] = K_stderr;
   j["a"] = a, j["a_stderr"] = a_stderr;
-  j["P"] = P, j["b"] = b;
+  j["P"] = P, j["P_stderr"] = P_stderr, j["b"] = b;
+  j["K_P_covariance"] = K_P_covariance;
   j["at_reference"] = at(n0, T0);
   j["chi2_per_dof"] = chi2_per_dof, j["points"] = points;
   return j;
@@ -52,6 +55,73 @@ AtExponent best_K(const std::vector<StatePoint>& points, double n0, double T0, d
 }
 } // namespace
 
+namespace {
+// K and P by weighted linear least squares at exponent a (the 2 x 2 normal equations), and chi^2.
+struct KAndP {
+  double chi2 = 0, K = 0, P = 0;
+};
+KAndP best_K_and_P(const std::vector<StatePoint>& points, double n0, double T0, double b,
+                   double a) {
+  double s11 = 0, s12 = 0, s22 = 0, s1y = 0, s2y = 0;
+  for (const StatePoint& p : points) {
+    const double w = 1 / (p.value.stderr_ * p.value.stderr_);
+    const double x1 = std::pow(p.T / T0, a), x2 = std::pow(p.n / n0, 2) * std::pow(p.T / T0, b);
+    s11 += w * x1 * x1, s12 += w * x1 * x2, s22 += w * x2 * x2;
+    s1y += w * x1 * p.value.mean, s2y += w * x2 * p.value.mean;
+  }
+  const double det = s11 * s22 - s12 * s12;
+  KAndP r;
+  r.K = (s22 * s1y - s12 * s2y) / det, r.P = (s11 * s2y - s12 * s1y) / det;
+  for (const StatePoint& p : points) {
+    const double model =
+        r.K * std::pow(p.T / T0, a) + r.P * std::pow(p.n / n0, 2) * std::pow(p.T / T0, b);
+    const double z = (p.value.mean - model) / p.value.stderr_;
+    r.chi2 += z * z;
+  }
+  return r;
+}
+
+// The a in [lo, hi] that minimises f(a) (golden-section search; one minimum assumed).
+template <class F> double golden_minimum(F f, double lo, double hi) {
+  const double phi = 0.5 * (std::sqrt(5.0) - 1);
+  double x1 = hi - phi * (hi - lo), x2 = lo + phi * (hi - lo);
+  double f1 = f(x1), f2 = f(x2);
+  while (hi - lo > 1e-6) {
+    if (f1 < f2)
+      hi = x2, x2 = x1, f2 = f1, x1 = hi - phi * (hi - lo), f1 = f(x1);
+    else
+      lo = x1, x1 = x2, f1 = f2, x2 = lo + phi * (hi - lo), f2 = f(x2);
+  }
+  return 0.5 * (lo + hi);
+}
+} // namespace
+
+CoefficientLaw fit_law_and_pair(const std::vector<StatePoint>& points, double n0, double T0,
+                                double b) {
+  CoefficientLaw law;
+  law.T0 = T0, law.n0 = n0, law.b = b;
+  law.points = static_cast<int>(points.size());
+  const auto chi2 = [&](double a) { return best_K_and_P(points, n0, T0, b, a).chi2; };
+  law.a = golden_minimum(chi2, -3, 5);
+  const KAndP best = best_K_and_P(points, n0, T0, b, law.a);
+  law.K = best.K, law.P = best.P;
+  const int dof = law.points - 3;
+  law.chi2_per_dof = dof > 0 ? best.chi2 / dof : 0;
+  // The covariance of (K, P, a): (J^T W J)^-1 with the model's derivatives J at the minimum
+  // (K and P's errors at a fixed a would leave out a's), scaled by chi^2 / dof when above 1.
+  Eigen::Matrix3d normal = Eigen::Matrix3d::Zero();
+  for (const StatePoint& p : points) {
+    const double x1 = std::pow(p.T / T0, law.a);
+    const Eigen::Vector3d j(x1, std::pow(p.n / n0, 2) * std::pow(p.T / T0, b),
+                            law.K * x1 * std::log(p.T / T0));
+    normal += j * j.transpose() / (p.value.stderr_ * p.value.stderr_);
+  }
+  const Eigen::Matrix3d cov = std::max(1.0, law.chi2_per_dof) * normal.inverse();
+  law.K_stderr = std::sqrt(cov(0, 0)), law.P_stderr = std::sqrt(cov(1, 1));
+  law.a_stderr = std::sqrt(cov(2, 2)), law.K_P_covariance = cov(0, 1);
+  return law;
+}
+
 CoefficientLaw fit_law(const std::vector<StatePoint>& points, double n0, double T0, double P,
                        double b, double a_fallback) {
   CoefficientLaw law;
@@ -64,20 +134,7 @@ CoefficientLaw fit_law(const std::vector<StatePoint>& points, double n0, double 
     law.a = a_fallback, law.K = fixed.K, law.K_stderr = fixed.K_stderr;
     return law;
   }
-  // Golden-section search for the a that minimises chi^2 (one minimum for a power law).
-  const double phi = 0.5 * (std::sqrt(5.0) - 1);
-  double x0 = -3, x3 = 5;
-  double x1 = x3 - phi * (x3 - x0), x2 = x0 + phi * (x3 - x0);
-  double f1 = best_K(points, n0, T0, P, b, x1).chi2, f2 = best_K(points, n0, T0, P, b, x2).chi2;
-  while (x3 - x0 > 1e-6) {
-    if (f1 < f2)
-      x3 = x2, x2 = x1, f2 = f1, x1 = x3 - phi * (x3 - x0),
-      f1 = best_K(points, n0, T0, P, b, x1).chi2;
-    else
-      x0 = x1, x1 = x2, f1 = f2, x2 = x0 + phi * (x3 - x0),
-      f2 = best_K(points, n0, T0, P, b, x2).chi2;
-  }
-  law.a = 0.5 * (x0 + x3);
+  law.a = golden_minimum([&](double a) { return best_K(points, n0, T0, P, b, a).chi2; }, -3, 5);
   const AtExponent best = best_K(points, n0, T0, P, b, law.a);
   const int dof = static_cast<int>(points.size()) - 2;
   law.chi2_per_dof = best.chi2 / dof;

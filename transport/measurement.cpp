@@ -1,10 +1,12 @@
 #include "transport/measurement.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <sstream>
+#include <tuple>
 #include <utility>
 
 #include "transport/estimates.hpp"
@@ -52,13 +54,15 @@ struct Plan {
   const TransportParameters& t;
   bool slabs = false; // kappa (and its law) from periodic heat slabs at the scene's scale
   std::vector<double> temperatures;
+  // eta's law is also measured at the heated walls' (n, T) on the isobar (laws.hpp)
+  std::vector<std::pair<double, double>> isobar_ends;
   double flow_edge = 0, k_rc = 0;
 };
 
 struct Results {
   Estimates ideal, with_g;
   Measured bulk;
-  std::vector<RelaxationCoefficients> at_temperature;
+  std::vector<RelaxationCoefficients> at_temperature, at_isobar_ends;
   RelaxationCoefficients flow;
   SlabKappa slab;
   WallKappa walls;
@@ -72,8 +76,12 @@ struct Results {
 
 Plan make_plan(const scene::SceneParameters& scene, const particle::ParticleParameters& scene_fluid,
                const particle::ParticleParameters& p, const TransportParameters& t) {
-  Plan plan{scene, scene_fluid, p, t, false, {}, 0, 0};
-  plan.slabs = t.measure_flows && t.kappa_from_slabs && scene.heated_direction() >= 0;
+  Plan plan{scene, scene_fluid, p, t, false, {}, {}, 0, 0};
+  const int heated = scene.heated_direction();
+  plan.slabs = t.measure_flows && t.kappa_from_slabs && heated >= 0;
+  if (t.measure_flows && t.viscosity_along_isobar && heated >= 0)
+    for (const double T : scene.boundary[heated].temperature)
+      plan.isobar_ends.emplace_back(scene.density_on_isobar(T), T);
   plan.temperatures = {p.temperature};
   const double s = t.temperature_spread;
   if (s > 0) plan.temperatures = {p.temperature * (1 - s), p.temperature, p.temperature * (1 + s)};
@@ -113,44 +121,63 @@ PairParts pair_parts(const Plan& plan, const Results& r) {
           exponent(r.with_g.viscosity_dissipative, hotter.viscosity_dissipative)};
 }
 
-// Step 2: the flow runs, one job each (relaxation at each temperature, the heat slabs, the
-// wall run), spread over the cores.
+// One set of relaxation runs at `flows`' n and T (its box: Transport/Flow particles at its
+// density), as a job for run_jobs, its progress on the console.
+Job relaxation_job(const Plan& plan, const PairDistribution& g, particle::ParticleParameters flows,
+                   int repeats, RelaxationCoefficients& out, Clock::time_point start) {
+  const double edge = std::max(3 * flows.largest_cutoff(),
+                               std::pow(plan.t.flow_particles / flows.density, 1.0 / flows.dim));
+  flows.box = {{edge, edge, edge}};
+  const Estimates guess = estimate(flows, flows.temperature, g);
+  const double cost = static_cast<double>(flows.particle_count()) * repeats /
+                      (guess.diffusivity * std::pow(2 * M_PI / (2 * edge), 2));
+  return {cost, [&out, flows, guess, repeats, start] {
+            out = measure_relaxation(
+                flows, guess, guess.heat_capacity_p, repeats,
+                [&](int done, const RelaxationCoefficients& so_far, int repeat) {
+                  const auto &k = so_far.conductivity.value, &e = so_far.viscosity.value;
+                  std::printf("transport: relaxation at n = %.4g, T = %.4g, %d/%d runs (N = %ld, "
+                              "%ld steps; run %d ended): kappa %.4g +- %.2g, eta %.4g +- %.2g; "
+                              "%.0f s\n",
+                              flows.density, flows.temperature, done, repeats, so_far.particles,
+                              so_far.steps, repeat + 1, k.mean, k.stderr_, e.mean, e.stderr_,
+                              seconds_since(start));
+                  std::fflush(stdout);
+                });
+          }};
+}
+
+// Step 2: the flow runs, one job each (relaxation at each temperature and at the isobar's ends,
+// the heat slabs, the wall run), spread over the cores.
 void measure_flows(const Plan& plan, Results& r) {
   const particle::ParticleParameters& p = plan.p;
   const auto measured_g = PairDistribution::from_csv(r.bulk.rdf_csv);
   const auto start = Clock::now();
   std::vector<Job> jobs;
   r.at_temperature.resize(plan.temperatures.size());
+  r.at_isobar_ends.resize(plan.isobar_ends.size());
   if (plan.t.measure_flows) {
     if (plan.k_rc > 0.3)
       std::cout << "transport: the relaxation modes have k rc = " << plan.k_rc << " (wavelength "
                 << 2 * plan.flow_edge / p.largest_cutoff()
                 << " cutoffs): coefficients at that finite wavenumber; more Transport/Flow "
                    "particles lower it (k rc ~ N^(-1/d))\n";
-    for (std::size_t i = 0; i < plan.temperatures.size(); ++i) {
+    std::size_t set = 0; // each set its own seeds
+    for (std::size_t i = 0; i < plan.temperatures.size(); ++i, ++set) {
       particle::ParticleParameters flows = p;
-      flows.box = {{plan.flow_edge, plan.flow_edge, plan.flow_edge}};
       flows.temperature = plan.temperatures[i];
-      flows.seed = p.seed + 104729 * i; // independent runs at each temperature
-      const Estimates guess = estimate(flows, flows.temperature, measured_g);
-      const double cost = static_cast<double>(flows.particle_count()) * plan.t.flow_repeats /
-                          (guess.diffusivity * std::pow(2 * M_PI / (2 * plan.flow_edge), 2));
-      jobs.push_back({cost, [&, flows, guess, i] {
-                        r.at_temperature[i] = measure_relaxation(
-                            flows, guess, guess.heat_capacity_p, plan.t.flow_repeats,
-                            [&, T = flows.temperature](
-                                int done, const RelaxationCoefficients& so_far, int repeat) {
-                              const auto& k = so_far.conductivity.value;
-                              const auto& e = so_far.viscosity.value;
-                              std::printf("transport: relaxation at T = %.4g, %d/%d runs (N = %ld, "
-                                          "%ld steps; run %d ended): kappa %.4g +- %.2g, eta %.4g "
-                                          "+- %.2g; %.0f s\n",
-                                          T, done, plan.t.flow_repeats, so_far.particles,
-                                          so_far.steps, repeat + 1, k.mean, k.stderr_, e.mean,
-                                          e.stderr_, seconds_since(start));
-                              std::fflush(stdout);
-                            });
-                      }});
+      flows.seed = p.seed + 104729 * set;
+      jobs.push_back(
+          relaxation_job(plan, measured_g, flows, plan.t.flow_repeats, r.at_temperature[i], start));
+    }
+    // The ends need eta to ~5%, the state point (which sets its value) to ~3%.
+    const int end_repeats = std::max(2, plan.t.flow_repeats / 2);
+    for (std::size_t j = 0; j < plan.isobar_ends.size(); ++j, ++set) {
+      particle::ParticleParameters flows = p;
+      std::tie(flows.density, flows.temperature) = plan.isobar_ends[j];
+      flows.seed = p.seed + 104729 * set;
+      jobs.push_back(
+          relaxation_job(plan, measured_g, flows, end_repeats, r.at_isobar_ends[j], start));
     }
   }
   if (plan.slabs) {
@@ -182,6 +209,34 @@ void measure_flows(const Plan& plan, Results& r) {
   run_jobs(std::move(jobs));
 }
 
+// eta's law through the relaxation runs at the state point (and its temperature spread) and at
+// the isobar's ends, P fitted (laws.hpp), where it stays positive over the walls' span;
+// otherwise r.eta_law is left as it is, with a message.
+void take_isobar_law(const Plan& plan, const PairParts& pairs, Results& r) {
+  std::vector<StatePoint> points;
+  for (std::size_t i = 0; i < r.at_temperature.size(); ++i)
+    points.push_back({plan.p.density, r.measured_at[i], r.at_temperature[i].viscosity.value});
+  for (std::size_t j = 0; j < r.at_isobar_ends.size(); ++j) {
+    const RelaxationCoefficients& end = r.at_isobar_ends[j];
+    const double T = std::isfinite(end.temperature.value.mean) ? end.temperature.value.mean
+                                                               : plan.isobar_ends[j].second;
+    points.push_back({plan.isobar_ends[j].first, T, end.viscosity.value});
+  }
+  for (const StatePoint& s : points)
+    if (!(s.value.stderr_ > 0)) return; // a set without an error (one repeat): no fit
+  const CoefficientLaw law =
+      fit_law_and_pair(points, plan.p.density, plan.p.temperature, pairs.eta_exponent);
+  bool positive = law.K >= 0 && law.P >= 0;
+  for (const StatePoint& s : points) positive = positive && law.at(s.n, s.T) > 0;
+  if (positive) {
+    r.eta_law = law;
+    return;
+  }
+  std::printf("transport: eta's law through the isobar's ends is not positive (K %.3g, a %.3g, P "
+              "%.3g): the twin keeps theory's pair part\n",
+              law.K, law.a, law.P);
+}
+
 // Step 3: which kappa and eta the twin takes, and their laws c(n, T).
 void choose_coefficients(const Plan& plan, Results& r) {
   const particle::ParticleParameters& p = plan.p;
@@ -205,13 +260,15 @@ void choose_coefficients(const Plan& plan, Results& r) {
     r.eta_power = fit_power_law(r.measured_at, e, r.state_temperature);
   }
   if (!plan.t.measure_flows) return;
-  // The laws (laws.hpp): eta's particle part goes as D (eta_K = rho m D / 2), its pair part as
-  // theory's; kappa's from the slabs' profile where measured, else through the relaxation value
-  // with D's power of T.
+  // The laws (laws.hpp): eta's through the state point and the isobar's ends where measured,
+  // else its particle part goes as D (eta_K = rho m D / 2) and its pair part as theory's;
+  // kappa's from the slabs' profile where measured, else through the relaxation value with D's
+  // power of T.
   const PairParts pairs = pair_parts(plan, r);
   const particle::Estimate a_D = r.bulk.diffusion_exponent;
   r.eta_law = law_through(r.eta, r.state_temperature, p.density, p.temperature, pairs.eta,
                           pairs.eta_exponent, a_D.mean, a_D.stderr_);
+  if (!plan.isobar_ends.empty()) take_isobar_law(plan, pairs, r);
   if (plan.slabs) {
     r.kappa_law = r.slab.law;
     r.kappa = {r.kappa_law.at(p.density, p.temperature), r.kappa_law.K_stderr};
@@ -259,13 +316,23 @@ std::string coefficients_table(const Plan& plan, const Results& r) {
     row("conductivity_exponent_n_in_T^n", nan, nan, r.kappa_power.exponent,
         r.kappa_power.exponent_stderr);
   }
+  for (std::size_t j = 0; j < r.at_isobar_ends.size(); ++j) {
+    char at[48];
+    std::snprintf(at, sizeof at, "_at_n_%.4g_T_%.4g", plan.isobar_ends[j].first,
+                  plan.isobar_ends[j].second);
+    const RelaxationCoefficients& end = r.at_isobar_ends[j];
+    row("viscosity_eta" + std::string(at), nan, nan, end.viscosity.value.mean,
+        end.viscosity.value.stderr_);
+    row("conductivity_kappa" + std::string(at), nan, nan, end.conductivity.value.mean,
+        end.conductivity.value.stderr_);
+  }
   if (r.has_laws) {
     row("conductivity_law_K", nan, nan, r.kappa_law.K, r.kappa_law.K_stderr);
     row("conductivity_law_a", nan, nan, r.kappa_law.a, r.kappa_law.a_stderr);
     row("conductivity_law_P", nan, with_g.conductivity_conduction, r.kappa_law.P, nan);
     row("viscosity_law_K", nan, nan, r.eta_law.K, r.eta_law.K_stderr);
     row("viscosity_law_a", nan, nan, r.eta_law.a, r.eta_law.a_stderr);
-    row("viscosity_law_P", nan, with_g.viscosity_dissipative, r.eta_law.P, nan);
+    row("viscosity_law_P", nan, with_g.viscosity_dissipative, r.eta_law.P, r.eta_law.P_stderr);
   }
   row("conductivity_kappa_002_eq22", ideal.conductivity_002_eq22, with_g.conductivity_002_eq22, nan,
       nan);
@@ -349,6 +416,18 @@ io::Json results_json(const Plan& plan, const Results& r) {
   if (r.has_laws) {
     measured["conductivity_law"] = r.kappa_law.json();
     measured["viscosity_law"] = r.eta_law.json();
+  }
+  if (!r.at_isobar_ends.empty()) {
+    io::Json& ends = measured["isobar_ends"] = io::Json::array();
+    for (std::size_t j = 0; j < r.at_isobar_ends.size(); ++j) {
+      io::Json end = io::Json::object();
+      end["density"] = plan.isobar_ends[j].first;
+      end["wall_temperature"] = plan.isobar_ends[j].second;
+      end["temperature"] = r.at_isobar_ends[j].temperature.json();
+      end["viscosity"] = r.at_isobar_ends[j].viscosity.json();
+      end["conductivity"] = r.at_isobar_ends[j].conductivity.json();
+      ends.push_back(end);
+    }
   }
   if (r.at_temperature.size() > 1) {
     io::Json law = io::Json::object();

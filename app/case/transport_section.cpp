@@ -54,6 +54,12 @@ void declare_transport(Registry& r) {
             "in windows along the profile, fitted by K (T/T0)^a + P (n/n0)^2 (T/T0)^b with the "
             "pair part P, b from theory (docs/theory.md). false: kappa from the relaxation runs "
             "(or the walls), with D's power of T.");
+  r.declare("Transport/Viscosity along the isobar", "true", Bool(),
+            "With Measure kappa and eta, in a scene with two thermal walls at different "
+            "temperatures: eta also by relaxation runs (half of Flow repeats, at least 2) at each "
+            "wall's temperature and the density the box at rest has there (the ideal gas's "
+            "isobar), and its law K (T/T0)^a + P (n/n0)^2 (T/T0)^b fitted through them and the "
+            "state point with P free (b from theory). false: P from theory, a from D(T).");
   r.declare("Transport/Wall steps", "100000", Integer(1000),
             "Sampled steps of the wall run of Kappa from walls (a fifth as many settle first).");
 }
@@ -69,6 +75,7 @@ transport::TransportParameters resolve_transport(const Registry& r) {
   t.temperature_spread = r.get_double("Transport/Temperature spread");
   t.kappa_from_walls = r.get_bool("Transport/Kappa from walls");
   t.kappa_from_slabs = r.get_bool("Transport/Kappa from slabs");
+  t.viscosity_along_isobar = r.get_bool("Transport/Viscosity along the isobar");
   t.wall_steps = r.get_integer("Transport/Wall steps");
   return t;
 }

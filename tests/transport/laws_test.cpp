@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <random>
+#include <tuple>
 #include <vector>
 
 #include "transport/laws.hpp"
@@ -70,4 +71,54 @@ TEST(CoefficientLaw, NarrowSpanTakesTheFallbackExponent) {
   const CoefficientLaw fit = fit_law(isobar(law, 4, 0.98, 1.02, 5, 1e-9, rng), 4, 1, 0, 0, 1.5);
   EXPECT_EQ(fit.a, 1.5);
   EXPECT_NEAR(fit.K, 10, 0.05);
+}
+
+namespace {
+// The stage's points: the state point (n0, T0) and the isobar's two ends, as the relaxation runs
+// give them (errors 4% at the state point, 6% at the ends).
+std::vector<StatePoint> state_and_ends(const CoefficientLaw& law, double noise, std::mt19937& rng) {
+  std::normal_distribution<double> z(0, 1);
+  std::vector<StatePoint> points;
+  for (const auto& [n, T, relative] :
+       {std::tuple{4.0, 1.0, 0.04}, {7.28, 0.5, 0.06}, {2.43, 1.5, 0.06}}) {
+    const double c = law.at(n, T), se = relative * c;
+    points.push_back({n, T, {c + noise * se * z(rng), se}});
+  }
+  return points;
+}
+CoefficientLaw default_fluid_eta() { // the default fluid's, measured (session 14's notebook)
+  CoefficientLaw law;
+  law.T0 = 1, law.n0 = 4, law.K = 0.99, law.a = 1.17, law.P = 0.30, law.b = -1;
+  return law;
+}
+} // namespace
+
+TEST(CoefficientLaw, PairPartFittedThroughTheIsobarsEnds) {
+  std::mt19937 rng(1);
+  const CoefficientLaw law = default_fluid_eta();
+  const CoefficientLaw fit =
+      twinflow::transport::fit_law_and_pair(state_and_ends(law, 0, rng), 4, 1, -1);
+  EXPECT_NEAR(fit.K, law.K, 1e-6);
+  EXPECT_NEAR(fit.a, law.a, 1e-5);
+  EXPECT_NEAR(fit.P, law.P, 1e-6);
+  EXPECT_EQ(fit.points, 3);
+}
+
+// Over 400 draws the fitted K, P and a scatter as their stated errors say (rms z within 20% of 1)
+// and the law's value at the cold wall, with K and P's covariance, as its error says.
+TEST(CoefficientLaw, PairPartErrorsHoldOverNoisyDraws) {
+  std::mt19937 rng(11);
+  const CoefficientLaw law = default_fluid_eta();
+  double z2_K = 0, z2_P = 0, z2_a = 0;
+  const int draws = 400;
+  for (int d = 0; d < draws; ++d) {
+    const CoefficientLaw fit =
+        twinflow::transport::fit_law_and_pair(state_and_ends(law, 1, rng), 4, 1, -1);
+    z2_K += std::pow((fit.K - law.K) / fit.K_stderr, 2);
+    z2_P += std::pow((fit.P - law.P) / fit.P_stderr, 2);
+    z2_a += std::pow((fit.a - law.a) / fit.a_stderr, 2);
+  }
+  EXPECT_NEAR(std::sqrt(z2_K / draws), 1, 0.2);
+  EXPECT_NEAR(std::sqrt(z2_P / draws), 1, 0.2);
+  EXPECT_NEAR(std::sqrt(z2_a / draws), 1, 0.2);
 }

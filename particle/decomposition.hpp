@@ -22,6 +22,7 @@
 #include <stdexcept>
 #include <string>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "io/files.hpp"
@@ -195,6 +196,33 @@ private:
   long count_ = 0, count_total_ = 0; // count_total_: rank 0's flushed total when logging
   long pass_ = 0;
   std::vector<double> log_; // (pass, slot, term) triples
+};
+
+// An OrderedTally's terms from one particle loop: straight into the tally (one thread), or into
+// a thread's log that is replayed into it after the loop, chunk after chunk in particle order,
+// so that the sums are the one-thread sums, bit for bit (Simulation::for_particles_tallied).
+class TallyTerms {
+public:
+  explicit TallyTerms(OrderedTally& tally) : tally_(&tally) {}
+  explicit TallyTerms(std::vector<std::pair<int, double>>& log) : log_(&log) {}
+  void add(int slot, double value) {
+    if (tally_)
+      tally_->add(slot, value);
+    else
+      log_->emplace_back(slot, value);
+  }
+  void count(long n) { counted_ += n; }
+  // Into the tally: the logged terms in their order, then the count.
+  void replay_into(OrderedTally& tally) const {
+    if (log_)
+      for (const auto& [slot, value] : *log_) tally.add(slot, value);
+    tally.count(counted_);
+  }
+
+private:
+  OrderedTally* tally_ = nullptr;
+  std::vector<std::pair<int, double>>* log_ = nullptr;
+  long counted_ = 0;
 };
 
 } // namespace twinflow::particle

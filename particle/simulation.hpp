@@ -5,6 +5,7 @@
 #include <omp.h>
 
 #include <cmath>
+#include <exception>
 #include <initializer_list>
 #include <sstream>
 #include <stdexcept>
@@ -235,9 +236,13 @@ private:
   double wall_gamma(const WallCoupling& c, double th_i, double th_wall) const;
   // Wall repulsion, gravity, Poiseuille force into carried f (times scale) and potential.
   void external_forces(double scale = 1, bool potentials = true);
+  // body(i, TallyTerms&) for each owned particle, over the threads (the particle's own state
+  // only; the tally's sums as on one thread).
+  template <class Body> void for_particles_tallied(Body body);
   void wall_sweep(const PairNoise& noise); // shardlow
+  void wall_sweep_one(const PairNoise& noise, std::size_t i, int d, int side, TallyTerms& tally);
   double exchange_wall_heat(const PairNoise& noise, std::size_t i, int index, const WallCoupling& c,
-                            double th_wall, double g);
+                            double th_wall, double g, TallyTerms& tally);
   void wall_heat_pass(); // ec-verlet, euler
   void wall_forces(const std::array<std::vector<double>, D>& v,
                    std::array<std::vector<double>, D>& f, double scale); // ec-verlet, euler
@@ -278,6 +283,8 @@ private:
   HalfSpaceWall half_space_; // the integrated wall weights, where a wall is of that model
   // The walls' energy in (slots 2 d + side) and momentum in (6 + 2 d + side), the crossings.
   OrderedTally tally_;
+  std::vector<std::vector<std::pair<int, double>>>
+      tally_logs_; // per thread (for_particles_tallied)
   Slabs slabs_;
   std::size_t owned_ = 0;             // particles of this rank: state_ [0, owned_)
   std::size_t first_plane_count_ = 0; // of them, in its first plane (the lower rank's ghosts)

@@ -6,6 +6,39 @@
 
 namespace twinflow::particle {
 
+// Contiguous chunks, one per thread; each thread's terms are replayed in chunk order after the
+// loop. An exception (a failed particle) is rethrown after it, the first chunk's first.
+template <class M> template <class Body> void Simulation<M>::for_particles_tallied(Body body) {
+  const std::size_t n = owned_;
+  const int threads = omp_get_max_threads();
+  if (threads == 1 || n < 2) {
+    TallyTerms terms(tally_);
+    for (std::size_t i = 0; i < n; ++i) body(i, terms);
+    terms.replay_into(tally_);
+    return;
+  }
+  tally_logs_.resize(static_cast<std::size_t>(threads));
+  std::vector<TallyTerms> terms;
+  for (auto& log : tally_logs_) log.clear(), terms.emplace_back(log);
+  std::vector<std::exception_ptr> failed(tally_logs_.size());
+  int team = 1;
+#pragma omp parallel num_threads(threads)
+  {
+#pragma omp single
+    team = omp_get_num_threads();
+    const std::size_t t = static_cast<std::size_t>(omp_get_thread_num());
+    const std::size_t size = static_cast<std::size_t>(team);
+    try {
+      for (std::size_t i = n * t / size; i < n * (t + 1) / size; ++i) body(i, terms[t]);
+    } catch (...) {
+      failed[t] = std::current_exception();
+    }
+  }
+  for (const auto& e : failed)
+    if (e) std::rethrow_exception(e);
+  for (int t = 0; t < team; ++t) terms[static_cast<std::size_t>(t)].replay_into(tally_);
+}
+
 template <class M> double Simulation<M>::wall_range(int d, int side) const {
   return p_.walls[d].model[side] == WallModel::Seed000 ? p_.wall_range : half_space_.range;
 }
@@ -61,23 +94,23 @@ double Simulation<M>::wall_gamma(const WallCoupling& c, double th_i, double th_w
 // -m g.x; the reverse Poiseuille force. Forces times `scale` into carried f (ec-verlet and
 // shardlow: forces; euler: impulses); potentials into carried potential if `potentials`.
 template <class M> void Simulation<M>::external_forces(double scale, bool potentials) {
-  const std::size_t n = owned_;
   const double inv_range = 1 / p_.wall_range;
   if (p_.poiseuille_force != 0) { // no potential: its work heats the fluid
     const double half = 0.5 * p_.box[1], force = scale * p_.poiseuille_force;
-    for (std::size_t i = 0; i < n; ++i) carried_.f[0][i] += state_.x[1][i] < half ? force : -force;
+    for (std::size_t i = 0; i < owned_; ++i)
+      carried_.f[0][i] += state_.x[1][i] < half ? force : -force;
   }
   for (int d = 0; d < D; ++d) {
     auto& f = carried_.f[d];
     const auto& x = state_.x[d];
     const double mg = model_.mass * p_.gravity[d];
-    if (mg != 0)
-      for (std::size_t i = 0; i < n; ++i) {
+    if (mg == 0 && !p_.walls[d].present) continue;
+    for_particles_tallied([&](std::size_t i, TallyTerms& tally) {
+      if (mg != 0) {
         f[i] += scale * mg;
         if (potentials) carried_.potential[i] -= mg * x[i];
       }
-    if (!p_.walls[d].present) continue;
-    for (std::size_t i = 0; i < n; ++i) {
+      if (!p_.walls[d].present) return;
       for (int side = 0; side < 2; ++side) {
         const double h = side ? p_.box[d] - x[i] : x[i];
         if (h >= wall_range(d, side)) continue;
@@ -94,10 +127,10 @@ template <class M> void Simulation<M>::external_forces(double scale, bool potent
           continue; // an ideal fluid's wall material does not repel
         }
         f[i] += scale * (side ? -force : force);
-        tally_.add(6 + 2 * d + side, force * dt_); // this force acts for one step
+        tally.add(6 + 2 * d + side, force * dt_); // this force acts for one step
         if (potentials) carried_.potential[i] += potential;
       }
-    }
+    });
   }
   tally_.end_pass(); // on several ranks its terms replay in this place (OrderedTally)
 }
@@ -117,53 +150,56 @@ double Simulation<M>::wall_s1(double& v, double w, double sqrt_w, double gamma, 
   return 0.5 * m * (v * v - v0 * v0);
 }
 
-// Shardlow: the walls' dissipative, random and heat terms, particle by particle (serial: the
-// energy that crosses each wall is summed in one fixed order).
+// Shardlow: the walls' dissipative, random and heat terms, particle by particle over the threads
+// (each particle's terms touch it alone; the energy that crosses each wall is summed in one fixed
+// order: for_particles_tallied).
 template <class M> void Simulation<M>::wall_sweep(const PairNoise& noise) {
-  const std::size_t n = owned_;
   for (int d = 0; d < D; ++d) {
-    const WallPair& wall = p_.walls[d];
-    if (!wall.present) continue;
-    for (std::size_t i = 0; i < n; ++i) {
-      for (int side = 0; side < 2; ++side) {
-        const double h = side ? p_.box[d] - state_.x[d][i] : state_.x[d][i];
-        if (h >= wall_range(d, side)) continue;
-        const int index = 2 * d + side;
-        double g[4];
-        noise.particle_gaussians(state_.id[i], 2 * index, g[0], g[1]);
-        noise.particle_gaussians(state_.id[i], 2 * index + 1, g[2], g[3]);
-        const bool thermal = wall.thermal[side];
-        const WallCoupling c = wall_coupling(d, side, h);
-        double th_i = p_.temperature;
-        if constexpr (M::has_energy) th_i = theta(i);
-        const double th_wall = wall_temperature(d, side, th_i);
-        if (thermal && c.heat > 0) {
-          tally_.add(index, exchange_wall_heat(noise, i, index, c, th_wall, g[3]));
-          th_i = theta(i);
-        }
-        if (!(c.normal > 0)) continue;
-        const double gamma = wall_gamma(c, th_i, th_wall);
-        const double v_normal = state_.v[d][i];
-        double dk = wall_s1(state_.v[d][i], c.normal, c.sqrt_normal, gamma, th_i, th_wall, g[0]);
-        tally_.add(6 + index, (side ? -1 : 1) * model_.mass * (state_.v[d][i] - v_normal));
-        if (wall.no_slip) {
-          int k = 1;
-          for (int t = 0; t < D; ++t)
-            if (t != d)
-              dk +=
-                  wall_s1(state_.v[t][i], c.tangent, c.sqrt_tangent, gamma, th_i, th_wall, g[k++]);
-        }
-        if constexpr (M::has_energy) {
-          // Thermal wall: it keeps half the work (docs/theory.md); adiabatic: the particle all of
-          // it.
-          const double to_particle = thermal ? 0.5 * dk : dk;
-          state_.u[i] -= to_particle;
-          tally_.add(index, dk - to_particle);
-        }
-      }
-    }
+    if (!p_.walls[d].present) continue;
+    for_particles_tallied([&](std::size_t i, TallyTerms& tally) {
+      for (int side = 0; side < 2; ++side) wall_sweep_one(noise, i, d, side, tally);
+    });
   }
   tally_.end_pass(); // on several ranks its terms replay in this place (OrderedTally)
+}
+
+// One wall's terms on particle i (wall_sweep).
+template <class M>
+void Simulation<M>::wall_sweep_one(const PairNoise& noise, std::size_t i, int d, int side,
+                                   TallyTerms& tally) {
+  const WallPair& wall = p_.walls[d];
+  const double h = side ? p_.box[d] - state_.x[d][i] : state_.x[d][i];
+  if (h >= wall_range(d, side)) return;
+  const int index = 2 * d + side;
+  double g[4];
+  noise.particle_gaussians(state_.id[i], 2 * index, g[0], g[1]);
+  noise.particle_gaussians(state_.id[i], 2 * index + 1, g[2], g[3]);
+  const bool thermal = wall.thermal[side];
+  const WallCoupling c = wall_coupling(d, side, h);
+  double th_i = p_.temperature;
+  if constexpr (M::has_energy) th_i = theta(i);
+  const double th_wall = wall_temperature(d, side, th_i);
+  if (thermal && c.heat > 0) {
+    tally.add(index, exchange_wall_heat(noise, i, index, c, th_wall, g[3], tally));
+    th_i = theta(i);
+  }
+  if (!(c.normal > 0)) return;
+  const double gamma = wall_gamma(c, th_i, th_wall);
+  const double v_normal = state_.v[d][i];
+  double dk = wall_s1(state_.v[d][i], c.normal, c.sqrt_normal, gamma, th_i, th_wall, g[0]);
+  tally.add(6 + index, (side ? -1 : 1) * model_.mass * (state_.v[d][i] - v_normal));
+  if (wall.no_slip) {
+    int k = 1;
+    for (int t = 0; t < D; ++t)
+      if (t != d)
+        dk += wall_s1(state_.v[t][i], c.tangent, c.sqrt_tangent, gamma, th_i, th_wall, g[k++]);
+  }
+  if constexpr (M::has_energy) {
+    // Thermal wall: it keeps half the work (docs/theory.md); adiabatic: the particle all of it.
+    const double to_particle = thermal ? 0.5 * dk : dk;
+    state_.u[i] -= to_particle;
+    tally.add(index, dk - to_particle);
+  }
 }
 
 // The wall's heat into particle i over one step (index: the wall, 2 d + side; g: its Gaussian),
@@ -174,7 +210,8 @@ template <class M> void Simulation<M>::wall_sweep(const PairNoise& noise) {
 // strong wall cannot drive an internal energy negative. Returns the heat that entered.
 template <class M>
 double Simulation<M>::exchange_wall_heat(const PairNoise& noise, std::size_t i, int index,
-                                         const WallCoupling& c, double th_wall, double g) {
+                                         const WallCoupling& c, double th_wall, double g,
+                                         TallyTerms& tally) {
   if constexpr (!M::Heat::active) {
     return 0;
   } else {
@@ -182,7 +219,7 @@ double Simulation<M>::exchange_wall_heat(const PairNoise& noise, std::size_t i, 
     double rate0, amplitude0;
     wall_heat(c, u0 / cv, th_wall, rate0, amplitude0);
     const double u1 = u0 + rate0 * dt_ + amplitude0 * g * sqrt_dt_;
-    tally_.add(12 + index, 1); // a move proposed (the acceptance rate: walls' diagnostic)
+    tally.add(12 + index, 1); // a move proposed (the acceptance rate: walls' diagnostic)
     if (!(u1 > 0)) return 0;
     double rate1, amplitude1;
     wall_heat(c, u1 / cv, th_wall, rate1, amplitude1);
@@ -198,7 +235,7 @@ double Simulation<M>::exchange_wall_heat(const PairNoise& noise, std::size_t i, 
       if (!(0.5 * std::erfc(-g1 / std::sqrt(2.0)) < std::exp(log_ratio))) return 0;
     }
     state_.u[i] = u1;
-    tally_.add(18 + index, 1); // and accepted
+    tally.add(18 + index, 1); // and accepted
     return u1 - u0;
   }
 }
@@ -210,7 +247,7 @@ template <class M> void Simulation<M>::wall_heat_pass() {
     for (int d = 0; d < D; ++d) {
       const WallPair& wall = p_.walls[d];
       if (!wall.present) continue;
-      for (std::size_t i = 0; i < owned_; ++i)
+      for_particles_tallied([&](std::size_t i, TallyTerms& tally) {
         for (int side = 0; side < 2; ++side) {
           const double h = side ? p_.box[d] - state_.x[d][i] : state_.x[d][i];
           if (!wall.thermal[side] || h >= wall_range(d, side)) continue;
@@ -219,8 +256,10 @@ template <class M> void Simulation<M>::wall_heat_pass() {
           const int index = 2 * d + side;
           double g[2];
           noise.particle_gaussians(state_.id[i], 2 * index + 1, g[0], g[1]);
-          tally_.add(index, exchange_wall_heat(noise, i, index, c, wall.temperature[side], g[1]));
+          tally.add(index,
+                    exchange_wall_heat(noise, i, index, c, wall.temperature[side], g[1], tally));
         }
+      });
     }
   }
   tally_.end_pass(); // on several ranks its terms replay in this place (OrderedTally)
@@ -235,13 +274,14 @@ void Simulation<M>::wall_forces(const std::array<std::vector<double>, D>& v,
   const PairNoise noise(p_.seed, static_cast<std::uint64_t>(step_), PairNoise::Wall);
   for (int d = 0; d < D; ++d) {
     if (!p_.walls[d].present) continue;
-    for (std::size_t i = 0; i < owned_; ++i)
+    for_particles_tallied([&](std::size_t i, TallyTerms& tally) {
       for (int side = 0; side < 2; ++side) {
         double force[D];
         if (!wall_force(noise, v, i, d, side, force)) continue;
         for (int t = 0; t < D; ++t) f[t][i] += scale * force[t];
-        tally_.add(6 + 2 * d + side, (side ? -1 : 1) * force[d] * dt_);
+        tally.add(6 + 2 * d + side, (side ? -1 : 1) * force[d] * dt_);
       }
+    });
   }
   tally_.end_pass(); // on several ranks its terms replay in this place (OrderedTally)
 }
@@ -284,7 +324,7 @@ template <class M> void Simulation<M>::wall_work_split(std::vector<double>& du) 
     const PairNoise noise(p_.seed, static_cast<std::uint64_t>(step_), PairNoise::Wall);
     for (int d = 0; d < D; ++d) {
       if (!p_.walls[d].present) continue;
-      for (std::size_t i = 0; i < owned_; ++i)
+      for_particles_tallied([&](std::size_t i, TallyTerms& tally) {
         for (int side = 0; side < 2; ++side) {
           double force[D];
           if (!wall_force(noise, v_old_, i, d, side, force)) continue;
@@ -293,8 +333,9 @@ template <class M> void Simulation<M>::wall_work_split(std::vector<double>& du) 
             work += force[t] * dt_ * 0.5 * (v_old_[t][i] + state_.v[t][i]);
           const double to_particle = p_.walls[d].thermal[side] ? 0.5 * work : work;
           du[i] -= to_particle;
-          tally_.add(2 * d + side, work - to_particle);
+          tally.add(2 * d + side, work - to_particle);
         }
+      });
     }
   }
   tally_.end_pass(); // on several ranks its terms replay in this place (OrderedTally)
@@ -338,6 +379,10 @@ template <class M> bool Simulation<M>::diffuse_wall(int d, int side) const {
 // energies hold no carried potential (ec-verlet and the offsets add P_i(t) mid-step) and the
 // list is sorted: by id, so that the order and the result are those of any thread count.
 template <class M> void Simulation<M>::emit_from_walls() {
+  if (emissions_.empty()) { // most steps: no particle to look up
+    tally_.end_pass();
+    return;
+  }
   std::sort(emissions_.begin(), emissions_.end());
   const PairNoise noise(p_.seed, static_cast<std::uint64_t>(step_), PairNoise::Wall);
   for (std::size_t i = 0; i < owned_; ++i) {

@@ -2,7 +2,10 @@
 // checkpoint gives byte-identical time series, fields and histograms to an uninterrupted run.
 #include <gtest/gtest.h>
 
+#include <omp.h>
+
 #include <optional>
+#include <string>
 
 #include "helpers.hpp"
 #include "particle/run.hpp"
@@ -76,6 +79,37 @@ TEST(Restart, CavityContinuesBitwise) {
   p.correlation_samples = 10;
   const RunOutput whole = run_particles(p);
   expect_identical(whole, run_with_stops(p, {1, 59, 137, 138, 299}));
+}
+
+// The walls' loops split over the threads (Simulation::for_particles_tallied) give the one-thread
+// bytes, the walls' tallies included: each integrator on the cavity above, and shardlow with a
+// repelling wall material (a conservative force).
+TEST(Restart, CavityIsTheSameWhateverTheThreads) {
+  struct Case {
+    Integrator integrator;
+    bool repulsive;
+  };
+  for (const Case c : {Case{Integrator::Shardlow, false}, Case{Integrator::EcVerlet, false},
+                       Case{Integrator::Euler, false}, Case{Integrator::Shardlow, true}}) {
+    ParticleParameters p = twinflow::particle::testing::ideal(2, c.integrator, 10);
+    p.box = {{8, 8, 1}};
+    p.walls[0] = WallPair{true, {{true, true}}, {{1.5, 0.5}}, true};
+    p.walls[1] = WallPair{true, {{false, false}}, {{1, 1}}, true};
+    p.walls[0].conduction = {{30, 30}};
+    if (c.repulsive) p.conservative = ConservativeForce::Constant, p.a0 = 5;
+    p.gravity = {{0, -0.05, 0}};
+    p.bins = {{4, 4, 1}};
+    p.equilibration_steps = 20, p.steps = 200, p.sample_interval = 7, p.blocks = 4;
+    omp_set_num_threads(1);
+    const RunOutput one = run_particles(p);
+    for (const int threads : {2, 3}) {
+      SCOPED_TRACE(std::string(to_string(c.integrator)) + (c.repulsive ? ", repulsive" : "") +
+                   ", " + std::to_string(threads) + " threads");
+      omp_set_num_threads(threads);
+      expect_identical(one, run_particles(p));
+    }
+    omp_set_num_threads(omp_get_num_procs());
+  }
 }
 
 // Heat slabs, conservative a_T forces, ec-verlet: the slab profile and the flux parts too.

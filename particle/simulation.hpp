@@ -302,6 +302,7 @@ std::string stability_hint(const ParticleParameters& p);
 
 } // namespace twinflow::particle
 
+#include "particle/neighbour_list.tpp"
 #include "particle/pair_kernels.tpp"
 #include "particle/simulation.tpp"
 #include "particle/slabs.tpp"

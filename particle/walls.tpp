@@ -379,10 +379,6 @@ template <class M> bool Simulation<M>::diffuse_wall(int d, int side) const {
 // energies hold no carried potential (ec-verlet and the offsets add P_i(t) mid-step) and the
 // list is sorted: by id, so that the order and the result are those of any thread count.
 template <class M> void Simulation<M>::emit_from_walls() {
-  if (emissions_.empty()) { // most steps: no particle to look up
-    tally_.end_pass();
-    return;
-  }
   std::sort(emissions_.begin(), emissions_.end());
   const PairNoise noise(p_.seed, static_cast<std::uint64_t>(step_), PairNoise::Wall);
   for (std::size_t i = 0; i < owned_; ++i) {

@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "io/files.hpp"
+#include "transport/laws.hpp"
 
 namespace twinflow::transport {
 
@@ -35,19 +36,12 @@ bool with_state_law(const io::Json& summary, const std::string& key, double refe
                     Coefficient& c) {
   const io::Json* law = io::find(summary, {"results", "measured", key + "_law"});
   if (!c.measured || !law) return false;
-  const auto at = [&](const char* name) { return io::number(*law, {name}); };
-  // absent in laws of older methods, whose P was theory's (no error)
-  const auto or_zero = [&](const char* name) { return io::find(*law, {name}) ? at(name) : 0.0; };
-  const double t = reference_temperature / at("T0");
-  const double x_K = std::pow(t, at("a")), x_P = std::pow(t, at("b"));
-  const double kinetic = at("K") * x_K, pair = at("P") * x_P;
-  c.value = kinetic + pair;
-  // var(K x_K + P x_P) with the fitted K and P's covariance (laws.hpp: fit_law_and_pair)
-  c.stderr_ = std::sqrt(std::pow(at("K_stderr") * x_K, 2) + std::pow(or_zero("P_stderr") * x_P, 2) +
-                        2 * x_K * x_P * or_zero("K_P_covariance"));
-  c.exponent = at("a");
-  c.pair_fraction = pair / c.value;
-  c.pair_exponent = at("b");
+  const CoefficientLaw l = CoefficientLaw::from_json(*law);
+  c.value = l.at(l.n0, reference_temperature);
+  c.stderr_ = l.stderr_at(reference_temperature);
+  c.exponent = l.a;
+  c.pair_fraction = l.pair_fraction(reference_temperature);
+  c.pair_exponent = l.b;
   return true;
 }
 

@@ -17,6 +17,32 @@ double CoefficientLaw::pair_fraction(double T) const {
   return pair / at(n0, T);
 }
 
+double CoefficientLaw::stderr_at(double T) const {
+  const double t = T / T0, x_K = std::pow(t, a), x_P = std::pow(t, b);
+  if (!has_covariance) return K_stderr * x_K;
+  const double x_a = K * x_K * std::log(t); // d c / d a
+  const double var = x_K * x_K * K_stderr * K_stderr + x_P * x_P * P_stderr * P_stderr +
+                     x_a * x_a * a_stderr * a_stderr + 2 * x_K * x_P * K_P_covariance +
+                     2 * x_K * x_a * K_a_covariance + 2 * x_P * x_a * P_a_covariance;
+  return std::sqrt(std::max(var, 0.0));
+}
+
+CoefficientLaw CoefficientLaw::from_json(const io::Json& j) {
+  const auto at = [&](const char* key) { return io::number(j, {key}); };
+  CoefficientLaw law;
+  law.T0 = at("T0"), law.n0 = at("n0");
+  law.K = at("K"), law.K_stderr = at("K_stderr"), law.a = at("a"), law.a_stderr = at("a_stderr");
+  law.P = at("P"), law.b = at("b");
+  if (const io::Json* c = io::find(j, {"covariance"})) {
+    law.has_covariance = true;
+    law.P_stderr = at("P_stderr");
+    law.K_P_covariance = io::number(*c, {"K_P"});
+    law.K_a_covariance = io::number(*c, {"K_a"});
+    law.P_a_covariance = io::number(*c, {"P_a"});
+  }
+  return law;
+}
+
 io::Json CoefficientLaw::json() const {
   io::Json j = io::Json::object();
   j["form"] = "K (T/T0)^a + P (n/n0)^2 (T/T0)^b";
@@ -24,7 +50,8 @@ io::Json CoefficientLaw::json() const {
   j["K"] = K, j["K_stderr"] = K_stderr;
   j["a"] = a, j["a_stderr"] = a_stderr;
   j["P"] = P, j["P_stderr"] = P_stderr, j["b"] = b;
-  j["K_P_covariance"] = K_P_covariance;
+  if (has_covariance)
+    j["covariance"] = {{"K_P", K_P_covariance}, {"K_a", K_a_covariance}, {"P_a", P_a_covariance}};
   j["at_reference"] = at(n0, T0);
   j["chi2_per_dof"] = chi2_per_dof, j["points"] = points;
   return j;
@@ -118,7 +145,9 @@ CoefficientLaw fit_law_and_pair(const std::vector<StatePoint>& points, double n0
   }
   const Eigen::Matrix3d cov = std::max(1.0, law.chi2_per_dof) * normal.inverse();
   law.K_stderr = std::sqrt(cov(0, 0)), law.P_stderr = std::sqrt(cov(1, 1));
-  law.a_stderr = std::sqrt(cov(2, 2)), law.K_P_covariance = cov(0, 1);
+  law.a_stderr = std::sqrt(cov(2, 2));
+  law.has_covariance = true;
+  law.K_P_covariance = cov(0, 1), law.K_a_covariance = cov(0, 2), law.P_a_covariance = cov(1, 2);
   return law;
 }
 

@@ -25,10 +25,17 @@ struct CoefficientLaw {
   double a = 0, a_stderr = 0; // its power of T
   double P = 0, P_stderr = 0; // the pair part at (n0, T0) (theory, or fitted: fit_law_and_pair)
   double b = 0;               // its power of T (theory)
-  double K_P_covariance = 0;  // of the fitted K and P (0: P not fitted)
-  double chi2_per_dof = 0;    // of the fit that gave K and a (0: not fitted)
+  // fit_law_and_pair's covariances of K, P and a (else K's error alone enters stderr_at)
+  bool has_covariance = false;
+  double K_P_covariance = 0, K_a_covariance = 0, P_a_covariance = 0;
+  double chi2_per_dof = 0; // of the fit that gave K and a (0: not fitted, or dof 0)
   int points = 0;
   double at(double n, double T) const;
+  // The error of at(n0, T): with the covariances, of K (T/T0)^a + P (T/T0)^b through its
+  // gradient (t^a, t^b, K t^a ln t), else K's error times t^a.
+  double stderr_at(double T) const;
+  // The law as json() wrote it (laws of older measurements: no covariances).
+  static CoefficientLaw from_json(const io::Json& j);
   double pair_fraction(double T) const; // P (T/T0)^b / c(n0, T)
   io::Json json() const;
 };

@@ -210,8 +210,9 @@ void measure_flows(const Plan& plan, Results& r) {
 }
 
 // eta's law through the relaxation runs at the state point (and its temperature spread) and at
-// the isobar's ends, P fitted (laws.hpp), where it stays positive over the walls' span;
-// otherwise r.eta_law is left as it is, with a message.
+// the isobar's ends, P fitted (laws.hpp), where every set has a finite error and the fit gives
+// a law positive at every point, a inside its search range and finite errors; otherwise
+// r.eta_law is left as it is (theory's pair part), with a message.
 void take_isobar_law(const Plan& plan, const PairParts& pairs, Results& r) {
   std::vector<StatePoint> points;
   for (std::size_t i = 0; i < r.at_temperature.size(); ++i)
@@ -222,19 +223,26 @@ void take_isobar_law(const Plan& plan, const PairParts& pairs, Results& r) {
                                                                : plan.isobar_ends[j].second;
     points.push_back({plan.isobar_ends[j].first, T, end.viscosity.value});
   }
-  for (const StatePoint& s : points)
-    if (!(s.value.stderr_ > 0)) return; // a set without an error (one repeat): no fit
+  bool measured = true;
+  for (const StatePoint& s : points) measured = measured && s.value.stderr_ > 0;
+  if (!measured) { // every fit of a set failed
+    std::printf("transport: eta not measured at the isobar's ends: the twin keeps theory's pair "
+                "part\n");
+    return;
+  }
   const CoefficientLaw law =
       fit_law_and_pair(points, plan.p.density, plan.p.temperature, pairs.eta_exponent);
-  bool positive = law.K >= 0 && law.P >= 0;
-  for (const StatePoint& s : points) positive = positive && law.at(s.n, s.T) > 0;
-  if (positive) {
+  bool sound = law.K >= 0 && law.P >= 0 && law.a > -2.99 && law.a < 4.99 &&
+               std::isfinite(law.K_stderr) && std::isfinite(law.P_stderr) &&
+               std::isfinite(law.a_stderr);
+  for (const StatePoint& s : points) sound = sound && law.at(s.n, s.T) > 0;
+  if (sound) {
     r.eta_law = law;
     return;
   }
-  std::printf("transport: eta's law through the isobar's ends is not positive (K %.3g, a %.3g, P "
-              "%.3g): the twin keeps theory's pair part\n",
-              law.K, law.a, law.P);
+  std::printf("transport: eta's law through the isobar's ends is not sound (K %.3g +- %.2g, a %.3g "
+              "+- %.2g, P %.3g +- %.2g): the twin keeps theory's pair part\n",
+              law.K, law.K_stderr, law.a, law.a_stderr, law.P, law.P_stderr);
 }
 
 // Step 3: which kappa and eta the twin takes, and their laws c(n, T).
@@ -332,7 +340,8 @@ std::string coefficients_table(const Plan& plan, const Results& r) {
     row("conductivity_law_P", nan, with_g.conductivity_conduction, r.kappa_law.P, nan);
     row("viscosity_law_K", nan, nan, r.eta_law.K, r.eta_law.K_stderr);
     row("viscosity_law_a", nan, nan, r.eta_law.a, r.eta_law.a_stderr);
-    row("viscosity_law_P", nan, with_g.viscosity_dissipative, r.eta_law.P, r.eta_law.P_stderr);
+    row("viscosity_law_P", nan, with_g.viscosity_dissipative, r.eta_law.P,
+        r.eta_law.has_covariance ? r.eta_law.P_stderr : nan); // else theory's
   }
   row("conductivity_kappa_002_eq22", ideal.conductivity_002_eq22, with_g.conductivity_002_eq22, nan,
       nan);

@@ -100,6 +100,7 @@ TEST(Restart, CavityIsTheSameWhateverTheThreads) {
     p.gravity = {{0, -0.05, 0}};
     p.bins = {{4, 4, 1}};
     p.equilibration_steps = 20, p.steps = 200, p.sample_interval = 7, p.blocks = 4;
+    const int threads_before = omp_get_max_threads();
     omp_set_num_threads(1);
     const RunOutput one = run_particles(p);
     for (const int threads : {2, 3}) {
@@ -108,7 +109,7 @@ TEST(Restart, CavityIsTheSameWhateverTheThreads) {
       omp_set_num_threads(threads);
       expect_identical(one, run_particles(p));
     }
-    omp_set_num_threads(omp_get_num_procs());
+    omp_set_num_threads(threads_before);
   }
 }
 

@@ -104,12 +104,13 @@ TEST(CoefficientLaw, PairPartFittedThroughTheIsobarsEnds) {
   EXPECT_EQ(fit.points, 3);
 }
 
-// Over 400 draws the fitted K, P and a scatter as their stated errors say (rms z within 20% of 1)
-// and the law's value at the cold wall, with K and P's covariance, as its error says.
+// Over 400 draws the fitted K, P and a scatter as their stated errors say (rms z within 20% of 1),
+// and so does the law's value away from T0 (at n0 and T 0.7, what the twin reads) with its error
+// from the covariances (stderr_at).
 TEST(CoefficientLaw, PairPartErrorsHoldOverNoisyDraws) {
   std::mt19937 rng(11);
   const CoefficientLaw law = default_fluid_eta();
-  double z2_K = 0, z2_P = 0, z2_a = 0;
+  double z2_K = 0, z2_P = 0, z2_a = 0, z2_value = 0;
   const int draws = 400;
   for (int d = 0; d < draws; ++d) {
     const CoefficientLaw fit =
@@ -117,7 +118,9 @@ TEST(CoefficientLaw, PairPartErrorsHoldOverNoisyDraws) {
     z2_K += std::pow((fit.K - law.K) / fit.K_stderr, 2);
     z2_P += std::pow((fit.P - law.P) / fit.P_stderr, 2);
     z2_a += std::pow((fit.a - law.a) / fit.a_stderr, 2);
+    z2_value += std::pow((fit.at(4, 0.7) - law.at(4, 0.7)) / fit.stderr_at(0.7), 2);
   }
+  EXPECT_NEAR(std::sqrt(z2_value / draws), 1, 0.2);
   EXPECT_NEAR(std::sqrt(z2_K / draws), 1, 0.2);
   EXPECT_NEAR(std::sqrt(z2_P / draws), 1, 0.2);
   EXPECT_NEAR(std::sqrt(z2_a / draws), 1, 0.2);

@@ -55,11 +55,8 @@ io::Json measurement_inputs(const Case& c, const particle::ParticleParameters& p
       if (path.rfind("Scene/", 0) == 0 && path != "Scene/Gravity") j[path] = value;
     j["kappa_from_slabs"] = true;
   }
-  if (t.measure_flows && t.viscosity_along_isobar && c.parameters.scene.heated_direction() >= 0) {
-    const scene::SceneParameters& scene = c.parameters.scene;
-    for (const double T : scene.boundary[scene.heated_direction()].temperature)
-      j["isobar_ends"].push_back({scene.density_on_isobar(T), T});
-  }
+  for (const auto& [n, T] : transport::isobar_ends(c.parameters.scene, t))
+    j["isobar_ends"].push_back({n, T});
   if (t.kappa_from_walls) { // the scene and the particle walls enter the wall run
     // Not its gravity: a conduction run must not convect, and the wall run has none
     // (transport/wall_kappa.cpp). Else each --rayleigh point would measure again, with other

@@ -37,6 +37,16 @@ particle::ParticleParameters bulk_fluid(const scene::SceneParameters& scene,
   return p;
 }
 
+std::vector<std::pair<double, double>> isobar_ends(const scene::SceneParameters& scene,
+                                                   const TransportParameters& t) {
+  std::vector<std::pair<double, double>> ends;
+  const int heated = scene.heated_direction();
+  if (t.measure_flows && t.viscosity_along_isobar && heated >= 0)
+    for (const double T : scene.boundary[heated].temperature)
+      ends.emplace_back(scene.density_on_isobar(T), T);
+  return ends;
+}
+
 namespace {
 using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t) {
@@ -77,11 +87,8 @@ struct Results {
 Plan make_plan(const scene::SceneParameters& scene, const particle::ParticleParameters& scene_fluid,
                const particle::ParticleParameters& p, const TransportParameters& t) {
   Plan plan{scene, scene_fluid, p, t, false, {}, {}, 0, 0};
-  const int heated = scene.heated_direction();
-  plan.slabs = t.measure_flows && t.kappa_from_slabs && heated >= 0;
-  if (t.measure_flows && t.viscosity_along_isobar && heated >= 0)
-    for (const double T : scene.boundary[heated].temperature)
-      plan.isobar_ends.emplace_back(scene.density_on_isobar(T), T);
+  plan.slabs = t.measure_flows && t.kappa_from_slabs && scene.heated_direction() >= 0;
+  plan.isobar_ends = isobar_ends(scene, t);
   plan.temperatures = {p.temperature};
   const double s = t.temperature_spread;
   if (s > 0) plan.temperatures = {p.temperature * (1 - s), p.temperature, p.temperature * (1 + s)};

@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "io/json.hpp"
@@ -30,6 +31,11 @@ struct TransportMeasurement {
 };
 
 // Everything the stage measures at the state point of `bulk` (from bulk_fluid).
+// The states (n, T) where eta is also measured: each heated wall's temperature at its density
+// on the isobar (Transport/Viscosity along the isobar); none without a heated direction.
+std::vector<std::pair<double, double>> isobar_ends(const scene::SceneParameters& scene,
+                                                   const TransportParameters& t);
+
 TransportMeasurement measure_transport(const scene::SceneParameters& scene,
                                        const particle::ParticleParameters& scene_fluid,
                                        const particle::ParticleParameters& bulk,

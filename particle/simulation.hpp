@@ -208,7 +208,8 @@ private:
   void step_euler();
   void step_shardlow();
   // ec-verlet / VV force evaluation
-  void conservative_pass(bool with_velocity_terms, bool zeroed = false);
+  // external: with external_forces (shardlow adds them particle by particle in its second kick)
+  void conservative_pass(bool with_velocity_terms, bool zeroed = false, bool external = true);
   void potential_pass();
   // Pair passes over the grid's pair list (pair_kernels.tpp).
   std::size_t pair_geometry(const std::uint32_t*& i, const std::uint32_t*& j, std::size_t n,
@@ -236,10 +237,11 @@ private:
   double wall_gamma(const WallCoupling& c, double th_i, double th_wall) const;
   // Wall repulsion, gravity, Poiseuille force into carried f (times scale) and potential.
   void external_forces(double scale = 1, bool potentials = true);
+  void external_force(std::size_t i, double scale, bool potentials, TallyTerms& tally);
   // body(i, TallyTerms&) for each owned particle, over the threads (the particle's own state
   // only; the tally's sums as on one thread).
   template <class Body> void for_particles_tallied(Body body);
-  void wall_sweep(const PairNoise& noise); // shardlow
+  void wall_sweep_particle(const PairNoise& noise, std::size_t i, TallyTerms& tally); // shardlow
   void wall_sweep_one(const PairNoise& noise, std::size_t i, int d, int side, TallyTerms& tally);
   double exchange_wall_heat(const PairNoise& noise, std::size_t i, int index, const WallCoupling& c,
                             double th_wall, double g, TallyTerms& tally);
@@ -258,6 +260,7 @@ private:
   // One S1 update of velocity component `v` against a wall (infinite mass, at rest).
   double wall_s1(double& v, double w, double sqrt_w, double gamma, double th_i, double th_wall,
                  double xi) const;
+  bool bad_particle(std::size_t i) const;
   void check_energies(const char* where) const;
   [[noreturn]] void fail(std::size_t i, const char* where) const;
 
@@ -292,7 +295,8 @@ private:
   Halo halo_;
   struct Emission { // a particle that reached a diffuse wall this step
     std::uint32_t id;
-    int wall; // 2 d + side
+    int wall;                  // 2 d + side
+    std::uint32_t index = ~0u; // its storage index then (~0u: not known, another rank's)
     bool operator<(const Emission& o) const { return id < o.id || (id == o.id && wall < o.wall); }
   };
   std::vector<Emission> emissions_;

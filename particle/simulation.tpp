@@ -155,7 +155,8 @@ Simulation<M>::pair_force(const PairNoise& noise, std::size_t i, std::size_t j, 
 
 // zeroed: the step's first kick already set f, q and the potentials to 0 while it read them (one
 // pass less over memory, and no serial fill), and no sort has reused f's storage since.
-template <class M> void Simulation<M>::conservative_pass(bool with_velocity_terms, bool zeroed) {
+template <class M>
+void Simulation<M>::conservative_pass(bool with_velocity_terms, bool zeroed, bool external) {
   if (!zeroed) {
     const long n = static_cast<long>(state_.size());
     const bool heat_rates = !carried_.q.empty();
@@ -188,7 +189,7 @@ template <class M> void Simulation<M>::conservative_pass(bool with_velocity_term
            {&c.f[0], &c.f[1], &c.f[2], &c.potential});
     conservative_blocks();
   }
-  if (has_external_) external_forces();
+  if (has_external_ && external) external_forces();
   if (with_velocity_terms && p_.has_walls()) wall_forces(state_.v, carried_.f, 1);
 }
 
@@ -422,16 +423,17 @@ template <class M> void Simulation<M>::step_shardlow() {
           &state_.u},
          {&state_.v[0], &state_.v[1], &state_.v[2], &state_.u});
   shardlow_sweep(noise); // pair_kernels.tpp
-  const std::size_t n = owned_;
-  if (p_.has_walls())
-    wall_sweep(PairNoise(p_.seed, static_cast<std::uint64_t>(step_), PairNoise::Wall));
-  auto& v = state_.v;
-  // Velocity-Verlet for the conservative pair force, wall repulsion and gravity (if any).
+  // Velocity-Verlet for the conservative pair force, wall repulsion and gravity (if any). Each
+  // particle's walls, kicks and checks touch it alone, so each half is one parallel region: at
+  // N ~ 1600 a region's start costs as much as a wall's work (docs/performance.md).
   const bool kicks = M::Conservative::active || has_external_;
   const bool offset = M::has_energy && p_.energy_offset && kicks;
   const double half = 0.5 * dt_ / model_.mass, m2 = 0.5 * model_.mass;
-#pragma omp parallel for schedule(static)
-  for (std::size_t i = 0; i < n; ++i) {
+  auto& v = state_.v;
+  const bool walls = p_.has_walls();
+  const PairNoise wall_noise(p_.seed, static_cast<std::uint64_t>(step_), PairNoise::Wall);
+  for_particles_tallied([&](std::size_t i, TallyTerms& tally) {
+    if (walls) wall_sweep_particle(wall_noise, i, tally);
     double k_old = 0, k_half = 0;
     for (int d = 0; d < D; ++d) {
       k_old += v[d][i] * v[d][i];
@@ -442,24 +444,25 @@ template <class M> void Simulation<M>::step_shardlow() {
     if constexpr (M::has_energy)
       if (offset) state_.u[i] += carried_.potential[i] - m2 * (k_half - k_old);
     if (kicks) carried_.potential[i] = 0;
-  }
-  if (p_.has_walls()) reflect_at_walls();
+  });
+  if (walls) tally_.end_pass(); // the walls' pass (OrderedTally)
+  if (walls) reflect_at_walls();
   const bool sorted = update_neighbours(false);
-  if (kicks) {
-    conservative_pass(false, !sorted);
-#pragma omp parallel for schedule(static)
-    for (std::size_t i = 0; i < owned_; ++i) {
-      double k_half = 0, k_new = 0;
-      for (int d = 0; d < D; ++d) {
-        k_half += v[d][i] * v[d][i];
-        v[d][i] += half * carried_.f[d][i];
-        k_new += v[d][i] * v[d][i];
-      }
-      if constexpr (M::has_energy)
-        if (offset) state_.u[i] -= carried_.potential[i] + m2 * (k_new - k_half);
+  if (!kicks) return check_energies("shardlow step");
+  conservative_pass(false, !sorted, false);
+  for_particles_tallied([&](std::size_t i, TallyTerms& tally) {
+    if (has_external_) external_force(i, 1, true, tally);
+    double k_half = 0, k_new = 0;
+    for (int d = 0; d < D; ++d) {
+      k_half += v[d][i] * v[d][i];
+      v[d][i] += half * carried_.f[d][i];
+      k_new += v[d][i] * v[d][i];
     }
-  }
-  check_energies("shardlow step");
+    if constexpr (M::has_energy)
+      if (offset) state_.u[i] -= carried_.potential[i] + m2 * (k_new - k_half);
+    if (bad_particle(i)) fail(i, "shardlow step");
+  });
+  if (has_external_) tally_.end_pass(); // external_forces' pass (OrderedTally)
 }
 
 // This rank's particles (all of them on one process).
@@ -475,24 +478,23 @@ template <class M> double Simulation<M>::potential_energy() const {
   return sum_of(carried_.potential, owned_);
 }
 
+// A non-finite velocity or a non-positive internal energy.
+template <class M> bool Simulation<M>::bad_particle(std::size_t i) const {
+  double s = 0;
+  for (int d = 0; d < D; ++d) s += state_.v[d][i];
+  if constexpr (M::has_energy)
+    if (!(state_.u[i] > 0) || !std::isfinite(state_.u[i])) return true;
+  return !std::isfinite(s);
+}
+
 template <class M> void Simulation<M>::check_energies(const char* where) const {
   const long n = static_cast<long>(owned_);
   bool bad = false;
 #pragma omp parallel for schedule(static) reduction(|| : bad)
-  for (long i = 0; i < n; ++i) {
-    double s = 0;
-    for (int d = 0; d < D; ++d) s += state_.v[d][i];
-    if constexpr (M::has_energy) bad = bad || !(state_.u[i] > 0) || !std::isfinite(state_.u[i]);
-    bad = bad || !std::isfinite(s);
-  }
+  for (long i = 0; i < n; ++i) bad = bad || bad_particle(static_cast<std::size_t>(i));
   if (!bad) return;
-  for (long i = 0; i < n; ++i) { // the first bad particle, in storage order
-    double s = 0;
-    for (int d = 0; d < D; ++d) s += state_.v[d][i];
-    bool bad_i = !std::isfinite(s);
-    if constexpr (M::has_energy) bad_i |= !(state_.u[i] > 0) || !std::isfinite(state_.u[i]);
-    if (bad_i) fail(static_cast<std::size_t>(i), where);
-  }
+  for (long i = 0; i < n; ++i) // the first bad particle, in storage order
+    if (bad_particle(static_cast<std::size_t>(i))) fail(static_cast<std::size_t>(i), where);
 }
 
 template <class M> void Simulation<M>::fail(std::size_t i, const char* where) const {

@@ -231,7 +231,7 @@ template <class M> void Simulation<M>::share_emissions() {
                  MPI_UINT32_T, slabs_.comm);
   emissions_.clear();
   for (std::size_t k = 0; k + 1 < all.size(); k += 2)
-    emissions_.push_back({all[k], static_cast<int>(all[k + 1])});
+    emissions_.push_back({all[k], static_cast<int>(all[k + 1]), ~0u});
 }
 
 template <class M> void Simulation<M>::gather(GatheredParticles<D>& out) {

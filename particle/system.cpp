@@ -166,6 +166,25 @@ void CellGrid<D>::build_pairs(const Positions<T>& x, double rc) {
     }
   }
   pairs_valid_ = true;
+  balance_units();
+}
+
+template <int D> void CellGrid<D>::balance_units() {
+  const long evens = phase_begin_.size() > 1 ? phase_begin_[1] : 0;
+  const long units = static_cast<long>(unit_begin_.size()) - 1;
+  auto pairs_in = [&](long u) {
+    std::size_t n = 0;
+    for (long row = unit_begin_[u]; row < unit_begin_[u + 1]; ++row) {
+      const RowRange& r = row_range_[row];
+      for (std::size_t k = r.first_segment; k < r.first_segment + r.segments; ++k)
+        n += buffers_[r.buffer].segments[k].count;
+    }
+    return static_cast<double>(n);
+  };
+  work_before_.assign(static_cast<std::size_t>(evens) + 1, 0.0);
+  for (long k = 0; k < evens; ++k)
+    work_before_[k + 1] =
+        work_before_[k] + pairs_in(k) + (evens + k < units ? pairs_in(evens + k) : 0);
 }
 
 // The pairs of up to three neighbouring cells of a row, built one cell after the other

@@ -105,6 +105,7 @@ public:
     for (int d = 0; d < D; ++d) total_ *= n_[d];
     start_.assign(total_ + 1, 0);
     stencil_.clear(), slot_cell_.clear(), unit_begin_.clear(), phase_begin_.clear();
+    work_before_.clear();
     build_stencil();
   }
   // Called by the pair passes of a slab between their two phases of planes (forward: the upper
@@ -333,7 +334,7 @@ private:
 #pragma omp parallel
     {
       const long threads = omp_get_num_threads(), t = omp_get_thread_num();
-      const long first = evens * t / threads, last = evens * (t + 1) / threads;
+      const long first = block_start(t, threads), last = block_start(t + 1, threads);
       for (long k = first; k < last; ++k) {
         unit(k);
         if (k > first) odd(k - 1);
@@ -347,6 +348,20 @@ private:
       hook_->back();
     }
   }
+  // The first even unit of thread t's block (for_each_row): the blocks hold equal shares of the
+  // last list's pairs (a cavity's rows are not equally full: gravity stratifies it, and the
+  // walls thin the rows beside them), or equal unit counts before the first list.
+  long block_start(long t, long threads) const {
+    const long evens = phase_begin_.size() > 1 ? phase_begin_[1] : 0;
+    if (t >= threads) return evens;
+    if (work_before_.size() != static_cast<std::size_t>(evens) + 1 || !(work_before_.back() > 0))
+      return evens * t / threads;
+    const double target = work_before_.back() * static_cast<double>(t) / threads;
+    const long k = std::lower_bound(work_before_.begin(), work_before_.end(), target) -
+                   work_before_.begin(); // nearer of k - 1 and k
+    return k > 0 && target - work_before_[k - 1] < work_before_[k] - target ? k - 1 : k;
+  }
+  void balance_units(); // work_before_ from the pair list (build_pairs)
   template <class PairFn> void visit_cell(const State<D>& s, int c, double rc2, PairFn& fn) const {
     std::array<int, D> idx;
     int rem = c;
@@ -420,6 +435,8 @@ private:
   std::vector<long> unit_begin_;            // first row (of slot_cell_) of each unit, and the end
   std::vector<long> phase_begin_;           // first unit of each phase, and the end
   std::vector<RowRange> row_range_;         // per row of slot_cell_
+  // Pairs in even units 0..k-1 and the odd units behind them (k = 0..evens; block_start).
+  std::vector<double> work_before_;
   std::vector<PairBuffer> buffers_;
   bool pairs_valid_ = false;
   std::vector<std::uint32_t> cell_; // the sort's cell of each particle, then its id scratch

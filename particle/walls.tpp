@@ -94,45 +94,45 @@ double Simulation<M>::wall_gamma(const WallCoupling& c, double th_i, double th_w
 // -m g.x; the reverse Poiseuille force. Forces times `scale` into carried f (ec-verlet and
 // shardlow: forces; euler: impulses); potentials into carried potential if `potentials`.
 template <class M> void Simulation<M>::external_forces(double scale, bool potentials) {
-  const double inv_range = 1 / p_.wall_range;
-  if (p_.poiseuille_force != 0) { // no potential: its work heats the fluid
-    const double half = 0.5 * p_.box[1], force = scale * p_.poiseuille_force;
-    for (std::size_t i = 0; i < owned_; ++i)
-      carried_.f[0][i] += state_.x[1][i] < half ? force : -force;
-  }
-  for (int d = 0; d < D; ++d) {
-    auto& f = carried_.f[d];
-    const auto& x = state_.x[d];
-    const double mg = model_.mass * p_.gravity[d];
-    if (mg == 0 && !p_.walls[d].present) continue;
-    for_particles_tallied([&](std::size_t i, TallyTerms& tally) {
-      if (mg != 0) {
-        f[i] += scale * mg;
-        if (potentials) carried_.potential[i] -= mg * x[i];
-      }
-      if (!p_.walls[d].present) return;
-      for (int side = 0; side < 2; ++side) {
-        const double h = side ? p_.box[d] - x[i] : x[i];
-        if (h >= wall_range(d, side)) continue;
-        double a = p_.wall_a0, force = 0, potential = 0;
-        if (p_.walls[d].model[side] == WallModel::Seed000) {
-          const double c = 1 - h * inv_range;
-          force = a * c, potential = 0.5 * a * p_.wall_range * c * c;
-        } else if constexpr (M::Conservative::active) {
-          double th_i = 1;
-          if constexpr (M::has_energy) th_i = theta(i);
-          a = model_.conservative.strength(th_i, wall_temperature(d, side, th_i));
-          force = a * half_space_.repulsion(h), potential = a * half_space_.repulsion_potential(h);
-        } else {
-          continue; // an ideal fluid's wall material does not repel
-        }
-        f[i] += scale * (side ? -force : force);
-        tally.add(6 + 2 * d + side, force * dt_); // this force acts for one step
-        if (potentials) carried_.potential[i] += potential;
-      }
-    });
-  }
+  for_particles_tallied(
+      [&](std::size_t i, TallyTerms& tally) { external_force(i, scale, potentials, tally); });
   tally_.end_pass(); // on several ranks its terms replay in this place (OrderedTally)
+}
+
+// Particle i's share of external_forces (every direction: one parallel region for all).
+template <class M>
+void Simulation<M>::external_force(std::size_t i, double scale, bool potentials,
+                                   TallyTerms& tally) {
+  if (p_.poiseuille_force != 0) // no potential: its work heats the fluid
+    carried_.f[0][i] += state_.x[1][i] < 0.5 * p_.box[1] ? scale * p_.poiseuille_force
+                                                         : -(scale * p_.poiseuille_force);
+  for (int d = 0; d < D; ++d) {
+    const double x = state_.x[d][i], mg = model_.mass * p_.gravity[d];
+    if (mg != 0) {
+      carried_.f[d][i] += scale * mg;
+      if (potentials) carried_.potential[i] -= mg * x;
+    }
+    if (!p_.walls[d].present) continue;
+    for (int side = 0; side < 2; ++side) {
+      const double h = side ? p_.box[d] - x : x;
+      if (h >= wall_range(d, side)) continue;
+      double a = p_.wall_a0, force = 0, potential = 0;
+      if (p_.walls[d].model[side] == WallModel::Seed000) {
+        const double c = 1 - h * (1 / p_.wall_range); // as before: bit for bit
+        force = a * c, potential = 0.5 * a * p_.wall_range * c * c;
+      } else if constexpr (M::Conservative::active) {
+        double th_i = 1;
+        if constexpr (M::has_energy) th_i = theta(i);
+        a = model_.conservative.strength(th_i, wall_temperature(d, side, th_i));
+        force = a * half_space_.repulsion(h), potential = a * half_space_.repulsion_potential(h);
+      } else {
+        continue; // an ideal fluid's wall material does not repel
+      }
+      carried_.f[d][i] += scale * (side ? -force : force);
+      tally.add(6 + 2 * d + side, force * dt_); // this force acts for one step
+      if (potentials) carried_.potential[i] += potential;
+    }
+  }
 }
 
 // S1 against a wall for one velocity component v (along the wall's normal or, no-slip, a
@@ -150,20 +150,16 @@ double Simulation<M>::wall_s1(double& v, double w, double sqrt_w, double gamma, 
   return 0.5 * m * (v * v - v0 * v0);
 }
 
-// Shardlow: the walls' dissipative, random and heat terms, particle by particle over the threads
-// (each particle's terms touch it alone; the energy that crosses each wall is summed in one fixed
-// order: for_particles_tallied).
-template <class M> void Simulation<M>::wall_sweep(const PairNoise& noise) {
-  for (int d = 0; d < D; ++d) {
-    if (!p_.walls[d].present) continue;
-    for_particles_tallied([&](std::size_t i, TallyTerms& tally) {
+// Shardlow: the walls' dissipative, random and heat terms on particle i, every wall in range (its
+// terms touch it alone; the caller's loop runs over the threads: for_particles_tallied).
+template <class M>
+void Simulation<M>::wall_sweep_particle(const PairNoise& noise, std::size_t i, TallyTerms& tally) {
+  for (int d = 0; d < D; ++d)
+    if (p_.walls[d].present)
       for (int side = 0; side < 2; ++side) wall_sweep_one(noise, i, d, side, tally);
-    });
-  }
-  tally_.end_pass(); // on several ranks its terms replay in this place (OrderedTally)
 }
 
-// One wall's terms on particle i (wall_sweep).
+// One wall's terms on particle i (wall_sweep_particle).
 template <class M>
 void Simulation<M>::wall_sweep_one(const PairNoise& noise, std::size_t i, int d, int side,
                                    TallyTerms& tally) {
@@ -244,10 +240,10 @@ double Simulation<M>::exchange_wall_heat(const PairNoise& noise, std::size_t i, 
 template <class M> void Simulation<M>::wall_heat_pass() {
   if constexpr (M::Heat::active) {
     const PairNoise noise(p_.seed, static_cast<std::uint64_t>(step_), PairNoise::Wall);
-    for (int d = 0; d < D; ++d) {
-      const WallPair& wall = p_.walls[d];
-      if (!wall.present) continue;
-      for_particles_tallied([&](std::size_t i, TallyTerms& tally) {
+    for_particles_tallied([&](std::size_t i, TallyTerms& tally) {
+      for (int d = 0; d < D; ++d) {
+        const WallPair& wall = p_.walls[d];
+        if (!wall.present) continue;
         for (int side = 0; side < 2; ++side) {
           const double h = side ? p_.box[d] - state_.x[d][i] : state_.x[d][i];
           if (!wall.thermal[side] || h >= wall_range(d, side)) continue;
@@ -259,8 +255,8 @@ template <class M> void Simulation<M>::wall_heat_pass() {
           tally.add(index,
                     exchange_wall_heat(noise, i, index, c, wall.temperature[side], g[1], tally));
         }
-      });
-    }
+      }
+    });
   }
   tally_.end_pass(); // on several ranks its terms replay in this place (OrderedTally)
 }
@@ -272,22 +268,22 @@ template <class M>
 void Simulation<M>::wall_forces(const std::array<std::vector<double>, D>& v,
                                 std::array<std::vector<double>, D>& f, double scale) {
   const PairNoise noise(p_.seed, static_cast<std::uint64_t>(step_), PairNoise::Wall);
-  for (int d = 0; d < D; ++d) {
-    if (!p_.walls[d].present) continue;
-    for_particles_tallied([&](std::size_t i, TallyTerms& tally) {
+  for_particles_tallied([&](std::size_t i, TallyTerms& tally) {
+    for (int d = 0; d < D; ++d) {
+      if (!p_.walls[d].present) continue;
       for (int side = 0; side < 2; ++side) {
         double force[D];
         if (!wall_force(noise, v, i, d, side, force)) continue;
         for (int t = 0; t < D; ++t) f[t][i] += scale * force[t];
         tally.add(6 + 2 * d + side, (side ? -1 : 1) * force[d] * dt_);
       }
-    });
-  }
+    }
+  });
   tally_.end_pass(); // on several ranks its terms replay in this place (OrderedTally)
 }
 
 // One wall's friction and random force on particle i at velocities `v` (the same noise numbers
-// as wall_sweep's); false when i is out of its range.
+// as wall_sweep_one's); false when i is out of its range.
 template <class M>
 bool Simulation<M>::wall_force(const PairNoise& noise, const std::array<std::vector<double>, D>& v,
                                std::size_t i, int d, int side, double* force) const {
@@ -322,9 +318,9 @@ bool Simulation<M>::wall_force(const PairNoise& noise, const std::array<std::vec
 template <class M> void Simulation<M>::wall_work_split(std::vector<double>& du) {
   if constexpr (M::has_energy) {
     const PairNoise noise(p_.seed, static_cast<std::uint64_t>(step_), PairNoise::Wall);
-    for (int d = 0; d < D; ++d) {
-      if (!p_.walls[d].present) continue;
-      for_particles_tallied([&](std::size_t i, TallyTerms& tally) {
+    for_particles_tallied([&](std::size_t i, TallyTerms& tally) {
+      for (int d = 0; d < D; ++d) {
+        if (!p_.walls[d].present) continue;
         for (int side = 0; side < 2; ++side) {
           double force[D];
           if (!wall_force(noise, v_old_, i, d, side, force)) continue;
@@ -335,8 +331,8 @@ template <class M> void Simulation<M>::wall_work_split(std::vector<double>& du) 
           du[i] -= to_particle;
           tally.add(2 * d + side, work - to_particle);
         }
-      });
-    }
+      }
+    });
   }
   tally_.end_pass(); // on several ranks its terms replay in this place (OrderedTally)
 }
@@ -356,7 +352,7 @@ template <class M> void Simulation<M>::reflect_at_walls() {
       tally_.count(1);
       if (x[i] < 0 || x[i] > length) fail(i, "a particle moved more than a box length in one step");
       if (diffuse_wall(d, side)) { // re-emitted at the end of the step (emit_from_walls)
-        emissions_.push_back({state_.id[i], 2 * d + side});
+        emissions_.push_back({state_.id[i], 2 * d + side, static_cast<std::uint32_t>(i)});
         continue;
       }
       tally_.add(6 + 2 * d + side, 2 * model_.mass * std::fabs(state_.v[d][i]));
@@ -376,16 +372,27 @@ template <class M> bool Simulation<M>::diffuse_wall(int d, int side) const {
 }
 
 // The particles that reached a diffuse wall during this step, re-emitted now that their internal
-// energies hold no carried potential (ec-verlet and the offsets add P_i(t) mid-step) and the
-// list is sorted: by id, so that the order and the result are those of any thread count.
+// energies hold no carried potential (ec-verlet and the offsets add P_i(t) mid-step), in storage
+// order (each particle's walls in order), so that the order and the result are those of any
+// thread count.
 template <class M> void Simulation<M>::emit_from_walls() {
-  std::sort(emissions_.begin(), emissions_.end());
   const PairNoise noise(p_.seed, static_cast<std::uint64_t>(step_), PairNoise::Wall);
-  for (std::size_t i = 0; i < owned_; ++i) {
-    const Emission key{state_.id[i], -1};
-    auto it = std::lower_bound(emissions_.begin(), emissions_.end(), key);
-    for (; it != emissions_.end() && it->id == state_.id[i]; ++it)
-      emit_from_wall(noise, i, it->wall / 2, it->wall % 2);
+  bool in_place = !slabs_.active(); // each still where it was reflected (no sort since)
+  for (const Emission& e : emissions_)
+    in_place = in_place && e.index < owned_ && state_.id[e.index] == e.id;
+  if (in_place) { // no search over all particles
+    std::sort(emissions_.begin(), emissions_.end(), [](const Emission& a, const Emission& b) {
+      return a.index < b.index || (a.index == b.index && a.wall < b.wall);
+    });
+    for (const Emission& e : emissions_) emit_from_wall(noise, e.index, e.wall / 2, e.wall % 2);
+  } else { // re-sorted since, or ids from other ranks: find them by id
+    std::sort(emissions_.begin(), emissions_.end());
+    for (std::size_t i = 0; i < owned_; ++i) {
+      const Emission key{state_.id[i], -1};
+      auto it = std::lower_bound(emissions_.begin(), emissions_.end(), key);
+      for (; it != emissions_.end() && it->id == state_.id[i]; ++it)
+        emit_from_wall(noise, i, it->wall / 2, it->wall % 2);
+    }
   }
   emissions_.clear();
   tally_.end_pass(); // on several ranks its terms replay in this place (OrderedTally)

@@ -51,9 +51,15 @@ struct CoefficientErrors {
   double conductivity = std::nan(""), viscosity = std::nan("");
 };
 
+// What the twin took from the transport stage.
+struct TakenCoefficients {
+  transport::Coefficients coefficients;
+  CoefficientErrors errors;
+};
+
 // The transport stage's coefficients at the twin's reference temperature (one reader:
 // transport/coefficients.hpp), with the errors of the measured ones.
-CoefficientErrors take_transport_coefficients(const fs::path& run_dir, const CaseParameters& c,
+TakenCoefficients take_transport_coefficients(const fs::path& run_dir, const CaseParameters& c,
                                               continuum::ContinuumParameters& p) {
   const std::string& source = c.transport.source;
   const fs::path file = run_dir / "transport" / "summary.json";
@@ -97,7 +103,33 @@ CoefficientErrors take_transport_coefficients(const fs::path& run_dir, const Cas
                    "fluid's\n";
   }
   if (c.twin.wall_jumps_from_theory) take_wall_jumps(c, k, p);
-  return {k.conductivity.stderr_, k.viscosity.stderr_};
+  return {k, {k.conductivity.stderr_, k.viscosity.stderr_}};
+}
+
+// The wall theory's fluid density is the twin's own at each wall (its pressure, its
+// stratification, its equation of state), not the isobar's first guess: fixed-point passes, a
+// solve each (no files; one mesh level less: a wall's mean density is a smooth field), until no
+// conductance moves by 2%.
+void take_wall_densities_from_twin(const CaseParameters& c, const transport::Coefficients& k,
+                                   continuum::ContinuumParameters& p, MPI_Comm comm) {
+  for (int pass = 1; pass <= 4; ++pass) {
+    continuum::ContinuumParameters coarser = p;
+    coarser.refinements = std::max(0, p.refinements - 1);
+    const continuum::ContinuumResult r = continuum::run(coarser, "", comm);
+    const WallDensities n = wall_densities(r.bins, p.dim);
+    std::cout << "continuum: the wall model at the twin's own densities, pass " << pass << "\n";
+    continuum::ContinuumParameters next = p;
+    if (take_wall_jumps(c, k, next, &n) == 0) return;
+    double change = 0;
+    for (int d = 0; d < p.dim; ++d)
+      for (int side = 0; side < 2; ++side) {
+        const double was = p.boundary[d].kapitza_conductance[side];
+        const double now = next.boundary[d].kapitza_conductance[side];
+        if (was != now) change = std::max(change, std::fabs(now / was - 1));
+      }
+    p = next;
+    if (change < 0.02) return;
+  }
 }
 
 // The twin's heat flux as its coefficients, and its Kapitza conductances, move by their standard
@@ -244,9 +276,10 @@ int continuum_stage(const Case& c, const RunOptions& options, const std::string&
   const CaseParameters& parameters = c.parameters;
   const fs::path run_dir = run_directory(options, parameters.name);
   continuum::ContinuumParameters p = parameters.continuum;
-  CoefficientErrors coefficient_errors;
+  TakenCoefficients taken;
   if (parameters.twin.coefficients_from_transport)
-    coefficient_errors = take_transport_coefficients(run_dir, parameters, p);
+    taken = take_transport_coefficients(run_dir, parameters, p);
+  const CoefficientErrors& coefficient_errors = taken.errors;
   // Under mpirun only the distributed (iterative) path shares the work; rank 0 writes the
   // summary and tables, the HDF5 fields are written collectively. Inside `run` under mpirun the
   // twin runs on rank 0 alone (the other ranks only took part in the particle runs).
@@ -269,6 +302,8 @@ int continuum_stage(const Case& c, const RunOptions& options, const std::string&
   if (root) announce_twin(parameters, p);
   if (root) stage.create();
   MPI_Barrier(comm);
+  if (parameters.twin.coefficients_from_transport && parameters.twin.wall_jumps_from_theory)
+    take_wall_densities_from_twin(parameters, taken.coefficients, p, comm);
   const continuum::ContinuumResult result = continuum::run(p, stage.path(), comm);
   if (!root) return 0;
   const std::vector<std::string> files = write_twin_tables(stage, result, p);

@@ -1,5 +1,6 @@
 #include "study/twin_wall_theory.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -9,7 +10,7 @@
 namespace twinflow::study {
 
 int take_wall_jumps(const CaseParameters& c, const transport::Coefficients& k,
-                    continuum::ContinuumParameters& twin) {
+                    continuum::ContinuumParameters& twin, const WallDensities* at_walls) {
   const particle::ParticleParameters& p = c.particle;
   const int heated = c.scene.heated_direction();
   if (heated < 0 || !std::isfinite(k.diffusion) || !(k.state_temperature > 0)) return 0;
@@ -20,8 +21,8 @@ int take_wall_jumps(const CaseParameters& c, const transport::Coefficients& k,
     for (int side = 0; side < 2; ++side) {
       if (!walls.thermal[side] || walls.model[side] != particle::WallModel::HalfSpace) continue;
       const double T_w = walls.temperature[side];
-      // The twin has not run yet; its own density replaces this later.
-      const double n = c.scene.density_on_isobar(T_w);
+      const double given = at_walls ? (*at_walls)[d][side] : std::nan("");
+      const double n = given > 0 ? given : c.scene.density_on_isobar(T_w);
       transport::WallLayerInput in;
       in.dim = p.dim;
       in.density = n, in.temperature = T_w;
@@ -58,6 +59,29 @@ int take_wall_jumps(const CaseParameters& c, const transport::Coefficients& k,
     }
   }
   return taken;
+}
+
+WallDensities wall_densities(const continuum::BinAverages& bins, int dim) {
+  WallDensities out;
+  for (auto& sides : out) sides = {{std::nan(""), std::nan("")}};
+  const auto field = std::find(bins.names.begin(), bins.names.end(), "n");
+  if (field == bins.names.end()) return out;
+  const std::vector<double>& n = bins.values[static_cast<std::size_t>(field - bins.names.begin())];
+  const auto& count = bins.bins;
+  for (int d = 0; d < dim; ++d)
+    for (int side = 0; side < 2; ++side) {
+      double layer[2] = {0, 0}, in_layer[2] = {0, 0};
+      for (std::size_t b = 0; b < n.size(); ++b) {
+        std::size_t index = b; // bin b's index along d (x fastest)
+        for (int e = 0; e < d; ++e) index /= count[e];
+        index %= count[d];
+        const std::size_t from_wall = side ? count[d] - 1 - index : index;
+        if (from_wall < 2) layer[from_wall] += n[b], in_layer[from_wall] += 1;
+      }
+      const double first = layer[0] / in_layer[0];
+      out[d][side] = in_layer[1] > 0 ? 1.5 * first - 0.5 * layer[1] / in_layer[1] : first;
+    }
+  return out;
 }
 
 } // namespace twinflow::study

@@ -226,25 +226,16 @@ void fill_h5(const Writer& w, hid_t file, const Grid& grid,
 std::string xml_escape(const std::string& s) {
   std::string out;
   for (char ch : s) {
-    switch (ch) {
-    case '&':
-      out += "&amp;";
-      break;
-    case '<':
-      out += "&lt;";
-      break;
-    case '>':
-      out += "&gt;";
-      break;
-    case '"':
-      out += "&quot;";
-      break;
-    case '\'':
-      out += "&apos;";
-      break;
-    default:
+    const char* entity = ch == '&'    ? "&amp;"
+                         : ch == '<'  ? "&lt;"
+                         : ch == '>'  ? "&gt;"
+                         : ch == '"'  ? "&quot;"
+                         : ch == '\'' ? "&apos;"
+                                      : nullptr;
+    if (entity)
+      out += entity;
+    else
       out += ch;
-    }
   }
   return out;
 }

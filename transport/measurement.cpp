@@ -295,28 +295,10 @@ void choose_coefficients(const Plan& plan, Results& r) {
 }
 
 // coefficients.csv: the estimates beside the measurements, one row per coefficient.
-std::string coefficients_table(const Plan& plan, const Results& r) {
-  const particle::ParticleParameters& p = plan.p;
+// coefficients.csv's rows of the coefficients measured away from the state point and of the laws
+// fitted through them; row(name, estimate_g1, estimate_measured_g, measured, stderr).
+template <class Row> void away_from_state_point_rows(const Plan& plan, const Results& r, Row& row) {
   const double nan = std::nan("");
-  std::ostringstream table;
-  char line[256];
-  std::snprintf(line, sizeof line,
-                "# state point: rho = %g, T = %g (%dD periodic box, N = %ld); kappa and eta "
-                "measured at T = %.4g (the relaxation runs' own)\n",
-                p.density, p.temperature, p.dim, p.particle_count(), r.state_temperature);
-  table << line
-        << "coefficient,estimate_g1,estimate_measured_g,measured,measured_stderr,"
-           "measured/estimate\n";
-  auto row = [&](const std::string& name, double e1, double eg, double meas, double se) {
-    std::snprintf(line, sizeof line, "%s,%.6g,%.6g,%.6g,%.3g,%.4f\n", name.c_str(), e1, eg, meas,
-                  se, std::isnan(meas) ? NAN : meas / eg);
-    table << line;
-  };
-  const Estimates &ideal = r.ideal, &with_g = r.with_g;
-  const Measured& m = r.bulk;
-  row("self_diffusion_D", ideal.diffusion, with_g.diffusion, m.diffusion.mean, m.diffusion.stderr_);
-  row("viscosity_eta", ideal.viscosity, with_g.viscosity, r.eta.mean, r.eta.stderr_);
-  row("conductivity_kappa", ideal.conductivity, with_g.conductivity, r.kappa.mean, r.kappa.stderr_);
   if (r.at_temperature.size() > 1) {
     for (std::size_t i = 0; i < plan.temperatures.size(); ++i) {
       char at[32];
@@ -344,12 +326,37 @@ std::string coefficients_table(const Plan& plan, const Results& r) {
   if (r.has_laws) {
     row("conductivity_law_K", nan, nan, r.kappa_law.K, r.kappa_law.K_stderr);
     row("conductivity_law_a", nan, nan, r.kappa_law.a, r.kappa_law.a_stderr);
-    row("conductivity_law_P", nan, with_g.conductivity_conduction, r.kappa_law.P, nan);
+    row("conductivity_law_P", nan, r.with_g.conductivity_conduction, r.kappa_law.P, nan);
     row("viscosity_law_K", nan, nan, r.eta_law.K, r.eta_law.K_stderr);
     row("viscosity_law_a", nan, nan, r.eta_law.a, r.eta_law.a_stderr);
-    row("viscosity_law_P", nan, with_g.viscosity_dissipative, r.eta_law.P,
+    row("viscosity_law_P", nan, r.with_g.viscosity_dissipative, r.eta_law.P,
         r.eta_law.has_covariance ? r.eta_law.P_stderr : nan); // else theory's
   }
+}
+
+std::string coefficients_table(const Plan& plan, const Results& r) {
+  const particle::ParticleParameters& p = plan.p;
+  const double nan = std::nan("");
+  std::ostringstream table;
+  char line[256];
+  std::snprintf(line, sizeof line,
+                "# state point: rho = %g, T = %g (%dD periodic box, N = %ld); kappa and eta "
+                "measured at T = %.4g (the relaxation runs' own)\n",
+                p.density, p.temperature, p.dim, p.particle_count(), r.state_temperature);
+  table << line
+        << "coefficient,estimate_g1,estimate_measured_g,measured,measured_stderr,"
+           "measured/estimate\n";
+  auto row = [&](const std::string& name, double e1, double eg, double meas, double se) {
+    std::snprintf(line, sizeof line, "%s,%.6g,%.6g,%.6g,%.3g,%.4f\n", name.c_str(), e1, eg, meas,
+                  se, std::isnan(meas) ? NAN : meas / eg);
+    table << line;
+  };
+  const Estimates &ideal = r.ideal, &with_g = r.with_g;
+  const Measured& m = r.bulk;
+  row("self_diffusion_D", ideal.diffusion, with_g.diffusion, m.diffusion.mean, m.diffusion.stderr_);
+  row("viscosity_eta", ideal.viscosity, with_g.viscosity, r.eta.mean, r.eta.stderr_);
+  row("conductivity_kappa", ideal.conductivity, with_g.conductivity, r.kappa.mean, r.kappa.stderr_);
+  away_from_state_point_rows(plan, r, row);
   row("conductivity_kappa_002_eq22", ideal.conductivity_002_eq22, with_g.conductivity_002_eq22, nan,
       nan);
   row("thermal_expansion_alpha", ideal.expansion, with_g.expansion, m.expansion.mean,
@@ -401,6 +408,55 @@ io::Json relaxation_json(const Plan& plan, const Results& r) {
   return method;
 }
 
+// The relaxation runs at the isobar's ends (eta's law goes through them).
+io::Json isobar_ends_json(const Plan& plan, const Results& r) {
+  io::Json ends = io::Json::array();
+  for (std::size_t j = 0; j < r.at_isobar_ends.size(); ++j) {
+    io::Json end = io::Json::object();
+    end["density"] = plan.isobar_ends[j].first;
+    end["wall_temperature"] = plan.isobar_ends[j].second;
+    end["temperature"] = r.at_isobar_ends[j].temperature.json();
+    end["viscosity"] = r.at_isobar_ends[j].viscosity.json();
+    end["conductivity"] = r.at_isobar_ends[j].conductivity.json();
+    ends.push_back(end);
+  }
+  return ends;
+}
+
+// The relaxation runs at the state point's temperatures and the power laws through them.
+void add_temperature_dependence(const Plan& plan, const Results& r, io::Json& measured) {
+  io::Json law = io::Json::object();
+  law["reference_temperature"] = r.state_temperature;
+  law["temperatures"] = io::Json::array();
+  law["conductivity"] = io::Json::array();
+  law["viscosity"] = io::Json::array();
+  for (std::size_t i = 0; i < plan.temperatures.size(); ++i) {
+    law["temperatures"].push_back(r.measured_at[i]);
+    law["conductivity"].push_back(r.at_temperature[i].conductivity.json());
+    law["viscosity"].push_back(r.at_temperature[i].viscosity.json());
+  }
+  law["conductivity_chi2_per_dof"] = r.kappa_power.chi2_per_dof;
+  law["viscosity_chi2_per_dof"] = r.eta_power.chi2_per_dof;
+  measured["temperature_dependence"] = law;
+  measured["conductivity_exponent"] = r.kappa_power.exponent;
+  measured["conductivity_exponent_stderr"] = r.kappa_power.exponent_stderr;
+  measured["viscosity_exponent"] = r.eta_power.exponent;
+  measured["viscosity_exponent_stderr"] = r.eta_power.exponent_stderr;
+}
+
+std::string conductivity_note(const Plan& plan, const Results& r) {
+  std::ostringstream note; // the ideal fluid's c_p = c_v + k + (d/2 + 1) k (000:(3.21))
+  note << "relaxation: kappa = rho c_p chi with the ideal fluid's c_p = "
+       << r.with_g.heat_capacity_p << " k per particle; the relaxation box holds ~"
+       << plan.t.flow_particles
+       << " particles (x2): in 2D its coefficients depend on the box (long-time tails). Errors: "
+          "the larger of the repeats' spread and the fits' own errors, over sqrt(repeats)";
+  if (plan.slabs)
+    note << "; the twin's kappa is the heat slabs' (the scene's scale, no walls), its law "
+            "conductivity_law";
+  return note.str();
+}
+
 // summary.json's "results" ("measured/conductivity" and "viscosity" are what the twin reads,
 // with their laws: transport/coefficients.cpp).
 io::Json results_json(const Plan& plan, const Results& r) {
@@ -433,47 +489,9 @@ io::Json results_json(const Plan& plan, const Results& r) {
     measured["conductivity_law"] = r.kappa_law.json();
     measured["viscosity_law"] = r.eta_law.json();
   }
-  if (!r.at_isobar_ends.empty()) {
-    io::Json& ends = measured["isobar_ends"] = io::Json::array();
-    for (std::size_t j = 0; j < r.at_isobar_ends.size(); ++j) {
-      io::Json end = io::Json::object();
-      end["density"] = plan.isobar_ends[j].first;
-      end["wall_temperature"] = plan.isobar_ends[j].second;
-      end["temperature"] = r.at_isobar_ends[j].temperature.json();
-      end["viscosity"] = r.at_isobar_ends[j].viscosity.json();
-      end["conductivity"] = r.at_isobar_ends[j].conductivity.json();
-      ends.push_back(end);
-    }
-  }
-  if (r.at_temperature.size() > 1) {
-    io::Json law = io::Json::object();
-    law["reference_temperature"] = r.state_temperature;
-    law["temperatures"] = io::Json::array();
-    law["conductivity"] = io::Json::array();
-    law["viscosity"] = io::Json::array();
-    for (std::size_t i = 0; i < plan.temperatures.size(); ++i) {
-      law["temperatures"].push_back(r.measured_at[i]);
-      law["conductivity"].push_back(r.at_temperature[i].conductivity.json());
-      law["viscosity"].push_back(r.at_temperature[i].viscosity.json());
-    }
-    law["conductivity_chi2_per_dof"] = r.kappa_power.chi2_per_dof;
-    law["viscosity_chi2_per_dof"] = r.eta_power.chi2_per_dof;
-    measured["temperature_dependence"] = law;
-    measured["conductivity_exponent"] = r.kappa_power.exponent;
-    measured["conductivity_exponent_stderr"] = r.kappa_power.exponent_stderr;
-    measured["viscosity_exponent"] = r.eta_power.exponent;
-    measured["viscosity_exponent_stderr"] = r.eta_power.exponent_stderr;
-  }
-  std::ostringstream note; // the ideal fluid's c_p = c_v + k + (d/2 + 1) k (000:(3.21))
-  note << "relaxation: kappa = rho c_p chi with the ideal fluid's c_p = "
-       << r.with_g.heat_capacity_p << " k per particle; the relaxation box holds ~"
-       << t.flow_particles
-       << " particles (x2): in 2D its coefficients depend on the box (long-time tails). Errors: "
-          "the larger of the repeats' spread and the fits' own errors, over sqrt(repeats)";
-  if (plan.slabs)
-    note << "; the twin's kappa is the heat slabs' (the scene's scale, no walls), its law "
-            "conductivity_law";
-  measured["conductivity_note"] = note.str();
+  if (!r.at_isobar_ends.empty()) measured["isobar_ends"] = isobar_ends_json(plan, r);
+  if (r.at_temperature.size() > 1) add_temperature_dependence(plan, r, measured);
+  measured["conductivity_note"] = conductivity_note(plan, r);
   return out;
 }
 } // namespace

@@ -269,6 +269,26 @@ void print_twin_result(const continuum::ContinuumResult& result,
   for (const auto& f : files) std::cout << ", " << f;
   std::cout << ")" << std::endl;
 }
+// summary.json's "coefficient_uncertainty" where the twin's inputs carry errors (a steady flow
+// on one process: the extra solves run there).
+void add_coefficient_uncertainty(const continuum::ContinuumParameters& p,
+                                 const continuum::ContinuumResult& result,
+                                 const CoefficientErrors& coefficient_errors, unsigned n_processes,
+                                 MPI_Comm comm, io::Json& summary) {
+  const bool has_errors = std::isfinite(coefficient_errors.conductivity) ||
+                          std::isfinite(coefficient_errors.viscosity) || has_kapitza_errors(p);
+  if (has_errors && n_processes > 1)
+    std::cout << "continuum: the coefficients' effect on the heat flux is not computed under "
+                 "mpirun (its extra solves run on one process)\n";
+  if (result.model != "heat-conduction" && !p.transient() && n_processes == 1 && has_errors) {
+    summary["coefficient_uncertainty"] = coefficient_uncertainty(
+        p, coefficient_errors, result.nusselt * result.numbers.conduction_flux, comm);
+    std::cout << "continuum: heat flux +- "
+              << 100 * io::number(summary, {"coefficient_uncertainty", "heat_flux_relative_stderr"})
+              << "% from the measured coefficients' errors"
+              << (has_kapitza_errors(p) ? " and the Kapitza conductances'" : "") << "\n";
+  }
+}
 } // namespace
 
 int continuum_stage(const Case& c, const RunOptions& options, const std::string& stage_name) {
@@ -318,19 +338,7 @@ int continuum_stage(const Case& c, const RunOptions& options, const std::string&
   summary["continuum_parameters"] = continuum::to_json(p);
   const io::Json measured = continuum::to_json(result);
   for (const auto& [key, value] : measured.items()) summary[key] = value;
-  const bool has_errors = std::isfinite(coefficient_errors.conductivity) ||
-                          std::isfinite(coefficient_errors.viscosity) || has_kapitza_errors(p);
-  if (has_errors && n_processes > 1)
-    std::cout << "continuum: the coefficients' effect on the heat flux is not computed under "
-                 "mpirun (its extra solves run on one process)\n";
-  if (result.model != "heat-conduction" && !p.transient() && n_processes == 1 && has_errors) {
-    summary["coefficient_uncertainty"] = coefficient_uncertainty(
-        p, coefficient_errors, result.nusselt * result.numbers.conduction_flux, comm);
-    std::cout << "continuum: heat flux +- "
-              << 100 * io::number(summary, {"coefficient_uncertainty", "heat_flux_relative_stderr"})
-              << "% from the measured coefficients' errors"
-              << (has_kapitza_errors(p) ? " and the Kapitza conductances'" : "") << "\n";
-  }
+  add_coefficient_uncertainty(p, result, coefficient_errors, n_processes, comm, summary);
   summary["files"] = io::Json::array();
   for (const auto& f : files) summary["files"].push_back(f);
   summary["stage_wall_time_s"] =

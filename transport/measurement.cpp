@@ -294,7 +294,6 @@ void choose_coefficients(const Plan& plan, Results& r) {
   r.has_laws = std::isfinite(r.kappa_law.K) && std::isfinite(r.eta_law.K);
 }
 
-// coefficients.csv: the estimates beside the measurements, one row per coefficient.
 // coefficients.csv's rows of the coefficients measured away from the state point and of the laws
 // fitted through them; row(name, estimate_g1, estimate_measured_g, measured, stderr).
 template <class Row> void away_from_state_point_rows(const Plan& plan, const Results& r, Row& row) {
@@ -334,6 +333,7 @@ template <class Row> void away_from_state_point_rows(const Plan& plan, const Res
   }
 }
 
+// coefficients.csv: the estimates beside the measurements, one row per coefficient.
 std::string coefficients_table(const Plan& plan, const Results& r) {
   const particle::ParticleParameters& p = plan.p;
   const double nan = std::nan("");

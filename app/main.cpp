@@ -18,6 +18,7 @@
 
 #include "app/commands.hpp"
 #include "io/files.hpp"
+#include "io/isa.hpp"
 #include "study/case.hpp"
 #include "study/grid.hpp"
 #include "study/ranks.hpp"
@@ -62,7 +63,10 @@ void version(std::ostream& out) {
   mpi_library = mpi_library.substr(0, mpi_library.find_first_of(",\n"));
   out << io::version_line() << "\n"
       << "deal.II " << DEAL_II_PACKAGE_VERSION << ", " << io::hdf5_version() << ", MPI " << major
-      << "." << minor << " (" << mpi_library << ")\n";
+      << "." << minor << " (" << mpi_library << ")\n"
+      << "particle kernels: " << io::isa_name(io::kernel_isa()) << " (this build on this host runs";
+  for (const io::Isa isa : io::runnable_isas()) out << " " << io::isa_key(isa);
+  out << "; TWINFLOW_ISA chooses)\n";
 }
 
 // The command line as typed, every option kept, with --restart: what continues an interrupted
@@ -240,6 +244,7 @@ int run_command_line(int argc, char** argv) {
     throw io::InputError("'" + cl.command + "' needs a CASE file (or RUNDIR)");
   read_run_options(vm, argc, argv, cl);
   read_grid_options(vm, cl);
+  io::kernel_isa(); // a TWINFLOW_ISA this host cannot run stops here, before anything is written
   if (study::rank_count() > 1 && study::on_rank_zero()) // how this run is spread, first
     std::cout << "twinflow: " << study::ranks_and_threads() << std::endl;
   return command->run(cl);

@@ -12,6 +12,7 @@
 #include <sstream>
 #include <thread>
 
+#include "io/isa.hpp"
 #include "io/version.hpp"
 
 namespace twinflow::io {
@@ -125,6 +126,7 @@ Json provenance() {
   j["build_type"] = kBuildType;
   j["version"] = version_line();
   j["host"] = host_record();
+  j["particle_kernels"] = isa_name(kernel_isa());
   return j;
 }
 

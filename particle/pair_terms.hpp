@@ -73,21 +73,40 @@ inline void philox4x32_10(std::uint32_t c0, std::uint32_t c1, std::uint32_t c2, 
   r0 = c0, r1 = c1;
 }
 
+// Bit-level helpers of box_muller: they keep its loop free of branches and of conversions that
+// AVX2 lacks (uint32 or int64 to double), so that it vectorises on every x86-64 level with the
+// same bits.
+inline double from_bits(std::uint64_t bits) {
+  double d;
+  std::memcpy(&d, &bits, sizeof d);
+  return d;
+}
+inline std::uint64_t to_bits(double d) {
+  std::uint64_t bits;
+  std::memcpy(&bits, &d, sizeof bits);
+  return bits;
+}
+// yes where mask is all ones, no where it is all zeros.
+inline double pick(std::uint64_t mask, double yes, double no) {
+  return from_bits((to_bits(yes) & mask) | (to_bits(no) & ~mask));
+}
+// a, exactly, through int32 (a - 2^31 + 2^31).
+inline double exact_double(std::uint32_t a) {
+  return static_cast<double>(static_cast<std::int32_t>(a ^ 0x80000000u)) + 2147483648.0;
+}
+
 // Box-Muller from two 32-bit words, without libm so that it vectorises: g1, g2 independent
 // standard Gaussians. Radius sqrt(-2 ln u1), u1 = (a + 1/2) 2^-32, with ln from exponent and an
 // atanh series (relative error < 1e-15); angle uniform on [0, 2 pi): 29 bits give phi in
 // [0, pi/4), Taylor sin/cos (error < 2e-14), 3 bits pick the octant by reflection and rotation.
 inline void box_muller(std::uint32_t a, std::uint32_t b, double& g1, double& g2) {
-  double x = a + 0.5;
-  std::uint64_t bits;
-  std::memcpy(&bits, &x, sizeof x);
-  auto e = static_cast<std::int64_t>(bits >> 52) - 1023;
-  bits = (bits & 0xfffffffffffffull) | 0x3ff0000000000000ull;
-  double m;
-  std::memcpy(&m, &bits, sizeof m);
-  const bool big = m > 1.4142135623730951; // m in [sqrt(1/2), sqrt(2)) after the shift
-  m = big ? 0.5 * m : m;
-  e = big ? e + 1 : e;
+  const std::uint64_t bits = to_bits(exact_double(a) + 0.5);
+  double e = static_cast<double>(static_cast<std::int32_t>(bits >> 52) - 1023);
+  double m = from_bits((bits & 0xfffffffffffffull) | 0x3ff0000000000000ull);
+  // m in [sqrt(1/2), sqrt(2)) after the shift
+  const std::uint64_t big = -static_cast<std::uint64_t>(m > 1.4142135623730951);
+  m = pick(big, 0.5 * m, m);
+  e = pick(big, e + 1, e);
   const double s = (m - 1) / (m + 1), s2 = s * s; // ln m = 2 atanh(s) = 2 (s + s^3/3 + ...)
   const double series =
       1 + s2 * (1.0 / 3 +
@@ -96,10 +115,10 @@ inline void box_muller(std::uint32_t a, std::uint32_t b, double& g1, double& g2)
                             s2 * (1.0 / 9 +
                                   s2 * (1.0 / 11 +
                                         s2 * (1.0 / 13 + s2 * (1.0 / 15 + s2 * (1.0 / 17))))))));
-  const double ln_u1 =
-      static_cast<double>(e) * 0.6931471805599453 + 2 * s * series - 22.18070977791825; // - 32 ln 2
+  const double ln_u1 = e * 0.6931471805599453 + 2 * s * series - 22.18070977791825; // - 32 ln 2
   const double radius = std::sqrt(-2 * ln_u1);
-  const double phi = ((b & 0x1fffffffu) + 0.5) * (0.7853981633974483 / 536870912.0);
+  const double phi = (static_cast<double>(static_cast<std::int32_t>(b & 0x1fffffffu)) + 0.5) *
+                     (0.7853981633974483 / 536870912.0);
   const double p2 = phi * phi;
   const double sin_phi =
       phi *
@@ -113,10 +132,11 @@ inline void box_muller(std::uint32_t a, std::uint32_t b, double& g1, double& g2)
                                    p2 * (1.0 / 40320 + p2 * (-1.0 / 3628800 +
                                                              p2 * (1.0 / 479001600 +
                                                                    p2 * (-1.0 / 87178291200)))))));
-  const std::uint32_t octant = b >> 29;
-  const double c1 = (octant & 1) ? sin_phi : cos_phi, s1 = (octant & 1) ? cos_phi : sin_phi;
-  const double c2 = (octant & 2) ? -s1 : c1, s2q = (octant & 2) ? c1 : s1; // + pi/2
-  const double r = (octant & 4) ? -radius : radius;                        // + pi
+  const std::uint64_t octant = b >> 29;
+  const std::uint64_t odd = -(octant & 1), second = -((octant >> 1) & 1);
+  const double c1 = pick(odd, sin_phi, cos_phi), s1 = pick(odd, cos_phi, sin_phi);
+  const double c2 = pick(second, -s1, c1), s2q = pick(second, c1, s1); // + pi/2
+  const double r = from_bits(to_bits(radius) ^ ((octant & 4) << 61));  // + pi: the sign bit
   g1 = r * c2, g2 = r * s2q;
 }
 
@@ -165,15 +185,14 @@ public:
 private:
   template <bool Uniform>
   void draw(std::uint32_t id_i, std::uint32_t id_j, double& xi, double& zeta) const {
-    const bool i_first = id_i < id_j;
     std::uint32_t r0, r1;
-    philox4x32_10(i_first ? id_i : id_j, i_first ? id_j : id_i, step_lo_, step_hi_, k0_, k1_, r0,
-                  r1);
+    philox4x32_10(std::min(id_i, id_j), std::max(id_i, id_j), step_lo_, step_hi_, k0_, k1_, r0, r1);
     if constexpr (Uniform)
       xi = uniform_unit(r0), zeta = uniform_unit(r1);
     else
       box_muller(r0, r1, xi, zeta);
-    zeta = i_first ? zeta : -zeta;
+    // zeta from the side of the lower id; the sign bit flipped, not a branch (AVX2 vectorises)
+    zeta = from_bits(to_bits(zeta) ^ (static_cast<std::uint64_t>(!(id_i < id_j)) << 63));
   }
   std::uint32_t k0_, k1_, step_lo_, step_hi_;
   bool uniform_;

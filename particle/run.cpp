@@ -7,45 +7,35 @@
 
 #include <unistd.h>
 
+#include "io/isa.hpp"
 #include "particle/run_models.hpp"
 
 namespace twinflow::particle {
 
+namespace detail {
+// The compiled sets (families.cpp): the library's own (its flags: baseline, or -march=native), and
+// with dispatch one per x86-64 level above the baseline.
+extern "C" const Families twinflow_families_default;
+#ifdef TWINFLOW_DISPATCH
+extern "C" const Families twinflow_families_avx2;
+extern "C" const Families twinflow_families_avx512;
+#endif
+} // namespace detail
+
 namespace {
 // ---- resolving the case into a compiled combination (the only place that branches on physics:
 // here the dimension and the conservative force, in run_models.tpp the friction and heat laws)
-template <int D, class V> auto with_conservative(const ParticleParameters& p, V&& visit) {
-  const double rc = p.conservative_cutoff;
-  switch (p.conservative) {
-  case ConservativeForce::Constant:
-    return visit.template operator()<D>(ConstantRepulsion{p.a0, rc, 1 / rc});
-  case ConservativeForce::TemperatureDependent:
-    return visit.template operator()<D>(
-        TemperatureRepulsion{p.a0, rc, 1 / rc, 0.5 / p.reference_temperature});
-  default:
-    return visit.template operator()<D>(NoConservative{});
-  }
+const detail::FamilyEntry& family(const ParticleParameters& p) {
+  const detail::Families* set = &detail::twinflow_families_default;
+#ifdef TWINFLOW_DISPATCH
+  if (io::kernel_isa() == io::Isa::avx512) set = &detail::twinflow_families_avx512;
+  if (io::kernel_isa() == io::Isa::avx2) set = &detail::twinflow_families_avx2;
+#endif
+  const int force = p.conservative == ConservativeForce::Constant               ? 1
+                    : p.conservative == ConservativeForce::TemperatureDependent ? 2
+                                                                                : 0;
+  return set->family[p.dim == 2 ? 0 : 1][force];
 }
-
-// Calls visit.operator()<D>(conservative) with the family the parameters describe.
-template <class V> auto dispatch(const ParticleParameters& p, V&& visit) {
-  return p.dim == 2 ? with_conservative<2>(p, visit) : with_conservative<3>(p, visit);
-}
-
-struct Run {
-  const ParticleParameters& p;
-  const RunControl& control;
-  template <int D, class C> RunOutput operator()(const C& c) const {
-    return detail::run_family<D>(p, c, control);
-  }
-};
-struct Bench {
-  const ParticleParameters& p;
-  long steps;
-  template <int D, class C> BenchResult operator()(const C& c) const {
-    return detail::bench_family<D>(p, c, steps);
-  }
-};
 } // namespace
 
 RunControl::Progress RunControl::progress_for_stderr() {
@@ -53,11 +43,11 @@ RunControl::Progress RunControl::progress_for_stderr() {
 }
 
 RunOutput run_particles(const ParticleParameters& p, const RunControl& control) {
-  return dispatch(p, Run{p, control});
+  return family(p).run(p, control);
 }
 
 BenchResult bench_particles(const ParticleParameters& p, long steps) {
-  return dispatch(p, Bench{p, steps});
+  return family(p).bench(p, steps);
 }
 
 } // namespace twinflow::particle

@@ -1,6 +1,7 @@
 #pragma once
 // The families of compiled particle models (run_models.tpp): one per dimension and conservative
-// force, each instantiated in its own unit (run_2d_none.cpp, ...).
+// force, each instantiated in its own unit (run_2d_none.cpp, ...); the six as one table
+// (families.cpp), compiled once per instruction-set level (io/isa.hpp).
 
 #include "particle/pair_terms.hpp"
 #include "particle/run.hpp"
@@ -27,5 +28,15 @@ TWINFLOW_EXTERN_PARTICLE_FAMILY(3, NoConservative)
 TWINFLOW_EXTERN_PARTICLE_FAMILY(3, ConstantRepulsion)
 TWINFLOW_EXTERN_PARTICLE_FAMILY(3, TemperatureRepulsion)
 #undef TWINFLOW_EXTERN_PARTICLE_FAMILY
+
+// One family's entry points, with the conservative force built from the parameters.
+struct FamilyEntry {
+  RunOutput (*run)(const ParticleParameters&, const RunControl&);
+  BenchResult (*bench)(const ParticleParameters&, long);
+};
+// One compiled set: [dimension 2, 3][ConservativeForce None, Constant, TemperatureDependent].
+struct Families {
+  FamilyEntry family[2][3];
+};
 
 } // namespace twinflow::particle::detail

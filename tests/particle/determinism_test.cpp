@@ -110,6 +110,36 @@ TEST(Noise, PhiloxIsRandom123AndGaussiansAreStandard) {
   EXPECT_NEAR(g.m[4], 3, 5 * std::sqrt(96.0) * g.se);
 }
 
+// The libm-free, branch-free Box-Muller against libm's: radius sqrt(-2 ln u1), u1 = (a + 1/2)
+// 2^-32, angle alpha = phi or pi/2 - phi (octant bit 0) + pi/2 (bit 1) + pi (bit 2), phi from the
+// low 29 bits; the edge words of both conversions (0, 2^31 - 1, 2^31, 2^32 - 1, the mantissa's
+// sqrt(2) split) and 2^20 words from Philox. ln u1 = e ln 2 + ln m - 32 ln 2 is good to ~1e-14
+// absolute, so near u1 = 1 the radius carries that over itself.
+TEST(Noise, BoxMullerIsLibmsToRoundOff) {
+  const auto check = [](std::uint32_t a, std::uint32_t b) {
+    double g1, g2;
+    box_muller(a, b, g1, g2);
+    const double radius = std::sqrt(-2 * std::log((a + 0.5) / 4294967296.0));
+    const double phi = ((b & 0x1fffffffu) + 0.5) * (M_PI / 4 / 536870912.0);
+    const std::uint32_t octant = b >> 29;
+    const double alpha = ((octant & 1) ? M_PI / 2 - phi : phi) + ((octant & 2) ? M_PI / 2 : 0) +
+                         ((octant & 4) ? M_PI : 0);
+    const double allowed = 1e-13 * (1 + radius) + 2e-14 / radius;
+    ASSERT_NEAR(g1, radius * std::cos(alpha), allowed) << a << " " << b;
+    ASSERT_NEAR(g2, radius * std::sin(alpha), allowed) << a << " " << b;
+  };
+  for (const std::uint32_t a : {0u, 1u, 0x6a09e667u, 0x6a09e668u, 0x7fffffffu, 0x80000000u,
+                                0xb504f333u, 0xb504f334u, 0xffffffffu})
+    for (const std::uint32_t b :
+         {0u, 0x1fffffffu, 0x20000000u, 0x5fffffffu, 0x9fffffffu, 0xe0000000u, 0xffffffffu})
+      check(a, b);
+  for (std::uint32_t k = 0; k < (1u << 20); ++k) {
+    std::uint32_t a, b;
+    philox4x32_10(k, 3, 5, 7, 11, 13, a, b);
+    check(a, b);
+  }
+}
+
 // The uniform pair noise (Particle/Noise = uniform): the same symmetry, mean 0, variance 1,
 // inside (-sqrt 3, sqrt 3), and its fourth moment 9/5 (a uniform's, not a Gaussian's 3;
 // E g^2n = 3^n / (2n + 1)).

@@ -242,74 +242,105 @@ std::string timestamp() {
   return text;
 }
 
+// SIGINT and SIGTERM counted while the children run (on_grid_stop_signal); the handlers before
+// are back when it goes.
+class StopSignals {
+public:
+  StopSignals() {
+    signals_received = 0;
+    last_signal = 0;
+    struct sigaction action {};
+    action.sa_handler = on_grid_stop_signal;
+    sigemptyset(&action.sa_mask);
+    sigaction(SIGINT, &action, &old_int_);
+    sigaction(SIGTERM, &action, &old_term_);
+  }
+  ~StopSignals() {
+    sigaction(SIGINT, &old_int_, nullptr);
+    sigaction(SIGTERM, &old_term_, nullptr);
+  }
+  StopSignals(const StopSignals&) = delete;
+  StopSignals& operator=(const StopSignals&) = delete;
+
+private:
+  struct sigaction old_int_ {};
+  struct sigaction old_term_ {};
+};
+
+struct Running {
+  pid_t pid;
+  std::size_t task;
+  std::chrono::steady_clock::time_point start;
+  std::uintmax_t log_offset; // where this run's lines begin in the task's log
+};
+
+// Starts task `index`, its log first given a line with the time and the command.
+Running start_child(const ChildTask& t, std::size_t index) {
+  {
+    std::ofstream header(t.log, std::ios::app);
+    header << "# " << timestamp() << ": " << task_command(t) << "\n";
+  }
+  const std::uintmax_t offset = fs::file_size(t.log);
+  return {spawn(t), index, std::chrono::steady_clock::now(), offset};
+}
+
+// Passes the stops received since the last call on to the running children. To a launcher's
+// group (the shell, or the launcher it became) a stop goes as SIGUSR1: srun and mpirun pass it on
+// to the ranks, which checkpoint and exit 5, while srun answers SIGTERM by cancelling the step
+// with SIGKILL (measured: Slurm 22.05, docs/cluster.md).
+void forward_stops(const std::vector<ChildTask>& tasks, const std::vector<Running>& running,
+                   int& forwarded) {
+  for (; forwarded < signals_received; ++forwarded)
+    for (const auto& r : running)
+      if (tasks[r.task].launcher.empty())
+        kill(r.pid, last_signal);
+      else
+        kill(-r.pid, SIGUSR1);
+}
+
+// Reaps the children that have finished, on_done for each; whether any had.
+bool reap_finished(const std::vector<ChildTask>& tasks, std::vector<Running>& running, bool stopped,
+                   const std::function<void(std::size_t, const ChildResult&)>& on_done) {
+  bool reaped = false;
+  for (auto it = running.begin(); it != running.end();) {
+    int status = 0;
+    if (waitpid(it->pid, &status, WNOHANG) != it->pid) {
+      ++it;
+      continue;
+    }
+    ChildResult result;
+    result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+    result.wall_seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - it->start).count();
+    result.message = last_message(tasks[it->task].log, it->log_offset);
+    result.stopped = stopped;
+    if (WIFSIGNALED(status) && result.message.empty())
+      result.message = "killed by signal " + std::to_string(WTERMSIG(status));
+    const std::size_t task = it->task;
+    it = running.erase(it);
+    reaped = true;
+    on_done(task, result);
+  }
+  return reaped;
+}
+
 } // namespace
 
 int run_children(const std::vector<ChildTask>& tasks, int jobs,
                  const std::function<void(std::size_t, const ChildResult&)>& on_done) {
-  struct sigaction action {};
-  struct sigaction old_int {};
-  struct sigaction old_term {};
-  action.sa_handler = on_grid_stop_signal;
-  sigemptyset(&action.sa_mask);
-  signals_received = 0;
-  last_signal = 0;
-  sigaction(SIGINT, &action, &old_int);
-  sigaction(SIGTERM, &action, &old_term);
-  struct Running {
-    pid_t pid;
-    std::size_t task;
-    std::chrono::steady_clock::time_point start;
-    std::uintmax_t log_offset;
-  };
+  const StopSignals stop_signals;
   std::vector<Running> running;
   std::size_t next = 0;
   int forwarded = 0;
   while (true) {
-    while (signals_received == 0 && next < tasks.size() &&
-           static_cast<int>(running.size()) < jobs) {
-      const ChildTask& t = tasks[next];
-      {
-        std::ofstream header(t.log, std::ios::app);
-        header << "# " << timestamp() << ": " << task_command(t) << "\n";
-      }
-      const std::uintmax_t offset = fs::file_size(t.log);
-      running.push_back({spawn(t), next, std::chrono::steady_clock::now(), offset});
-      ++next;
-    }
-    // To a launcher's group (the shell, or the launcher it became) the stop goes as SIGUSR1:
-    // srun and mpirun pass it on to the ranks, which checkpoint and exit 5, while srun answers
-    // SIGTERM by cancelling the step with SIGKILL (measured: Slurm 22.05, docs/cluster.md).
-    for (; forwarded < signals_received; ++forwarded)
-      for (const auto& r : running)
-        if (tasks[r.task].launcher.empty())
-          kill(r.pid, last_signal);
-        else
-          kill(-r.pid, SIGUSR1);
+    for (; signals_received == 0 && next < tasks.size() && static_cast<int>(running.size()) < jobs;
+         ++next)
+      running.push_back(start_child(tasks[next], next));
+    forward_stops(tasks, running, forwarded);
     if (running.empty() && (next == tasks.size() || signals_received > 0)) break;
-    bool reaped = false;
-    for (auto it = running.begin(); it != running.end();) {
-      int status = 0;
-      if (waitpid(it->pid, &status, WNOHANG) != it->pid) {
-        ++it;
-        continue;
-      }
-      ChildResult result;
-      result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-      result.wall_seconds =
-          std::chrono::duration<double>(std::chrono::steady_clock::now() - it->start).count();
-      result.message = last_message(tasks[it->task].log, it->log_offset);
-      result.stopped = forwarded > 0;
-      if (WIFSIGNALED(status) && result.message.empty())
-        result.message = "killed by signal " + std::to_string(WTERMSIG(status));
-      const std::size_t task = it->task;
-      it = running.erase(it);
-      reaped = true;
-      on_done(task, result);
-    }
-    if (!reaped) std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    if (!reap_finished(tasks, running, forwarded > 0, on_done))
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
   }
-  sigaction(SIGINT, &old_int, nullptr);
-  sigaction(SIGTERM, &old_term, nullptr);
   return signals_received > 0 ? static_cast<int>(last_signal) : 0;
 }
 

@@ -129,12 +129,11 @@ std::string console_table(const std::string& csv) {
 
 const char* kCachedFiles[] = {"coefficients.csv", "rdf.csv", "summary.json"};
 
-// Copies a cached result into the stage, with this case's name and parameters. False: no entry
-// (or an unreadable one: the cache is a convenience, never a reason to fail).
-bool restore_from_cache(const fs::path& entry, const io::StageDirectory& stage, const Case& c,
-                        const Clock::time_point started) {
+// A cache entry's summary.json, or null when it is missing, unreadable or without results (the
+// cache is a convenience, never a reason to fail).
+std::optional<io::Json> cached_summary(const fs::path& entry) {
   for (const char* f : kCachedFiles)
-    if (!fs::exists(entry / f)) return false;
+    if (!fs::exists(entry / f)) return std::nullopt;
   io::Json summary;
   try {
     summary = io::read_json(entry / "summary.json");
@@ -146,53 +145,65 @@ bool restore_from_cache(const fs::path& entry, const io::StageDirectory& stage, 
       if (static_cast<unsigned char>(ch) < 32 || static_cast<unsigned char>(ch) > 126) ch = '?';
     std::cerr << "transport: cache entry " << entry.string() << " unreadable (" << why
               << "): measuring\n";
-    return false;
+    return std::nullopt;
   }
-  const io::Json* made_by = io::find(summary, {"provenance"});
-  if (!made_by || !io::find(summary, {"results"})) {
+  if (!io::find(summary, {"provenance"}) || !io::find(summary, {"results"})) {
     std::cerr << "transport: cache entry " << entry.string()
               << " incomplete (summary.json without results): measuring\n";
-    return false;
+    return std::nullopt;
   }
-  // Each file as it was stored (content hashes, written with the entry): a truncated or
-  // altered file is a miss, never a wrong coefficient.
-  if (const io::Json* hashes = io::find(summary, {"cache_files"}))
-    for (const char* f : {"coefficients.csv", "rdf.csv"}) {
-      const std::string stored = io::text(*hashes, {f});
-      std::string now;
-      try {
-        now = io::content_hash(io::read_file(entry / f));
-      } catch (const std::exception&) {
-      }
-      if (stored.empty() || stored != now) {
-        std::cerr << "transport: cache entry " << entry.string() << ": " << f
-                  << " is truncated or altered (content hash differs): measuring\n";
-        return false;
-      }
+  return summary;
+}
+
+// Each file as it was stored (content hashes, written with the entry): a truncated or altered
+// file is a miss, never a wrong coefficient.
+bool cached_files_intact(const fs::path& entry, const io::Json& summary) {
+  const io::Json* hashes = io::find(summary, {"cache_files"});
+  if (!hashes) return true;
+  for (const char* f : {"coefficients.csv", "rdf.csv"}) {
+    const std::string stored = io::text(*hashes, {f});
+    std::string now;
+    try {
+      now = io::content_hash(io::read_file(entry / f));
+    } catch (const std::exception&) {
     }
-  const io::Json* revision = io::find(*made_by, {"twinflow_git_revision"});
+    if (stored.empty() || stored != now) {
+      std::cerr << "transport: cache entry " << entry.string() << ": " << f
+                << " is truncated or altered (content hash differs): measuring\n";
+      return false;
+    }
+  }
+  return true;
+}
+
+// Copies a cached result into the stage, with this case's name and parameters. False: no usable
+// entry.
+bool restore_from_cache(const fs::path& entry, const io::StageDirectory& stage, const Case& c,
+                        const Clock::time_point started) {
+  std::optional<io::Json> summary = cached_summary(entry);
+  if (!summary || !cached_files_intact(entry, *summary)) return false;
+  const io::Json made_by = summary->at("provenance");
+  const io::Json* revision = io::find(made_by, {"twinflow_git_revision"});
   const io::Json now = io::provenance();
   if (revision && *revision != now.at("twinflow_git_revision"))
     std::cout << "transport: the cached measurements were made by twinflow " << revision->dump()
               << " (this is " << now.at("twinflow_git_revision").dump()
               << "); --force or TWINFLOW_CACHE=off measures again\n";
-  io::Json cache = io::Json::object();
-  cache["entry"] = entry.string();
-  cache["made_by"] = *made_by;
-  summary["cache"] = cache;
-  summary.erase("cache_files");
-  summary["case"] = c.parameters.name;
-  summary["provenance"] = io::provenance();
-  summary["execution"] = execution_record(c.parameters.particle.dim);
-  summary["stage_wall_time_s"] = seconds_since(started);
-  summary["parameters"] = c.record;
+  (*summary)["cache"] = {{"entry", entry.string()}, {"made_by", made_by}};
+  summary->erase("cache_files");
+  (*summary)["case"] = c.parameters.name;
+  (*summary)["provenance"] = now;
+  (*summary)["execution"] = execution_record(c.parameters.particle.dim);
+  (*summary)["stage_wall_time_s"] = seconds_since(started);
+  (*summary)["parameters"] = c.record;
   stage.create();
   io::write_file_atomically(stage.file("coefficients.csv"),
                             io::read_file(entry / "coefficients.csv"));
   io::write_file_atomically(stage.file("rdf.csv"), io::read_file(entry / "rdf.csv"));
-  io::write_file_atomically(stage.file("summary.json"), io::dump(summary));
+  io::write_file_atomically(stage.file("summary.json"), io::dump(*summary));
   return true;
 }
+
 // The measurement's files in the stage, its cache entry, its table on the console.
 int write_measurement(const Case& c, const io::StageDirectory& stage,
                       const transport::TransportMeasurement& m, const std::string& key,

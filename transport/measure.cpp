@@ -130,56 +130,66 @@ Repeated measure_diffusion(const particle::ParticleParameters& p, long steps, in
   return summarise_repeats(d, RepeatError::Spread);
 }
 
-Measured measure(const particle::ParticleParameters& p, long steps, int diffusion_repeats, double h,
-                 double diffusion_spread) {
-  Measured m;
-  const double rho = p.density, T = p.temperature;
-  // Every run is independent: the state point, T (1 +- h), rho (1 +- h), D's repeats and D at
-  // T (1 +- diffusion_spread), spread over the cores (jobs.hpp).
+namespace {
+// The bulk runs of `measure`, each independent: the state point c, T (1 +- h), rho (1 +- h), D's
+// repeats and D at T (1 +- diffusion_spread), spread over the cores (jobs.hpp).
+struct BulkRuns {
   Point c, tp, tm, rp, rm, dp, dm;
-  std::vector<Estimate> d(static_cast<std::size_t>(std::max(diffusion_repeats, 1)));
-  std::vector<Job> jobs{{1, [&] { c = run_at(p, rho, T, steps); }},
-                        {1, [&] { tp = run_at(p, rho, T * (1 + h), steps); }},
-                        {1, [&] { tm = run_at(p, rho, T * (1 - h), steps); }},
-                        {1, [&] { rp = run_at(p, rho * (1 + h), T, steps); }},
-                        {1, [&] { rm = run_at(p, rho * (1 - h), T, steps); }}};
+  std::vector<Estimate> d; // D's repeats; [0] is the state point's
+};
+
+BulkRuns run_bulk(const particle::ParticleParameters& p, long steps, int diffusion_repeats,
+                  double h, double diffusion_spread) {
+  const double rho = p.density, T = p.temperature;
+  BulkRuns b;
+  b.d.resize(static_cast<std::size_t>(std::max(diffusion_repeats, 1)));
+  std::vector<Job> jobs{{1, [&] { b.c = run_at(p, rho, T, steps); }},
+                        {1, [&] { b.tp = run_at(p, rho, T * (1 + h), steps); }},
+                        {1, [&] { b.tm = run_at(p, rho, T * (1 - h), steps); }},
+                        {1, [&] { b.rp = run_at(p, rho * (1 + h), T, steps); }},
+                        {1, [&] { b.rm = run_at(p, rho * (1 - h), T, steps); }}};
   for (int r = 1; r < diffusion_repeats; ++r)
     jobs.push_back({1, [&, r] {
                       particle::ParticleParameters q = p;
                       q.seed =
                           particle::derived_seed(p.seed, particle::SeedPurpose::DiffusionRepeat,
                                                  static_cast<std::uint64_t>(r));
-                      d[r] = diffusion_from_msd(run_at(q, rho, T, steps).corr, p.dim);
+                      b.d[r] = diffusion_from_msd(run_at(q, rho, T, steps).corr, p.dim);
                     }});
   if (diffusion_spread > 0) {
-    jobs.push_back({1, [&] { dp = run_at(p, rho, T * (1 + diffusion_spread), steps); }});
-    jobs.push_back({1, [&] { dm = run_at(p, rho, T * (1 - diffusion_spread), steps); }});
+    jobs.push_back({1, [&] { b.dp = run_at(p, rho, T * (1 + diffusion_spread), steps); }});
+    jobs.push_back({1, [&] { b.dm = run_at(p, rho, T * (1 - diffusion_spread), steps); }});
   }
   run_jobs(std::move(jobs));
-  m.pressure = c.p;
-  m.temperature = c.t;
-  m.rdf_csv = c.rdf;
-  // D's error from independent runs: within one run the groups of tracked particles share the
-  // box's collective flows (in 2D runs scattered 1.3x wider over seeds than the groups said,
-  // docs/notebook/2026-11-25-seed-errors.md).
-  d[0] = diffusion_from_msd(c.corr, p.dim);
-  const Repeated dr = summarise_repeats(d, RepeatError::Spread);
+  return b;
+}
+
+// D's error from independent runs: within one run the groups of tracked particles share the box's
+// collective flows (in 2D runs scattered 1.3x wider over seeds than the groups said,
+// docs/notebook/2026-11-25-seed-errors.md). With the spread runs, D(T) ~ T^a_D through the three
+// temperatures (the runs' own).
+void take_diffusion(Measured& m, BulkRuns& b, int dim, bool spread) {
+  b.d[0] = diffusion_from_msd(b.c.corr, dim);
+  const Repeated dr = summarise_repeats(b.d, RepeatError::Spread);
   m.diffusion = dr.value;
   m.diffusion_dof = dr.dof;
   m.diffusion_repeats = dr.repeats;
-  if (diffusion_spread > 0) { // D(T) ~ T^a_D through the three temperatures (the runs' own)
-    const Estimate d_plus = diffusion_from_msd(dp.corr, p.dim),
-                   d_minus = diffusion_from_msd(dm.corr, p.dim);
-    const PowerLawFit law =
-        fit_power_law({dm.t.mean, c.t.mean, dp.t.mean}, {d_minus, m.diffusion, d_plus}, c.t.mean);
-    m.diffusion_exponent = {law.exponent, law.exponent_stderr};
-  }
+  if (!spread) return;
+  const Estimate d_plus = diffusion_from_msd(b.dp.corr, dim),
+                 d_minus = diffusion_from_msd(b.dm.corr, dim);
+  const PowerLawFit law = fit_power_law({b.dm.t.mean, b.c.t.mean, b.dp.t.mean},
+                                        {d_minus, m.diffusion, d_plus}, b.c.t.mean);
+  m.diffusion_exponent = {law.exponent, law.exponent_stderr};
+}
+
+// dp/dT, dp/drho, alpha_p, c_p - c_v and the excess pressure's fit from the five state points.
+void take_thermodynamics(Measured& m, const BulkRuns& b, double rho, double h) {
   // Central differences against the measured temperatures (an NVE run's T is an outcome).
-  const double dtemp = tp.t.mean - tm.t.mean;
-  m.dp_dt = {(tp.p.mean - tm.p.mean) / dtemp,
-             std::hypot(tp.p.stderr_, tm.p.stderr_) / std::fabs(dtemp)};
-  m.dp_drho = {(rp.p.mean - rm.p.mean) / (2 * h * rho),
-               std::hypot(rp.p.stderr_, rm.p.stderr_) / (2 * h * rho)};
+  const double dtemp = b.tp.t.mean - b.tm.t.mean;
+  m.dp_dt = {(b.tp.p.mean - b.tm.p.mean) / dtemp,
+             std::hypot(b.tp.p.stderr_, b.tm.p.stderr_) / std::fabs(dtemp)};
+  m.dp_drho = {(b.rp.p.mean - b.rm.p.mean) / (2 * h * rho),
+               std::hypot(b.rp.p.stderr_, b.rm.p.stderr_) / (2 * h * rho)};
   const double alpha = m.dp_dt.mean / (rho * m.dp_drho.mean); // docs/theory.md
   m.expansion = {alpha, std::fabs(alpha) * std::hypot(m.dp_dt.stderr_ / m.dp_dt.mean,
                                                       m.dp_drho.stderr_ / m.dp_drho.mean)};
@@ -189,12 +199,24 @@ Measured measure(const particle::ParticleParameters& p, long steps, int diffusio
       m.temperature.mean * m.dp_dt.mean * m.dp_dt.mean / (rho * rho * m.dp_drho.mean);
   m.cp_minus_cv = {gap, std::fabs(gap) * std::hypot(2 * m.dp_dt.stderr_ / m.dp_dt.mean,
                                                     m.dp_drho.stderr_ / m.dp_drho.mean)};
-  m.excess_pressure = fit_excess_pressure({{rho, c.t.mean, c.p},
-                                           {rho, tp.t.mean, tp.p},
-                                           {rho, tm.t.mean, tm.p},
-                                           {rho * (1 + h), rp.t.mean, rp.p},
-                                           {rho * (1 - h), rm.t.mean, rm.p}},
+  m.excess_pressure = fit_excess_pressure({{rho, b.c.t.mean, b.c.p},
+                                           {rho, b.tp.t.mean, b.tp.p},
+                                           {rho, b.tm.t.mean, b.tm.p},
+                                           {rho * (1 + h), b.rp.t.mean, b.rp.p},
+                                           {rho * (1 - h), b.rm.t.mean, b.rm.p}},
                                           rho);
+}
+} // namespace
+
+Measured measure(const particle::ParticleParameters& p, long steps, int diffusion_repeats, double h,
+                 double diffusion_spread) {
+  BulkRuns runs = run_bulk(p, steps, diffusion_repeats, h, diffusion_spread);
+  Measured m;
+  m.pressure = runs.c.p;
+  m.temperature = runs.c.t;
+  m.rdf_csv = runs.c.rdf;
+  take_diffusion(m, runs, p.dim, diffusion_spread > 0);
+  take_thermodynamics(m, runs, p.density, h);
   return m;
 }
 
@@ -355,10 +377,11 @@ PowerLawFit fit_power_law(const std::vector<double>& temperatures,
   return f;
 }
 
-RelaxationCoefficients
-measure_relaxation(particle::ParticleParameters p, const Estimates& estimate, double cp,
-                   int repeats,
-                   const std::function<void(int, const RelaxationCoefficients&, int)>& report) {
+namespace {
+// The relaxation runs' box and length: a box doubled along x holding a heat mode and a shear mode
+// of its longest wavelength, sampled over three decays of the slower.
+particle::ParticleParameters relaxation_scene(particle::ParticleParameters p,
+                                              const Estimates& estimate) {
   p.box[0] *= 2;
   p.temperature_perturbation = 0.2;
   // One thermal speed: the mode stands above its thermal noise down to ~10% (seed 002's fluid:
@@ -373,53 +396,71 @@ measure_relaxation(particle::ParticleParameters p, const Estimates& estimate, do
   p.steps = static_cast<long>(std::ceil(3 / (std::min(chi, nu) * k * k) / p.dt)); // 3 decays
   p.sample_interval = std::max(1L, p.steps / 1000);
   p.bins = {{1, 1, 1}};
+  return p;
+}
+
+// kappa, eta and the mean temperature of each repeat, as they end.
+struct RelaxationRepeats {
+  std::vector<Estimate> kappa, eta, temperature;
+  std::vector<char> done;
+  explicit RelaxationRepeats(std::size_t n) : kappa(n), eta(n), temperature(n), done(n, 0) {}
+
+  // One repeat's run and its fits.
+  void run(const particle::ParticleParameters& q, double cp, std::size_t r) {
+    const auto out = run_on_every_rank(q);
+    auto fitted = [&](const char* fit, const char* key, double scale) -> Estimate {
+      const std::string stderr_key = std::string(key) + "_stderr";
+      return {scale * io::number(out.summary, {fit, key}),
+              scale * io::number(out.summary, {fit, stderr_key})};
+    };
+    kappa[r] = fitted("relaxation", "chi", q.density * cp); // kappa = rho c_p chi
+    eta[r] = fitted("shear_relaxation", "viscosity", 1);    // eta = n m nu, by the fit
+    // The run's own mean temperature: the decaying shear mode's kinetic energy, U^2 k T / 4 per
+    // particle, ends as heat (+2% of T at c_v = 10 in 2D), and an NVE start settles on its own.
+    // T_internal = 1/<1/theta> leaves the flow's kinetic energy out (the heat mode biases it low
+    // by ~A^2/2 at the start, ~0.3% over the run).
+    temperature[r] = {io::number(out.summary, {"T_internal"}),
+                      io::number(out.summary, {"T_internal_stderr"})};
+  }
+
+  // The repeats that have ended, in repeat order, summarised into a copy of `base`; their count.
+  int so_far(RelaxationCoefficients& base) const {
+    std::vector<Estimate> k, e, t;
+    for (std::size_t i = 0; i < done.size(); ++i)
+      if (done[i]) k.push_back(kappa[i]), e.push_back(eta[i]), t.push_back(temperature[i]);
+    base.conductivity = summarise_repeats(k);
+    base.viscosity = summarise_repeats(e);
+    base.temperature = summarise_repeats(t);
+    return static_cast<int>(k.size());
+  }
+};
+} // namespace
+
+RelaxationCoefficients
+measure_relaxation(particle::ParticleParameters p, const Estimates& estimate, double cp,
+                   int repeats,
+                   const std::function<void(int, const RelaxationCoefficients&, int)>& report) {
+  p = relaxation_scene(p, estimate);
   RelaxationCoefficients out;
   out.particles = p.particle_count();
   out.steps = p.steps;
-  const auto n = static_cast<std::size_t>(repeats);
-  std::vector<Estimate> kappa(n), eta(n), temperature(n);
-  std::vector<char> done(n, 0);
+  RelaxationRepeats repeat(static_cast<std::size_t>(repeats));
   std::vector<Job> jobs;
   for (int r = 0; r < repeats; ++r)
-    jobs.push_back(
-        {1, [&, r] {
-           particle::ParticleParameters q = p;
-           q.seed = p.seed + 7919 * static_cast<std::uint64_t>(r);
-           const auto run = run_on_every_rank(q);
-           auto fitted = [&](const char* fit, const char* key, double scale) -> Estimate {
-             const std::string stderr_key = std::string(key) + "_stderr";
-             return {scale * io::number(run.summary, {fit, key}),
-                     scale * io::number(run.summary, {fit, stderr_key})};
-           };
-           kappa[r] = fitted("relaxation", "chi", p.density * cp); // kappa = rho c_p chi
-           eta[r] = fitted("shear_relaxation", "viscosity", 1);    // eta = n m nu, by the fit
-           // The run's own mean temperature: the decaying shear mode's kinetic energy,
-           // U^2 k T / 4 per particle, ends as heat (+2% of T at c_v = 10 in 2D), and an
-           // NVE start settles on its own. T_internal = 1/<1/theta> leaves the flow's
-           // kinetic energy out (the heat mode biases it low by ~A^2/2 at the start,
-           // ~0.3% over the run).
-           temperature[r] = {io::number(run.summary, {"T_internal"}),
-                             io::number(run.summary, {"T_internal_stderr"})};
+    jobs.push_back({1, [&, r] {
+                      particle::ParticleParameters q = p;
+                      q.seed = p.seed + 7919 * static_cast<std::uint64_t>(r);
+                      repeat.run(q, cp, static_cast<std::size_t>(r));
 #pragma omp critical(relaxation_report)
-           {
-             done[r] = 1;
-             if (report) { // what has ended so far, in repeat order
-               std::vector<Estimate> k, e, t;
-               for (std::size_t i = 0; i < n; ++i)
-                 if (done[i])
-                   k.push_back(kappa[i]), e.push_back(eta[i]), t.push_back(temperature[i]);
-               RelaxationCoefficients so_far = out;
-               so_far.conductivity = summarise_repeats(k);
-               so_far.viscosity = summarise_repeats(e);
-               so_far.temperature = summarise_repeats(t);
-               report(static_cast<int>(k.size()), so_far, r);
-             }
-           }
-         }});
+                      {
+                        repeat.done[static_cast<std::size_t>(r)] = 1;
+                        RelaxationCoefficients so_far = out;
+                        const int ended = repeat.so_far(so_far);
+                        if (report) report(ended, so_far, r); // what has ended so far
+                      }
+                    }});
   run_jobs(std::move(jobs));
-  out.conductivity = summarise_repeats(kappa);
-  out.viscosity = summarise_repeats(eta);
-  out.temperature = summarise_repeats(temperature);
+  repeat.so_far(out);
   return out;
 }
 

@@ -63,11 +63,13 @@ particle::ParticleParameters slab_fluid(const scene::SceneParameters& scene,
                                         const particle::ParticleParameters& bulk, double kappa,
                                         double heat_capacity_p);
 // kappa = J0 / |dT/dx| over the slab run (the particle run's heat_slabs fit) and in windows
-// along its profile, and the law K (T/T0)^a + P (n/n0)^2 (T/T0)^b fitted to the windows with the
-// pair part P, b given (fit_law; a_fallback where the span is too small).
+// along its profile, the pair part P measured in the same windows, and the law K (T/T0)^a + P
+// (n/n0)^2 (T/T0)^b fitted to the windows with that P and b given (fit_law; a_fallback where the
+// span is too small). pair_at_reference: theory's P, kept beside the measured one in the json.
 struct SlabKappa {
   particle::Estimate kappa{NAN, NAN};
   std::vector<StatePoint> points;
+  particle::Estimate pair{NAN, NAN}; // the law's P, measured (theory's: the json's "pair_part")
   CoefficientLaw law;
   io::Json json = io::Json::object();
 };

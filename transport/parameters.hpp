@@ -24,7 +24,7 @@ struct TransportParameters {
 // The version of the measurement: part of its cache key and of its stage inputs in `run`, bumped
 // when a measurement changes (results of an older method are not reused).
 constexpr int kMeasurementMethod =
-    11; // 3: relaxation fit window from the noise (decay_fit.hpp);
+    12; // 3: relaxation fit window from the noise (decay_fit.hpp);
         // 4: the wall run's slope and flux errors from the blockings;
         // 5: D over independent repeats;
         // 6: D's error the repeats' spread alone, their
@@ -36,5 +36,6 @@ constexpr int kMeasurementMethod =
         // 9: the slabs' sampled time from the error they need
         // 10: the slabs' profile read along their direction
         // 11: eta's law through the isobar's ends
+        // 12: kappa's pair part measured in the slabs
 
 } // namespace twinflow::transport

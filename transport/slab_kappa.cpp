@@ -14,32 +14,37 @@ namespace twinflow::transport {
 
 namespace {
 // The binned profile of slab_profile.csv along the slabs' direction: position, n, T_kinetic and
-// its error.
+// its error, and the pair conduction's flux (J_conductive: seed 002's kappa_ij term) with its.
 struct Profile {
-  std::vector<double> x, n, T, T_se;
+  std::vector<double> x, n, T, T_se, j_pair, j_pair_se;
 };
 Profile read_profile(const std::string& csv, int direction) {
   const io::CsvTable table = io::parse_csv(csv);
   const char* axes[3] = {"x", "y", "z"};
-  const std::size_t x = table.column(axes[direction], "slab_profile.csv"),
-                    n = table.column("density", "slab_profile.csv"),
-                    T = table.column("T_kinetic", "slab_profile.csv"),
-                    T_se = table.column("T_kinetic_se", "slab_profile.csv");
+  const std::string flux = std::string("J_conductive_") + axes[direction];
+  const char* file = "slab_profile.csv";
+  const std::size_t x = table.column(axes[direction], file), n = table.column("density", file),
+                    T = table.column("T_kinetic", file), T_se = table.column("T_kinetic_se", file),
+                    j = table.column(flux, file), j_se = table.column(flux + "_se", file);
   Profile p;
   for (const auto& row : table.rows) {
     p.x.push_back(std::stod(row.at(x))), p.n.push_back(std::stod(row.at(n)));
     p.T.push_back(std::stod(row.at(T))), p.T_se.push_back(std::stod(row.at(T_se)));
+    p.j_pair.push_back(std::stod(row.at(j))), p.j_pair_se.push_back(std::stod(row.at(j_se)));
   }
   return p;
 }
 
 // kappa = J0 / |dT/dx| in windows of width w along both halves between the slabs, a straight
 // line through the bins of each (Fourier's law locally: the flux J0 is the same everywhere
-// between the slabs in a steady state). The slabs and a margin of 1.5 rc beside each are left
-// out (the slabs' own layers).
-std::vector<StatePoint> local_conductivities(const Profile& p, double half, double width,
-                                             double J0) {
-  std::vector<StatePoint> points;
+// between the slabs in a steady state), and its pair-conduction part, the window's mean
+// |J_conductive| / |dT/dx|. The slabs and a margin of 1.5 rc beside each are left out (the slabs'
+// own layers).
+struct Windows {
+  std::vector<StatePoint> total, pair;
+};
+Windows local_conductivities(const Profile& p, double half, double width, double J0) {
+  Windows out;
   const double margin = 1.5, inner = half - width - 2 * margin;
   const int windows = std::max(1, static_cast<int>(inner / 2.5));
   const double w = inner / windows;
@@ -47,18 +52,47 @@ std::vector<StatePoint> local_conductivities(const Profile& p, double half, doub
     for (int k = 0; k < windows; ++k) {
       const double lo = side * half + width + margin + k * w, hi = lo + w;
       statistics::LineFit line;
-      double n = 0;
+      double n = 0, j = 0, j_var = 0;
       int bins = 0;
       for (std::size_t i = 0; i < p.x.size(); ++i)
-        if (p.x[i] > lo && p.x[i] < hi) line.add(p.x[i], p.T[i], p.T_se[i]), n += p.n[i], ++bins;
+        if (p.x[i] > lo && p.x[i] < hi) {
+          line.add(p.x[i], p.T[i], p.T_se[i]), n += p.n[i], ++bins;
+          j += p.j_pair[i], j_var += p.j_pair_se[i] * p.j_pair_se[i];
+        }
       if (bins < 3) continue;
-      const double mid = 0.5 * (lo + hi), slope = line.slope();
+      const double mid = 0.5 * (lo + hi), slope = std::fabs(line.slope());
       StatePoint s;
-      s.n = n / bins, s.T = line.intercept() + slope * mid;
-      s.value = {J0 / std::fabs(slope), J0 / (slope * slope) * line.slope_stderr()};
-      points.push_back(s);
+      s.n = n / bins, s.T = line.intercept() + line.slope() * mid;
+      s.value = {J0 / slope, J0 / (slope * slope) * line.slope_stderr()};
+      out.total.push_back(s);
+      j = std::fabs(j / bins);
+      const double j_relative = j > 0 ? std::sqrt(j_var) / bins / j : 0; // none: no heat law
+      s.value = {j / slope, j / slope * std::hypot(j_relative, line.slope_stderr() / slope)};
+      out.pair.push_back(s);
     }
-  return points;
+  return out;
+}
+
+// The pair part's coefficient P of kappa's law, P (n/n0)^2 (T/T0)^b, measured: the windows'
+// pair parts over their shape, weighted by their errors; the error widened by sqrt(chi^2 / dof)
+// when the windows scatter more than their errors say. No pair conduction: P = 0.
+particle::Estimate measured_pair_part(const std::vector<StatePoint>& pair, double n0, double T0,
+                                      double b) {
+  double sum_w = 0, sum = 0;
+  std::vector<std::pair<double, double>> values; // P of each window and its error
+  for (const StatePoint& s : pair) {
+    const double shape = (s.n / n0) * (s.n / n0) * std::pow(s.T / T0, b);
+    values.emplace_back(s.value.mean / shape, s.value.stderr_ / shape);
+  }
+  for (const auto& [P, se] : values)
+    if (se > 0) sum_w += 1 / (se * se), sum += P / (se * se);
+  if (sum_w == 0) return {0, 0};
+  const double mean = sum / sum_w;
+  double chi2 = 0;
+  for (const auto& [P, se] : values)
+    if (se > 0) chi2 += (P - mean) * (P - mean) / (se * se);
+  const double dof = std::max<double>(1, static_cast<double>(values.size()) - 1);
+  return {mean, std::sqrt(std::max(1.0, chi2 / dof) / sum_w)};
 }
 } // namespace
 
@@ -118,8 +152,16 @@ SlabKappa kappa_from_slabs(const particle::ParticleParameters& slab, double n0, 
   const double J0 = io::number(h, {"J0"});
   SlabKappa r;
   r.kappa = {io::number(h, {"kappa"}), io::number(h, {"kappa_stderr"})};
-  r.points = local_conductivities(read_profile(out.slab_profile_csv, heated), half, width, J0);
-  r.law = fit_law(r.points, n0, T0, pair_at_reference, pair_exponent, a_fallback);
+  const Windows windows =
+      local_conductivities(read_profile(out.slab_profile_csv, heated), half, width, J0);
+  r.points = windows.total;
+  // The pair part measured, not theory's: the mean-field pair term leaves out the particles'
+  // temperature fluctuations (25% low at c_v = 10 in the default fluid; docs/theory.md,
+  // "Coefficients against n and T"), and the pair part alone sets how kappa grows with n beyond the
+  // slabs' isobar.
+  r.pair = measured_pair_part(windows.pair, n0, T0, pair_exponent);
+  r.law = fit_law(r.points, n0, T0, r.pair.mean, pair_exponent, a_fallback);
+  r.law.P_stderr = r.pair.stderr_;
   // The windows' errors are the bins' block errors, which see less of the profile's slow modes
   // than the whole run's blockings: K's error is at least the slab's kappa error, relatively.
   r.law.K_stderr = std::max(r.law.K_stderr, r.law.K * r.kappa.stderr_ / r.kappa.mean);
@@ -137,6 +179,15 @@ SlabKappa kappa_from_slabs(const particle::ParticleParameters& slab, double n0, 
   for (const StatePoint& p : r.points)
     j["profile"].push_back(
         {{"n", p.n}, {"T", p.T}, {"kappa", p.value.mean}, {"kappa_stderr", p.value.stderr_}});
+  j["pair_part"] = {{"measured", r.pair.mean},
+                    {"measured_stderr", r.pair.stderr_},
+                    {"theory", pair_at_reference},
+                    {"windows", io::Json::array()}};
+  for (const StatePoint& p : windows.pair)
+    j["pair_part"]["windows"].push_back({{"n", p.n},
+                                         {"T", p.T},
+                                         {"kappa_pair", p.value.mean},
+                                         {"kappa_pair_stderr", p.value.stderr_}});
   j["law"] = r.law.json();
   return r;
 }

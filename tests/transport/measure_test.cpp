@@ -212,9 +212,11 @@ TEST(ExcessPressureFit, SoftRepulsionFluidIsDescribed) {
 
 // The slabs' profile is read along their own direction: the same fluid with its slabs along x and
 // along y gives the same windows (the column case's slabs, along y, were once read along x's
-// single bin: one window at the box's mean, K off by 5x).
+// single bin: one window at the box's mean, K off by 5x), and the pair part measured in them, which
+// the law takes.
 TEST(SlabKappa, WindowsFollowTheSlabsDirection) {
   std::array<std::vector<StatePoint>, 2> points;
+  std::array<particle::Estimate, 2> pair;
   for (int dir : {0, 1}) {
     auto p = particle::testing::ideal(2, particle::Integrator::Shardlow, 10);
     const double half = 10;
@@ -226,10 +228,17 @@ TEST(SlabKappa, WindowsFollowTheSlabsDirection) {
     p.equilibration_steps = 2000, p.steps = 4000, p.sample_interval = 10;
     const SlabKappa r = kappa_from_slabs(p, p.density, p.temperature, 0, -1, 1);
     points[dir] = r.points;
+    pair[dir] = r.pair;
+    EXPECT_GT(r.pair.mean, 0) << "the pair conduction's part, measured, direction " << dir;
+    EXPECT_GT(r.pair.stderr_, 0);
+    EXPECT_EQ(r.law.P, r.pair.mean) << "the law takes the measured pair part";
     ASSERT_EQ(r.points.size(), 4u) << "direction " << dir; // 2 windows of 3 rc per half
     double lo = HUGE_VAL, hi = -HUGE_VAL;
     for (const StatePoint& s : r.points) lo = std::min(lo, s.T), hi = std::max(hi, s.T);
     EXPECT_GT(hi - lo, 0.05) << "the windows see the profile's span, direction " << dir;
   }
   ASSERT_EQ(points[0].size(), points[1].size());
+  // The same fluid along x and along y: the measured pair parts agree within their errors.
+  EXPECT_LT(std::fabs(pair[0].mean - pair[1].mean),
+            3 * std::hypot(pair[0].stderr_, pair[1].stderr_));
 }

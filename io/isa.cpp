@@ -7,6 +7,16 @@
 namespace twinflow::io {
 
 namespace {
+// Each level's TWINFLOW_ISA value and its name, in the enum's order.
+struct Level {
+  const char* key;
+  const char* name;
+};
+constexpr Level kLevels[] = {{"native", "native (-march=native)"},
+                             {"baseline", "x86-64 (baseline)"},
+                             {"avx2", "x86-64-v3 (AVX2)"},
+                             {"avx512", "x86-64-v4 (AVX-512)"}};
+
 bool host_runs(Isa isa) {
   __builtin_cpu_init();
   switch (isa) {
@@ -50,31 +60,11 @@ Isa kernel_isa() {
 }
 
 std::string isa_key(Isa isa) {
-  switch (isa) {
-  case Isa::native:
-    return "native";
-  case Isa::baseline:
-    return "baseline";
-  case Isa::avx2:
-    return "avx2";
-  case Isa::avx512:
-    return "avx512";
-  }
-  return "?";
+  return kLevels[static_cast<int>(isa)].key;
 }
 
 std::string isa_name(Isa isa) {
-  switch (isa) {
-  case Isa::native:
-    return "native (-march=native)";
-  case Isa::baseline:
-    return "x86-64 (baseline)";
-  case Isa::avx2:
-    return "x86-64-v3 (AVX2)";
-  case Isa::avx512:
-    return "x86-64-v4 (AVX-512)";
-  }
-  return "?";
+  return kLevels[static_cast<int>(isa)].name;
 }
 
 } // namespace twinflow::io

@@ -129,18 +129,14 @@ particle::ParticleParameters slab_fluid(const scene::SceneParameters& scene,
   return s;
 }
 
-SlabKappa kappa_from_slabs(const particle::ParticleParameters& slab, double n0, double T0,
-                           double pair_at_reference, double pair_exponent, double a_fallback) {
-  const int heated = slab.heat_slabs.front().direction;
-  const double half = 0.5 * slab.box[heated];
-  const double width = slab.heat_slabs.front().upper - slab.heat_slabs.front().lower;
-  // The longest run of the stage: a line a minute with its ETA.
+namespace {
+// The slab run, a line a minute with its ETA (the stage's longest run).
+particle::RunOutput run_slabs(const particle::ParticleParameters& slab) {
   particle::RunControl control;
   control.progress = particle::RunControl::Progress::log;
   control.progress_label = "transport: heat slabs: ";
-  particle::RunOutput out;
   try {
-    out = run_on_every_rank(slab, control);
+    return run_on_every_rank(slab, control);
   } catch (const particle::InstabilityError& e) {
     // The power comes from a guess of kappa: a guess well above the fluid's drains the cold slab.
     throw particle::InstabilityError(
@@ -148,6 +144,46 @@ SlabKappa kappa_from_slabs(const particle::ParticleParameters& slab, double n0, 
                     "kappa; a fluid that conducts much less drains the cold slab): ") +
         e.what() + "; Transport/Kappa from slabs = false takes kappa from the relaxation runs");
   }
+}
+
+// The measurement's record: the run, its windows, the pair part beside theory's, the law.
+io::Json slab_json(const particle::ParticleParameters& slab, const io::Json& heat_slabs,
+                   const SlabKappa& r, const std::vector<StatePoint>& pair_windows,
+                   double pair_theory) {
+  io::Json j = io::Json::object();
+  j["method"] = "periodic heat slabs (seed 002 III.B) at the scene's scale: kappa = J0 / |dT/dx| "
+                "in windows along the profile";
+  j["particles"] = slab.particle_count();
+  j["box"] = io::Json::array();
+  for (int d = 0; d < slab.dim; ++d) j["box"].push_back(slab.box[d]);
+  j["steps"] = slab.steps, j["equilibration_steps"] = slab.equilibration_steps;
+  j["J0"] = heat_slabs.at("J0");
+  j["conductivity"] = r.kappa.mean, j["conductivity_stderr"] = r.kappa.stderr_;
+  j["heat_slabs"] = heat_slabs;
+  j["profile"] = io::Json::array();
+  for (const StatePoint& p : r.points)
+    j["profile"].push_back(
+        {{"n", p.n}, {"T", p.T}, {"kappa", p.value.mean}, {"kappa_stderr", p.value.stderr_}});
+  j["pair_part"] = {{"measured", r.pair.mean},
+                    {"measured_stderr", r.pair.stderr_},
+                    {"theory", pair_theory},
+                    {"windows", io::Json::array()}};
+  for (const StatePoint& p : pair_windows)
+    j["pair_part"]["windows"].push_back({{"n", p.n},
+                                         {"T", p.T},
+                                         {"kappa_pair", p.value.mean},
+                                         {"kappa_pair_stderr", p.value.stderr_}});
+  j["law"] = r.law.json();
+  return j;
+}
+} // namespace
+
+SlabKappa kappa_from_slabs(const particle::ParticleParameters& slab, double n0, double T0,
+                           double pair_at_reference, double pair_exponent, double a_fallback) {
+  const int heated = slab.heat_slabs.front().direction;
+  const double half = 0.5 * slab.box[heated];
+  const double width = slab.heat_slabs.front().upper - slab.heat_slabs.front().lower;
+  const particle::RunOutput out = run_slabs(slab);
   const io::Json& h = *io::find(out.summary, {"heat_slabs"});
   const double J0 = io::number(h, {"J0"});
   SlabKappa r;
@@ -165,30 +201,7 @@ SlabKappa kappa_from_slabs(const particle::ParticleParameters& slab, double n0, 
   // The windows' errors are the bins' block errors, which see less of the profile's slow modes
   // than the whole run's blockings: K's error is at least the slab's kappa error, relatively.
   r.law.K_stderr = std::max(r.law.K_stderr, r.law.K * r.kappa.stderr_ / r.kappa.mean);
-  io::Json& j = r.json;
-  j["method"] = "periodic heat slabs (seed 002 III.B) at the scene's scale: kappa = J0 / |dT/dx| "
-                "in windows along the profile";
-  j["particles"] = slab.particle_count();
-  j["box"] = io::Json::array();
-  for (int d = 0; d < slab.dim; ++d) j["box"].push_back(slab.box[d]);
-  j["steps"] = slab.steps, j["equilibration_steps"] = slab.equilibration_steps;
-  j["J0"] = J0;
-  j["conductivity"] = r.kappa.mean, j["conductivity_stderr"] = r.kappa.stderr_;
-  j["heat_slabs"] = h;
-  j["profile"] = io::Json::array();
-  for (const StatePoint& p : r.points)
-    j["profile"].push_back(
-        {{"n", p.n}, {"T", p.T}, {"kappa", p.value.mean}, {"kappa_stderr", p.value.stderr_}});
-  j["pair_part"] = {{"measured", r.pair.mean},
-                    {"measured_stderr", r.pair.stderr_},
-                    {"theory", pair_at_reference},
-                    {"windows", io::Json::array()}};
-  for (const StatePoint& p : windows.pair)
-    j["pair_part"]["windows"].push_back({{"n", p.n},
-                                         {"T", p.T},
-                                         {"kappa_pair", p.value.mean},
-                                         {"kappa_pair_stderr", p.value.stderr_}});
-  j["law"] = r.law.json();
+  r.json = slab_json(slab, h, r, windows.pair, pair_at_reference);
   return r;
 }
 

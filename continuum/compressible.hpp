@@ -205,6 +205,26 @@ public:
   void begin_time_step(double time) { time_ = time; }
 
 private:
+  // One quadrature point's coefficients and the parts of the residual that no test function
+  // changes (assemble_cell's q loop).
+  struct PointTerms {
+    PressureState s;
+    PressureWork work;
+    double eta = 0, deta = 0, deta_n = 0, kappa = 0, dkappa = 0, dkappa_n = 0;
+    double lambda = 0, dlambda = 0; // tau's I part, zeta - (2/d) eta, and its d/dT
+    double div_u = 0, dn_dt = 0, dT_dt = 0, heating = 0, source = 0;
+    double heating_T = 0, heating_n = 0; // d(tau : grad u)/dT, /dn
+    dealii::SymmetricTensor<2, dim> eps_u;
+    dealii::Tensor<1, dim> du_dt, flux;
+  };
+  PointTerms point_terms(unsigned q, bool in_time, double a0) const;
+  double residual(const PointTerms& t, unsigned q, unsigned i,
+                  const dealii::Tensor<1, dim>& g) const;
+  double jacobian(const PointTerms& t, unsigned q, unsigned i, unsigned j, bool in_time, double a0,
+                  const dealii::Tensor<1, dim>& g) const;
+  void add_forcing(unsigned i, double JxW, CellSystem& out);
+  void add_anchor(const CellIterator<dim>& cell, bool with_jacobian, CellSystem& out);
+
   class InitialState : public dealii::Function<dim> {
   public:
     InitialState(const ContinuumParameters& prm, std::shared_ptr<dealii::Function<dim>> T,
@@ -235,7 +255,7 @@ private:
   bool anchor_assembled_ = false;
   double mass_defect_ = 0;   // int n dV - N of the last assembled state
   double mean_pressure_ = 0; // (1/|Omega|) int p dV of the same state
-  std::vector<dealii::Tensor<1, dim>> grad_n_, history_u_;
+  std::vector<dealii::Tensor<1, dim>> grad_n_, history_u_, grad_phi_n_;
   std::vector<double> history_n_, history_T_;
   std::vector<dealii::types::global_dof_index> dofs_;
   Forcing forcing_;
@@ -245,103 +265,103 @@ private:
 };
 
 template <int dim>
-template <class VectorType>
-void CompressibleModel<dim>::assemble_cell(const CellIterator<dim>& cell, const VectorType& x,
-                                           const AssemblyContext<dim, VectorType>& context,
-                                           CellSystem& out) {
-  auto& v = values_;
-  v.reinit(cell, x);
-  v.fe_values[v.scalar].get_function_gradients(x, grad_n_);
-  const bool in_time = context.history != nullptr;
-  const double a0 = context.a0;
-  if (in_time) {
-    v.values_of(*context.history, history_u_, history_T_);
-    v.fe_values[v.scalar].get_function_values(*context.history, history_n_);
-  }
+typename CompressibleModel<dim>::PointTerms
+CompressibleModel<dim>::point_terms(unsigned q, bool in_time, double a0) const {
   const auto& prm = this->prm_;
-  const double m = prm.particle_mass, c_v = c_v_, T_ref = prm.reference_temperature;
-  const double n_ref = prm.number_density;
-  const double zeta = prm.bulk_viscosity, two_over_d = 2.0 / dim;
-  const bool with_jacobian = context.with_jacobian;
-  const dealii::Tensor<1, dim>& g = context.gravity;
-  const auto& [u, grad_u, n, T, grad_T] = v.state;
-  const auto& [phi_u, grad_phi_u, eps_phi_u, div_phi_u, phi_n, phi_T, grad_phi_T] = v.shape;
-  std::vector<dealii::Tensor<1, dim>> grad_phi_n(v.n);
-  for (unsigned q = 0; q < v.n_q; ++q) {
-    const PressureState s = pressure(prm.equation_of_state, n[q], T[q]);
-    const PressureWork work = pressure_work(s, T[q]);
-    // eta(n, T), kappa(n, T), and d/dT, d/dn for the Jacobian.
-    const auto [eta, deta, deta_n] = prm.viscosity.at(n[q], T[q], n_ref, T_ref);
-    const auto [kappa, dkappa, dkappa_n] = prm.conductivity.at(n[q], T[q], n_ref, T_ref);
-    const double lambda = zeta - two_over_d * eta, dlambda = -two_over_d * deta; // tau's I part
-    const double source = heat_source_density(prm, v.point(q));
-    const dealii::SymmetricTensor<2, dim> eps_u = dealii::symmetrize(grad_u[q]);
-    const double div_u = dealii::trace(grad_u[q]);
-    // Material derivatives (steady: the advective parts only); BDF d/dt y ~ a0 y + history.
-    dealii::Tensor<1, dim> du_dt = grad_u[q] * u[q];
-    double dn_dt = 0, dT_dt = u[q] * grad_T[q];
-    if (in_time) {
-      du_dt += a0 * u[q] + history_u_[q];
-      dn_dt = a0 * n[q] + history_n_[q];
-      dT_dt += a0 * T[q] + history_T_[q];
-    }
-    const dealii::Tensor<1, dim> flux = n[q] * u[q];                           // n u
-    const double heating = 2 * eta * (eps_u * eps_u) + lambda * div_u * div_u; // tau : grad u
-    const double JxW = v.fe_values.JxW(q);
-    if (forcing_) forcing_(v.fe_values.quadrature_point(q), time_, force_);
-    v.shape_functions(q);
-    for (unsigned k = 0; k < v.n; ++k) grad_phi_n[k] = v.fe_values[v.scalar].gradient(k, q);
-    for (unsigned i = 0; i < v.n; ++i) {
-      // Weak residual R (top of this file): momentum against phi_u, mass against phi_n, energy
-      // against phi_T.
-      const double residual =
-          m * n[q] * (du_dt * phi_u[i]) + 2 * eta * (eps_u * eps_phi_u[i]) +
-          lambda * div_u * div_phi_u[i] - s.p * div_phi_u[i] - m * n[q] * (g * phi_u[i]) +
-          phi_n[i] * dn_dt - grad_phi_n[i] * flux +
-          (n[q] * c_v * dT_dt + work.value * div_u - heating - source) * phi_T[i] +
-          kappa * (grad_T[q] * grad_phi_T[i]);
-      out.rhs(i) -= residual * JxW;
-      if (forcing_) {
-        dealii::Tensor<1, dim> f_u;
-        for (int d = 0; d < dim; ++d) f_u[d] = force_(d);
-        out.rhs(i) += (f_u * phi_u[i] + force_(dim) * phi_n[i] + force_(dim + 1) * phi_T[i]) * JxW;
-      }
-      if (!with_jacobian) continue;
-      out.row(i) += phi_n[i] * JxW; // d(int n dV)/dx_i
-      const double stress_u_i = 2 * (eps_u * eps_phi_u[i]) - two_over_d * div_u * div_phi_u[i];
-      const double heating_T = 2 * deta * (eps_u * eps_u) + dlambda * div_u * div_u;
-      const double heating_n = deta_n * (2 * (eps_u * eps_u) - two_over_d * div_u * div_u);
-      for (unsigned j = 0; j < v.n; ++j) {
-        // Exact derivative of the residual above in direction (phi_u_j, phi_n_j, phi_T_j).
-        const double div_j = div_phi_u[j];
-        dealii::Tensor<1, dim> ddu_dt = grad_phi_u[j] * u[q] + grad_u[q] * phi_u[j];
-        double ddT_dt = phi_u[j] * grad_T[q] + u[q] * grad_phi_T[j];
-        if (in_time) ddu_dt += a0 * phi_u[j], ddT_dt += a0 * phi_T[j];
-        const double dn_j = phi_n[j], dT_j = phi_T[j];
-        const double momentum =
-            m * dn_j * (du_dt * phi_u[i]) + m * n[q] * (ddu_dt * phi_u[i]) +
-            2 * eta * (eps_phi_u[j] * eps_phi_u[i]) + lambda * div_j * div_phi_u[i] +
-            (dT_j * deta + dn_j * deta_n) * stress_u_i -
-            (s.p_n * dn_j + s.p_T * dT_j) * div_phi_u[i] - m * dn_j * (g * phi_u[i]);
-        const double mass = (in_time ? a0 * dn_j * phi_n[i] : 0.0) -
-                            grad_phi_n[i] * (dn_j * u[q] + n[q] * phi_u[j]);
-        const double dheating = 4 * eta * (eps_u * eps_phi_u[j]) + 2 * lambda * div_u * div_j +
-                                heating_T * dT_j + heating_n * dn_j;
-        const double energy =
-            (dn_j * c_v * dT_dt + n[q] * c_v * ddT_dt +
-             (work.d_n * dn_j + work.d_T * dT_j) * div_u + work.value * div_j - dheating) *
-                phi_T[i] +
-            kappa * (grad_phi_T[j] * grad_phi_T[i]) +
-            (dkappa * dT_j + dkappa_n * dn_j) * (grad_T[q] * grad_phi_T[i]);
-        out.matrix(i, j) += (momentum + mass + energy) * JxW;
-      }
-    }
+  const double T_ref = prm.reference_temperature, n_ref = prm.number_density;
+  const double two_over_d = 2.0 / dim;
+  const auto& [u, grad_u, n, T, grad_T] = values_.state;
+  PointTerms t;
+  t.s = pressure(prm.equation_of_state, n[q], T[q]);
+  t.work = pressure_work(t.s, T[q]);
+  // eta(n, T), kappa(n, T), and d/dT, d/dn for the Jacobian.
+  const auto eta = prm.viscosity.at(n[q], T[q], n_ref, T_ref);
+  const auto kappa = prm.conductivity.at(n[q], T[q], n_ref, T_ref);
+  t.eta = eta.value, t.deta = eta.d_T, t.deta_n = eta.d_n;
+  t.kappa = kappa.value, t.dkappa = kappa.d_T, t.dkappa_n = kappa.d_n;
+  t.lambda = prm.bulk_viscosity - two_over_d * t.eta, t.dlambda = -two_over_d * t.deta;
+  t.source = heat_source_density(prm, values_.point(q));
+  t.eps_u = dealii::symmetrize(grad_u[q]);
+  t.div_u = dealii::trace(grad_u[q]);
+  // Material derivatives (steady: the advective parts only); BDF d/dt y ~ a0 y + history.
+  t.du_dt = grad_u[q] * u[q];
+  t.dT_dt = u[q] * grad_T[q];
+  if (in_time) {
+    t.du_dt += a0 * u[q] + history_u_[q];
+    t.dn_dt = a0 * n[q] + history_n_[q];
+    t.dT_dt += a0 * T[q] + history_T_[q];
   }
-  walls_.add(cell, x, with_jacobian, out);
-  // The anchor: + (int n dV - N) in its mass equation, once (the first cell that holds it).
+  t.flux = n[q] * u[q];                                                       // n u
+  t.heating = 2 * t.eta * (t.eps_u * t.eps_u) + t.lambda * t.div_u * t.div_u; // tau : grad u
+  t.heating_T = 2 * t.deta * (t.eps_u * t.eps_u) + t.dlambda * t.div_u * t.div_u;
+  t.heating_n = t.deta_n * (2 * (t.eps_u * t.eps_u) - two_over_d * t.div_u * t.div_u);
+  return t;
+}
+
+// Weak residual R (top of this file) at q against test function i: momentum against phi_u,
+// mass against phi_n, energy against phi_T.
+template <int dim>
+double CompressibleModel<dim>::residual(const PointTerms& t, unsigned q, unsigned i,
+                                        const dealii::Tensor<1, dim>& g) const {
+  const double m = this->prm_.particle_mass;
+  const auto& n = values_.state.s;
+  const auto& grad_T = values_.state.grad_T;
+  const auto& [phi_u, grad_phi_u, eps_phi_u, div_phi_u, phi_n, phi_T, grad_phi_T] = values_.shape;
+  return m * n[q] * (t.du_dt * phi_u[i]) + 2 * t.eta * (t.eps_u * eps_phi_u[i]) +
+         t.lambda * t.div_u * div_phi_u[i] - t.s.p * div_phi_u[i] - m * n[q] * (g * phi_u[i]) +
+         phi_n[i] * t.dn_dt - grad_phi_n_[i] * t.flux +
+         (n[q] * c_v_ * t.dT_dt + t.work.value * t.div_u - t.heating - t.source) * phi_T[i] +
+         t.kappa * (grad_T[q] * grad_phi_T[i]);
+}
+
+// The exact derivative of residual(i) in direction (phi_u_j, phi_n_j, phi_T_j).
+template <int dim>
+double CompressibleModel<dim>::jacobian(const PointTerms& t, unsigned q, unsigned i, unsigned j,
+                                        bool in_time, double a0,
+                                        const dealii::Tensor<1, dim>& g) const {
+  const double m = this->prm_.particle_mass, c_v = c_v_, two_over_d = 2.0 / dim;
+  const auto& [u, grad_u, n, T, grad_T] = values_.state;
+  const auto& [phi_u, grad_phi_u, eps_phi_u, div_phi_u, phi_n, phi_T, grad_phi_T] = values_.shape;
+  const double stress_u_i = 2 * (t.eps_u * eps_phi_u[i]) - two_over_d * t.div_u * div_phi_u[i];
+  const double div_j = div_phi_u[j];
+  dealii::Tensor<1, dim> ddu_dt = grad_phi_u[j] * u[q] + grad_u[q] * phi_u[j];
+  double ddT_dt = phi_u[j] * grad_T[q] + u[q] * grad_phi_T[j];
+  if (in_time) ddu_dt += a0 * phi_u[j], ddT_dt += a0 * phi_T[j];
+  const double dn_j = phi_n[j], dT_j = phi_T[j];
+  const double momentum =
+      m * dn_j * (t.du_dt * phi_u[i]) + m * n[q] * (ddu_dt * phi_u[i]) +
+      2 * t.eta * (eps_phi_u[j] * eps_phi_u[i]) + t.lambda * div_j * div_phi_u[i] +
+      (dT_j * t.deta + dn_j * t.deta_n) * stress_u_i -
+      (t.s.p_n * dn_j + t.s.p_T * dT_j) * div_phi_u[i] - m * dn_j * (g * phi_u[i]);
+  const double mass =
+      (in_time ? a0 * dn_j * phi_n[i] : 0.0) - grad_phi_n_[i] * (dn_j * u[q] + n[q] * phi_u[j]);
+  const double dheating = 4 * t.eta * (t.eps_u * eps_phi_u[j]) + 2 * t.lambda * t.div_u * div_j +
+                          t.heating_T * dT_j + t.heating_n * dn_j;
+  const double energy =
+      (dn_j * c_v * t.dT_dt + n[q] * c_v * ddT_dt +
+       (t.work.d_n * dn_j + t.work.d_T * dT_j) * t.div_u + t.work.value * div_j - dheating) *
+          phi_T[i] +
+      t.kappa * (grad_phi_T[j] * grad_phi_T[i]) +
+      (t.dkappa * dT_j + t.dkappa_n * dn_j) * (grad_T[q] * grad_phi_T[i]);
+  return momentum + mass + energy;
+}
+
+// A manufactured solution's f(x, t) at the point (set_forcing; force_) against test function i.
+template <int dim>
+void CompressibleModel<dim>::add_forcing(unsigned i, double JxW, CellSystem& out) {
+  const auto& [phi_u, grad_phi_u, eps_phi_u, div_phi_u, phi_n, phi_T, grad_phi_T] = values_.shape;
+  dealii::Tensor<1, dim> f_u;
+  for (int d = 0; d < dim; ++d) f_u[d] = force_(d);
+  out.rhs(i) += (f_u * phi_u[i] + force_(dim) * phi_n[i] + force_(dim + 1) * phi_T[i]) * JxW;
+}
+
+// The anchor: + (int n dV - N) in its mass equation, once (the first cell that holds it).
+template <int dim>
+void CompressibleModel<dim>::add_anchor(const CellIterator<dim>& cell, bool with_jacobian,
+                                        CellSystem& out) {
   if (anchor_assembled_) return;
   cell->get_dof_indices(dofs_);
-  for (unsigned i = 0; i < v.n; ++i)
+  for (unsigned i = 0; i < values_.n; ++i)
     if (dofs_[i] == anchor_) {
       out.rhs(i) -= mass_defect_;
       if (with_jacobian) {
@@ -351,6 +371,40 @@ void CompressibleModel<dim>::assemble_cell(const CellIterator<dim>& cell, const 
       anchor_assembled_ = true;
       break;
     }
+}
+
+template <int dim>
+template <class VectorType>
+void CompressibleModel<dim>::assemble_cell(const CellIterator<dim>& cell, const VectorType& x,
+                                           const AssemblyContext<dim, VectorType>& context,
+                                           CellSystem& out) {
+  auto& v = values_;
+  v.reinit(cell, x);
+  v.fe_values[v.scalar].get_function_gradients(x, grad_n_);
+  const bool in_time = context.history != nullptr, with_jacobian = context.with_jacobian;
+  const double a0 = context.a0;
+  if (in_time) {
+    v.values_of(*context.history, history_u_, history_T_);
+    v.fe_values[v.scalar].get_function_values(*context.history, history_n_);
+  }
+  grad_phi_n_.resize(v.n);
+  for (unsigned q = 0; q < v.n_q; ++q) {
+    const PointTerms t = point_terms(q, in_time, a0);
+    const double JxW = v.fe_values.JxW(q);
+    if (forcing_) forcing_(v.fe_values.quadrature_point(q), time_, force_);
+    v.shape_functions(q);
+    for (unsigned k = 0; k < v.n; ++k) grad_phi_n_[k] = v.fe_values[v.scalar].gradient(k, q);
+    for (unsigned i = 0; i < v.n; ++i) {
+      out.rhs(i) -= residual(t, q, i, context.gravity) * JxW;
+      if (forcing_) add_forcing(i, JxW, out);
+      if (!with_jacobian) continue;
+      out.row(i) += v.shape.phi_s[i] * JxW; // d(int n dV)/dx_i
+      for (unsigned j = 0; j < v.n; ++j)
+        out.matrix(i, j) += jacobian(t, q, i, j, in_time, a0, context.gravity) * JxW;
+    }
+  }
+  walls_.add(cell, x, with_jacobian, out);
+  add_anchor(cell, with_jacobian, out);
 }
 
 template <int dim>

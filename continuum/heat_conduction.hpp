@@ -11,6 +11,7 @@
 #include <deal.II/fe/fe_values.h>
 #include <deal.II/grid/tria.h>
 #include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/sparse_direct.h>
 #include <deal.II/lac/sparse_ilu.h>
 #include <deal.II/lac/sparse_matrix.h>
@@ -47,6 +48,17 @@ private:
   void initial_condition();
   // Residual (and Jacobian) of the steady or theta-scheme equation at `evaluation_point_`.
   double assemble(bool with_jacobian);
+  // One cell's share of them (assemble's loop): its values, its matrix and right-hand side.
+  struct CellScratch {
+    CellScratch(const dealii::FE_Q<dim>& fe, const dealii::Quadrature<dim>& quadrature);
+    dealii::FEValues<dim> fe_values;
+    dealii::FullMatrix<double> matrix;
+    dealii::Vector<double> rhs;
+    std::vector<double> T, T_old;
+    std::vector<dealii::Tensor<1, dim>> grad_T, grad_T_old;
+  };
+  void assemble_cell(const typename dealii::DoFHandler<dim>::active_cell_iterator& cell,
+                     bool with_jacobian, CellScratch& c) const;
   // Prescribed heat flux h into the domain through the cell's flux walls: - int_Gamma h phi.
   void add_wall_heat_flux(const typename dealii::DoFHandler<dim>::active_cell_iterator& cell,
                           dealii::FEFaceValues<dim>& fe_face_values,

@@ -162,72 +162,81 @@ void HeatConductionProblem<dim>::add_wall_heat_flux(
   }
 }
 
+template <int dim>
+HeatConductionProblem<dim>::CellScratch::CellScratch(const dealii::FE_Q<dim>& fe,
+                                                     const dealii::Quadrature<dim>& quadrature)
+    : fe_values(fe, quadrature,
+                dealii::update_values | dealii::update_gradients |
+                    dealii::update_quadrature_points | dealii::update_JxW_values),
+      matrix(fe.n_dofs_per_cell(), fe.n_dofs_per_cell()), rhs(fe.n_dofs_per_cell()),
+      T(quadrature.size()), T_old(quadrature.size()), grad_T(quadrature.size()),
+      grad_T_old(quadrature.size()) {}
+
 template <int dim> double HeatConductionProblem<dim>::assemble(bool with_jacobian) {
   detail::ScopedTimer timer(times_.assembly);
   if (with_jacobian) jacobian_ = 0;
   residual_ = 0;
-  const dealii::QGauss<dim> quadrature(3);
-  const dealii::QGauss<dim - 1> face_quadrature(3);
-  dealii::FEValues<dim> fe_values(fe_, quadrature,
-                                  dealii::update_values | dealii::update_gradients |
-                                      dealii::update_quadrature_points | dealii::update_JxW_values);
-  dealii::FEFaceValues<dim> fe_face_values(fe_, face_quadrature,
+  CellScratch c(fe_, dealii::QGauss<dim>(3));
+  dealii::FEFaceValues<dim> fe_face_values(fe_, dealii::QGauss<dim - 1>(3),
                                            dealii::update_values | dealii::update_JxW_values);
-  const unsigned n = fe_.n_dofs_per_cell(), nq = quadrature.size();
-  dealii::FullMatrix<double> cell_matrix(n, n);
-  dealii::Vector<double> cell_rhs(n);
-  std::vector<dealii::types::global_dof_index> dofs(n);
-  std::vector<double> T(nq), T_old(nq);
-  std::vector<dealii::Tensor<1, dim>> grad_T(nq), grad_T_old(nq);
+  std::vector<dealii::types::global_dof_index> dofs(fe_.n_dofs_per_cell());
+  for (const auto& cell : dof_handler_.active_cell_iterators()) {
+    assemble_cell(cell, with_jacobian, c);
+    add_wall_heat_flux(cell, fe_face_values, c.rhs);
+    cell->get_dof_indices(dofs);
+    if (with_jacobian)
+      zero_constraints_.distribute_local_to_global(c.matrix, c.rhs, dofs, jacobian_, residual_);
+    else
+      zero_constraints_.distribute_local_to_global(c.rhs, dofs, residual_);
+  }
+  return residual_.l2_norm();
+}
+
+template <int dim>
+void HeatConductionProblem<dim>::assemble_cell(
+    const typename dealii::DoFHandler<dim>::active_cell_iterator& cell, bool with_jacobian,
+    CellScratch& c) const {
+  auto& fe_values = c.fe_values;
+  const unsigned n = fe_.n_dofs_per_cell(), nq = c.T.size();
   const double T_ref = prm_.reference_temperature, ncp = prm_.heat_capacity_per_volume();
   // Steady: only the implicit part, with weight 1.
   const double theta = transient_ ? prm_.theta : 1.0;
   const double mass = transient_ ? ncp / dt_ : 0.0;
-  for (const auto& cell : dof_handler_.active_cell_iterators()) {
-    fe_values.reinit(cell);
-    cell_matrix = 0;
-    cell_rhs = 0;
-    fe_values.get_function_values(evaluation_point_, T);
-    fe_values.get_function_gradients(evaluation_point_, grad_T);
-    if (transient_) {
-      fe_values.get_function_values(old_solution_, T_old);
-      fe_values.get_function_gradients(old_solution_, grad_T_old);
-    }
-    for (unsigned q = 0; q < nq; ++q) {
-      const double kappa = prm_.conductivity.at(T[q], T_ref);
-      const double dkappa = prm_.conductivity.derivative(T[q], T_ref);
-      const double kappa_old = transient_ ? prm_.conductivity.at(T_old[q], T_ref) : 0.0;
-      const auto x = fe_values.quadrature_point(q);
-      std::array<double, 3> x3{{0, 0, 0}};
-      for (int d = 0; d < dim; ++d) x3[d] = x[d];
-      const double source = heat_source_density(prm_, x3);
-      const double JxW = fe_values.JxW(q);
-      // Flux terms of the theta scheme: theta kappa grad T + (1 - theta) kappa_old grad T_old.
-      dealii::Tensor<1, dim> flux = theta * kappa * grad_T[q];
-      if (transient_) flux += (1 - theta) * kappa_old * grad_T_old[q];
-      const double storage = transient_ ? mass * (T[q] - T_old[q]) : 0.0;
-      for (unsigned i = 0; i < n; ++i) {
-        const double phi_i = fe_values.shape_value(i, q);
-        const auto grad_phi_i = fe_values.shape_grad(i, q);
-        cell_rhs(i) -= (storage * phi_i + flux * grad_phi_i - source * phi_i) * JxW;
-        if (!with_jacobian) continue;
-        for (unsigned j = 0; j < n; ++j)
-          cell_matrix(i, j) +=
-              (mass * fe_values.shape_value(j, q) * phi_i +
-               theta * (kappa * (fe_values.shape_grad(j, q) * grad_phi_i) +
-                        dkappa * fe_values.shape_value(j, q) * (grad_T[q] * grad_phi_i))) *
-              JxW;
-      }
-    }
-    add_wall_heat_flux(cell, fe_face_values, cell_rhs);
-    cell->get_dof_indices(dofs);
-    if (with_jacobian)
-      zero_constraints_.distribute_local_to_global(cell_matrix, cell_rhs, dofs, jacobian_,
-                                                   residual_);
-    else
-      zero_constraints_.distribute_local_to_global(cell_rhs, dofs, residual_);
+  fe_values.reinit(cell);
+  c.matrix = 0;
+  c.rhs = 0;
+  fe_values.get_function_values(evaluation_point_, c.T);
+  fe_values.get_function_gradients(evaluation_point_, c.grad_T);
+  if (transient_) {
+    fe_values.get_function_values(old_solution_, c.T_old);
+    fe_values.get_function_gradients(old_solution_, c.grad_T_old);
   }
-  return residual_.l2_norm();
+  for (unsigned q = 0; q < nq; ++q) {
+    const double kappa = prm_.conductivity.at(c.T[q], T_ref);
+    const double dkappa = prm_.conductivity.derivative(c.T[q], T_ref);
+    const double kappa_old = transient_ ? prm_.conductivity.at(c.T_old[q], T_ref) : 0.0;
+    const auto x = fe_values.quadrature_point(q);
+    std::array<double, 3> x3{{0, 0, 0}};
+    for (int d = 0; d < dim; ++d) x3[d] = x[d];
+    const double source = heat_source_density(prm_, x3);
+    const double JxW = fe_values.JxW(q);
+    // Flux terms of the theta scheme: theta kappa grad T + (1 - theta) kappa_old grad T_old.
+    dealii::Tensor<1, dim> flux = theta * kappa * c.grad_T[q];
+    if (transient_) flux += (1 - theta) * kappa_old * c.grad_T_old[q];
+    const double storage = transient_ ? mass * (c.T[q] - c.T_old[q]) : 0.0;
+    for (unsigned i = 0; i < n; ++i) {
+      const double phi_i = fe_values.shape_value(i, q);
+      const auto grad_phi_i = fe_values.shape_grad(i, q);
+      c.rhs(i) -= (storage * phi_i + flux * grad_phi_i - source * phi_i) * JxW;
+      if (!with_jacobian) continue;
+      for (unsigned j = 0; j < n; ++j)
+        c.matrix(i, j) +=
+            (mass * fe_values.shape_value(j, q) * phi_i +
+             theta * (kappa * (fe_values.shape_grad(j, q) * grad_phi_i) +
+                      dkappa * fe_values.shape_value(j, q) * (c.grad_T[q] * grad_phi_i))) *
+            JxW;
+    }
+  }
 }
 
 template <int dim> void HeatConductionProblem<dim>::solve_linear_system(bool factorize) {

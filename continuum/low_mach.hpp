@@ -112,6 +112,23 @@ private:
   WallTerms<dim> walls_;
   std::vector<dealii::Tensor<1, dim>> u_old_;
   std::vector<double> T_old_;
+
+  // One quadrature point's coefficients and the parts of the residual that no test function
+  // changes (assemble_cell's q loop); inv_dt = 0 when steady.
+  struct PointTerms {
+    DensityState s;
+    double eta = 0, deta = 0, kappa = 0, dkappa = 0, source = 0, div_u = 0, u_grad_T = 0;
+    double inv_dt = 0, dT = 0, n_old = 0, dP = 0; // transient: (T - T_old), n_old, P - P_old
+    dealii::SymmetricTensor<2, dim> eps_u;
+    dealii::Tensor<1, dim> advection, du; // (u . grad) u, u - u_old
+  };
+  PointTerms point_terms(unsigned q, double inv_dt) const;
+  double residual(const PointTerms& t, unsigned q, unsigned i,
+                  const dealii::Tensor<1, dim>& g) const;
+  double pressure_derivative(const PointTerms& t, unsigned i,
+                             const dealii::Tensor<1, dim>& g) const;
+  double jacobian(const PointTerms& t, unsigned q, unsigned i, unsigned j,
+                  const dealii::Tensor<1, dim>& g) const;
 };
 
 template <int dim>
@@ -168,6 +185,100 @@ void LowMachModel<dim>::update_derived_state(const dealii::DoFHandler<dim>& dofs
 }
 
 template <int dim>
+typename LowMachModel<dim>::PointTerms LowMachModel<dim>::point_terms(unsigned q,
+                                                                      double inv_dt) const {
+  const auto& prm = this->prm_;
+  const double T_ref = prm.reference_temperature;
+  const auto& [u, grad_u, p, T, grad_T] = values_.state;
+  PointTerms t;
+  t.s = number_density(P_, T[q]);
+  t.eta = prm.viscosity.at(T[q], T_ref);
+  t.deta = prm.viscosity.derivative(T[q], T_ref);
+  t.kappa = prm.conductivity.at(T[q], T_ref);
+  t.dkappa = prm.conductivity.derivative(T[q], T_ref);
+  t.source = heat_source_density(prm, values_.point(q));
+  t.eps_u = dealii::symmetrize(grad_u[q]);
+  t.div_u = dealii::trace(grad_u[q]);
+  t.advection = grad_u[q] * u[q]; // (u . grad) u
+  t.u_grad_T = u[q] * grad_T[q];
+  // Transient: (u - u_old)/dt, (n - n_old)/dt, (T - T_old)/dt, (P - P_old)/dt.
+  t.inv_dt = inv_dt;
+  t.du = inv_dt > 0 ? u[q] - u_old_[q] : dealii::Tensor<1, dim>();
+  t.dT = inv_dt > 0 ? T[q] - T_old_[q] : 0.0;
+  t.n_old = inv_dt > 0 ? number_density(old_pressure_, T_old_[q]).n : 0.0;
+  t.dP = P_ - old_pressure_;
+  return t;
+}
+
+// The weak residual (equations at the top of this file) at q against test function i, with
+// implicit Euler's time derivatives when transient.
+template <int dim>
+double LowMachModel<dim>::residual(const PointTerms& t, unsigned q, unsigned i,
+                                   const dealii::Tensor<1, dim>& g) const {
+  const auto& prm = this->prm_;
+  const double m = prm.particle_mass, cp = prm.heat_capacity, n_mean = prm.number_density;
+  const auto& [u, grad_u, p, T, grad_T] = values_.state;
+  const auto& [phi_u, grad_phi_u, eps_phi_u, div_phi_u, phi_p, phi_T, grad_phi_T] = values_.shape;
+  const auto& s = t.s;
+  // Viscous stress 2 eta S(u) - 2/3 eta div u I (Le Quere et al. 2005) against grad v.
+  const double viscous_i =
+      2 * t.eta * (t.eps_u * eps_phi_u[i]) - 2.0 / 3.0 * t.eta * t.div_u * div_phi_u[i];
+  const double steady = m * s.n * (t.advection * phi_u[i]) + viscous_i - p[q] * div_phi_u[i] -
+                        m * (s.n - n_mean) * (g * phi_u[i]) -
+                        phi_p[i] * (s.n * t.div_u + s.n_T * t.u_grad_T) +
+                        cp * s.n * t.u_grad_T * phi_T[i] + t.kappa * (grad_T[q] * grad_phi_T[i]) -
+                        t.source * phi_T[i];
+  // Implicit Euler: m n du/dt . v - q dn/dt + (n c_p dT/dt - dP/dt) w (Le Quere et al.
+  // 2005; the dP/dt of the energy equation vanishes in a steady state).
+  const double transient =
+      t.inv_dt > 0 ? t.inv_dt * (m * s.n * (t.du * phi_u[i]) - phi_p[i] * (s.n - t.n_old) +
+                                 (cp * s.n * t.dT - t.dP) * phi_T[i])
+                   : 0.0;
+  return steady + transient;
+}
+
+// dR_i/dP: n and n_T depend on P (grad n = n_T grad T at uniform P).
+template <int dim>
+double LowMachModel<dim>::pressure_derivative(const PointTerms& t, unsigned i,
+                                              const dealii::Tensor<1, dim>& g) const {
+  const double m = this->prm_.particle_mass, cp = this->prm_.heat_capacity;
+  const auto& [phi_u, grad_phi_u, eps_phi_u, div_phi_u, phi_p, phi_T, grad_phi_T] = values_.shape;
+  const auto& s = t.s;
+  return m * s.n_P * (t.advection * phi_u[i]) - m * s.n_P * (g * phi_u[i]) -
+         phi_p[i] * (s.n_P * t.div_u + s.n_TP * t.u_grad_T) + cp * s.n_P * t.u_grad_T * phi_T[i];
+}
+
+// The exact derivative of residual(i) in direction (phi_u_j, phi_p_j, phi_T_j).
+template <int dim>
+double LowMachModel<dim>::jacobian(const PointTerms& t, unsigned q, unsigned i, unsigned j,
+                                   const dealii::Tensor<1, dim>& g) const {
+  const double m = this->prm_.particle_mass, cp = this->prm_.heat_capacity;
+  const auto& [u, grad_u, p, T, grad_T] = values_.state;
+  const auto& [phi_u, grad_phi_u, eps_phi_u, div_phi_u, phi_p, phi_T, grad_phi_T] = values_.shape;
+  const auto& s = t.s;
+  const double stress_u_i =
+      2 * (t.eps_u * eps_phi_u[i]) - 2.0 / 3.0 * t.div_u * div_phi_u[i]; // viscous_i / eta
+  const double div_j = div_phi_u[j];
+  const double u_grad_T_j = phi_u[j] * grad_T[q] + u[q] * grad_phi_T[j];
+  const double steady =
+      m * s.n * ((grad_phi_u[j] * u[q] + grad_u[q] * phi_u[j]) * phi_u[i]) +
+      m * s.n_T * phi_T[j] * (t.advection * phi_u[i]) + 2 * t.eta * (eps_phi_u[j] * eps_phi_u[i]) -
+      2.0 / 3.0 * t.eta * div_j * div_phi_u[i] + t.deta * phi_T[j] * stress_u_i -
+      phi_p[j] * div_phi_u[i] - m * s.n_T * phi_T[j] * (g * phi_u[i]) -
+      phi_p[i] * (s.n * div_j + s.n_T * phi_T[j] * t.div_u + s.n_T * u_grad_T_j +
+                  s.n_TT * phi_T[j] * t.u_grad_T) +
+      cp * s.n_T * phi_T[j] * t.u_grad_T * phi_T[i] + cp * s.n * u_grad_T_j * phi_T[i] +
+      t.kappa * (grad_phi_T[j] * grad_phi_T[i]) + t.dkappa * phi_T[j] * (grad_T[q] * grad_phi_T[i]);
+  const double transient =
+      t.inv_dt > 0
+          ? t.inv_dt *
+                (m * s.n * (phi_u[j] * phi_u[i]) + m * s.n_T * phi_T[j] * (t.du * phi_u[i]) -
+                 phi_p[i] * s.n_T * phi_T[j] + cp * (s.n + s.n_T * t.dT) * phi_T[j] * phi_T[i])
+          : 0.0;
+  return steady + transient;
+}
+
+template <int dim>
 template <class VectorType>
 void LowMachModel<dim>::assemble_cell(const CellIterator<dim>& cell, const VectorType& x,
                                       const AssemblyContext<dim, VectorType>& context,
@@ -176,85 +287,27 @@ void LowMachModel<dim>::assemble_cell(const CellIterator<dim>& cell, const Vecto
   v.reinit(cell, x);
   const double inv_dt = context.a0; // implicit Euler: 1/dt
   if (inv_dt > 0) v.values_of(*context.previous, u_old_, T_old_);
-  const auto& prm = this->prm_;
-  const double m = prm.particle_mass, cp = prm.heat_capacity, P = P_;
-  const double n_mean = prm.number_density, T_ref = prm.reference_temperature;
+  const double m = this->prm_.particle_mass, cp = this->prm_.heat_capacity;
   const bool with_jacobian = context.with_jacobian;
   const dealii::Tensor<1, dim>& g = context.gravity;
-  const auto& [u, grad_u, p, T, grad_T] = v.state;
   const auto& [phi_u, grad_phi_u, eps_phi_u, div_phi_u, phi_p, phi_T, grad_phi_T] = v.shape;
   for (unsigned q = 0; q < v.n_q; ++q) {
-    const DensityState s = number_density(P, T[q]);
-    const double eta = prm.viscosity.at(T[q], T_ref);
-    const double deta = prm.viscosity.derivative(T[q], T_ref);
-    const double kappa = prm.conductivity.at(T[q], T_ref);
-    const double dkappa = prm.conductivity.derivative(T[q], T_ref);
-    const double source = heat_source_density(prm, v.point(q));
-    const dealii::SymmetricTensor<2, dim> eps_u = dealii::symmetrize(grad_u[q]);
-    const double div_u = dealii::trace(grad_u[q]);
-    const dealii::Tensor<1, dim> advection = grad_u[q] * u[q]; // (u . grad) u
-    const double u_grad_T = u[q] * grad_T[q];
+    const PointTerms t = point_terms(q, inv_dt);
+    const auto& s = t.s;
     const double JxW = v.fe_values.JxW(q);
-    // Transient: (u - u_old)/dt, (n - n_old)/dt, (T - T_old)/dt, (P - P_old)/dt.
-    const dealii::Tensor<1, dim> du = inv_dt > 0 ? u[q] - u_old_[q] : dealii::Tensor<1, dim>();
-    const double dT = inv_dt > 0 ? T[q] - T_old_[q] : 0.0;
-    const double n_old = inv_dt > 0 ? number_density(old_pressure_, T_old_[q]).n : 0.0;
-    const double dP = P - old_pressure_;
     v.shape_functions(q);
     if (with_jacobian) dn_dP_total_ += s.n_P * JxW;
     for (unsigned i = 0; i < v.n; ++i) {
-      // Weak residual (equations at the top of this file); viscous stress
-      // 2 eta S(u) - 2/3 eta div u I (Le Quere et al. 2005) against grad v.
-      const double viscous_i =
-          2 * eta * (eps_u * eps_phi_u[i]) - 2.0 / 3.0 * eta * div_u * div_phi_u[i];
-      const double residual =
-          m * s.n * (advection * phi_u[i]) + viscous_i - p[q] * div_phi_u[i] -
-          m * (s.n - n_mean) * (g * phi_u[i]) - phi_p[i] * (s.n * div_u + s.n_T * u_grad_T) +
-          cp * s.n * u_grad_T * phi_T[i] + kappa * (grad_T[q] * grad_phi_T[i]) - source * phi_T[i];
-      // Implicit Euler: m n du/dt . v - q dn/dt + (n c_p dT/dt - dP/dt) w (Le Quere et al.
-      // 2005; the dP/dt of the energy equation vanishes in a steady state).
-      const double transient =
-          inv_dt > 0 ? inv_dt * (m * s.n * (du * phi_u[i]) - phi_p[i] * (s.n - n_old) +
-                                 (cp * s.n * dT - dP) * phi_T[i])
-                     : 0.0;
-      out.rhs(i) -= (residual + transient) * JxW;
+      out.rhs(i) -= residual(t, q, i, g) * JxW;
       if (!with_jacobian) continue;
-      // dR/dP: n and n_T depend on P (grad n = n_T grad T at uniform P).
-      out.column(i) +=
-          (m * s.n_P * (advection * phi_u[i]) - m * s.n_P * (g * phi_u[i]) -
-           phi_p[i] * (s.n_P * div_u + s.n_TP * u_grad_T) + cp * s.n_P * u_grad_T * phi_T[i]) *
-          JxW;
+      out.column(i) += pressure_derivative(t, i, g) * JxW;
       if (inv_dt > 0)
-        out.column(i) +=
-            inv_dt *
-            (m * s.n_P * (du * phi_u[i]) - phi_p[i] * s.n_P + (cp * s.n_P * dT - 1.0) * phi_T[i]) *
-            JxW;
+        out.column(i) += inv_dt *
+                         (m * s.n_P * (t.du * phi_u[i]) - phi_p[i] * s.n_P +
+                          (cp * s.n_P * t.dT - 1.0) * phi_T[i]) *
+                         JxW;
       out.row(i) += s.n_T * phi_T[i] * JxW;
-      const double stress_u_i =
-          2 * (eps_u * eps_phi_u[i]) - 2.0 / 3.0 * div_u * div_phi_u[i]; // viscous_i / eta
-      for (unsigned j = 0; j < v.n; ++j) {
-        // Exact derivative of the residual above in direction (phi_u_j, phi_p_j, phi_T_j).
-        const double div_j = div_phi_u[j];
-        const double u_grad_T_j = phi_u[j] * grad_T[q] + u[q] * grad_phi_T[j];
-        const double jacobian =
-            m * s.n * ((grad_phi_u[j] * u[q] + grad_u[q] * phi_u[j]) * phi_u[i]) +
-            m * s.n_T * phi_T[j] * (advection * phi_u[i]) +
-            2 * eta * (eps_phi_u[j] * eps_phi_u[i]) - 2.0 / 3.0 * eta * div_j * div_phi_u[i] +
-            deta * phi_T[j] * stress_u_i - phi_p[j] * div_phi_u[i] -
-            m * s.n_T * phi_T[j] * (g * phi_u[i]) -
-            phi_p[i] * (s.n * div_j + s.n_T * phi_T[j] * div_u + s.n_T * u_grad_T_j +
-                        s.n_TT * phi_T[j] * u_grad_T) +
-            cp * s.n_T * phi_T[j] * u_grad_T * phi_T[i] + cp * s.n * u_grad_T_j * phi_T[i] +
-            kappa * (grad_phi_T[j] * grad_phi_T[i]) +
-            dkappa * phi_T[j] * (grad_T[q] * grad_phi_T[i]);
-        const double transient_j =
-            inv_dt > 0
-                ? inv_dt *
-                      (m * s.n * (phi_u[j] * phi_u[i]) + m * s.n_T * phi_T[j] * (du * phi_u[i]) -
-                       phi_p[i] * s.n_T * phi_T[j] + cp * (s.n + s.n_T * dT) * phi_T[j] * phi_T[i])
-                : 0.0;
-        out.matrix(i, j) += (jacobian + transient_j) * JxW;
-      }
+      for (unsigned j = 0; j < v.n; ++j) out.matrix(i, j) += jacobian(t, q, i, j, g) * JxW;
     }
   }
   walls_.add(cell, x, with_jacobian, out);

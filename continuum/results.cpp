@@ -69,12 +69,51 @@ io::Json heat_slabs_json(const std::vector<HeatSlab>& heat_slabs) {
 }
 } // namespace
 
+namespace {
+const char* model_name(Model model) {
+  return model == Model::Boussinesq     ? "boussinesq"
+         : model == Model::LowMach      ? "low-mach"
+         : model == Model::Compressible ? "compressible"
+                                        : "heat-conduction";
+}
+
+io::Json equation_of_state_json(const ContinuumParameters& p) {
+  io::Json eos = io::Json::object();
+  eos["form"] = "p = n k T + n^2 (b0 + b1 k T + b2 (n - n_ref))";
+  eos["b0"] = p.equation_of_state.b0;
+  eos["b1"] = p.equation_of_state.b1;
+  eos["b2"] = p.equation_of_state.b2;
+  eos["n_ref"] = p.equation_of_state.n_ref;
+  return eos;
+}
+
+io::Json wall_friction_json(const ContinuumParameters& p) {
+  return {{"form", "beta = 2 n [sqrt(m k T / 2 pi) + rho_w I_d gamma(T, T_w)], "
+                   "gamma = gamma_constant + gamma_inverse (1/T + 1/T_w)"},
+          {"wall_density", p.wall_friction.wall_density},
+          {"tangent_moment", p.wall_friction.tangent_moment},
+          {"gamma_constant", p.wall_friction.gamma_constant},
+          {"gamma_inverse", p.wall_friction.gamma_inverse}};
+}
+
+// A transient twin's time keys into j.
+void add_time_stepping(io::Json& j, const ContinuumParameters& p) {
+  j["end_time"] = p.end_time;
+  j["time_step"] = p.time_step;
+  if (p.model == Model::HeatConduction)
+    j["theta"] = p.theta;
+  else
+    j["time_scheme"] = p.model == Model::LowMach ? "implicit Euler" : "BDF2 (first step BDF1)";
+  j["initial_temperature"] = p.initial_temperature;
+  j["snapshot_times"] = p.snapshot_times;
+  j["snapshot_every"] = p.snapshot_every;
+  j["series_every"] = p.series_every;
+}
+} // namespace
+
 io::Json to_json(const ContinuumParameters& p) {
   io::Json j = io::Json::object();
-  j["model"] = p.model == Model::Boussinesq     ? "boussinesq"
-               : p.model == Model::LowMach      ? "low-mach"
-               : p.model == Model::Compressible ? "compressible"
-                                                : "heat-conduction";
+  j["model"] = model_name(p.model);
   j["dim"] = p.dim;
   j["box"] = triple(p.box, p.dim);
   if (p.bin_box[0] > 0) { // the scene's box in this twin's coordinates (walls moved in)
@@ -89,44 +128,20 @@ io::Json to_json(const ContinuumParameters& p) {
   j["thermal_expansion"] = p.thermal_expansion;
   j["reference_temperature"] = p.reference_temperature;
   j["viscosity"] = power_law(p.viscosity);
-  if (p.model == Model::LowMach || p.model == Model::Compressible) {
-    io::Json eos = io::Json::object();
-    eos["form"] = "p = n k T + n^2 (b0 + b1 k T + b2 (n - n_ref))";
-    eos["b0"] = p.equation_of_state.b0;
-    eos["b1"] = p.equation_of_state.b1;
-    eos["b2"] = p.equation_of_state.b2;
-    eos["n_ref"] = p.equation_of_state.n_ref;
-    j["equation_of_state"] = eos;
-  }
+  if (p.model == Model::LowMach || p.model == Model::Compressible)
+    j["equation_of_state"] = equation_of_state_json(p);
   if (p.model == Model::Compressible) j["bulk_viscosity"] = p.bulk_viscosity;
   j["conductivity"] = power_law(p.conductivity);
   bool kinetic = false;
   for (const auto& b : p.boundary) kinetic = kinetic || b.kinetic_slip[0] || b.kinetic_slip[1];
-  if (kinetic)
-    j["wall_friction"] = {{"form", "beta = 2 n [sqrt(m k T / 2 pi) + rho_w I_d gamma(T, T_w)], "
-                                   "gamma = gamma_constant + gamma_inverse (1/T + 1/T_w)"},
-                          {"wall_density", p.wall_friction.wall_density},
-                          {"tangent_moment", p.wall_friction.tangent_moment},
-                          {"gamma_constant", p.wall_friction.gamma_constant},
-                          {"gamma_inverse", p.wall_friction.gamma_inverse}};
+  if (kinetic) j["wall_friction"] = wall_friction_json(p);
   j["heat_slabs"] = heat_slabs_json(p.heat_slabs);
   j["coarse_cells"] = cells_json(p.cells, p.dim);
   j["refinements"] = p.refinements;
   j["newton_tolerance"] = p.newton_tolerance;
   j["continuation_start_rayleigh"] = p.continuation_start_rayleigh;
   j["mode"] = p.transient() ? "transient" : "steady";
-  if (p.transient()) {
-    j["end_time"] = p.end_time;
-    j["time_step"] = p.time_step;
-    if (p.model == Model::HeatConduction)
-      j["theta"] = p.theta;
-    else
-      j["time_scheme"] = p.model == Model::LowMach ? "implicit Euler" : "BDF2 (first step BDF1)";
-    j["initial_temperature"] = p.initial_temperature;
-    j["snapshot_times"] = p.snapshot_times;
-    j["snapshot_every"] = p.snapshot_every;
-    j["series_every"] = p.series_every;
-  }
+  if (p.transient()) add_time_stepping(j, p);
   j["bins"] = cells_json(p.bins, p.dim);
   return j;
 }

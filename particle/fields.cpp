@@ -139,62 +139,78 @@ void FieldSampler<D>::sample(const State<D>& s, const std::vector<double>& poten
   }
 }
 
-template <int D> BinnedFields FieldSampler<D>::result() const {
+namespace {
+// Each field sized for nbins bins, per component for vectors.
+BinnedFields sized_fields(int dim, int nbins) {
   BinnedFields f;
+  auto size = [&](FieldEstimate& e, int per) {
+    e.mean.assign(static_cast<std::size_t>(nbins) * per, 0.0);
+    e.stderr_.assign(static_cast<std::size_t>(nbins) * per, 0.0);
+  };
+  size(f.density, 1), size(f.temperature_kinetic, 1), size(f.temperature_internal, 1);
+  size(f.internal_energy, 1), size(f.velocity, dim);
+  size(f.flux_conductive, dim), size(f.flux_internal, dim), size(f.flux_kinetic, dim);
+  size(f.flux_potential, dim);
+  return f;
+}
+
+// e's slot: the mean and standard error over the blocks holding samples of per_block(b), one
+// estimate of the value per block.
+template <class PerBlock>
+void reduce_blocks(FieldEstimate& e, std::size_t slot, const std::vector<long>& block_samples,
+                   PerBlock&& per_block) {
+  double sum = 0, sum2 = 0;
+  int k = 0;
+  for (std::size_t b = 0; b < block_samples.size(); ++b) {
+    if (block_samples[b] == 0) continue;
+    const double v = per_block(static_cast<int>(b));
+    sum += v, sum2 += v * v, ++k;
+  }
+  const double mean = k ? sum / k : 0;
+  e.mean[slot] = mean;
+  e.stderr_[slot] = k > 1 ? std::sqrt(std::max(0.0, sum2 / k - mean * mean) / (k - 1)) : 0;
+}
+
+template <class Accumulator> double internal_temperature(const Accumulator& a) {
+  return a.inv_theta > 0 ? a.n / a.inv_theta : 0.0; // 1/<1/theta>
+}
+} // namespace
+
+// Per-block estimates of each field, then mean and standard error over blocks.
+template <int D> BinnedFields FieldSampler<D>::result() const {
+  BinnedFields f = sized_fields(D, nbins_);
   f.dim = D;
   f.bins = bins_;
   f.box = box_;
-  auto init = [&](FieldEstimate& e, int per) {
-    e.mean.assign(static_cast<std::size_t>(nbins_) * per, 0.0);
-    e.stderr_.assign(static_cast<std::size_t>(nbins_) * per, 0.0);
-  };
-  init(f.density, 1), init(f.temperature_kinetic, 1), init(f.temperature_internal, 1);
-  init(f.internal_energy, 1), init(f.velocity, D);
-  init(f.flux_conductive, D), init(f.flux_internal, D), init(f.flux_kinetic, D);
-  init(f.flux_potential, D);
-  // Per-block estimates of each field, then mean and standard error over blocks.
-  std::vector<double> values(blocks_);
-  auto reduce = [&](FieldEstimate& e, std::size_t slot, auto&& per_block) {
-    double sum = 0, sum2 = 0;
-    int k = 0;
-    for (int b = 0; b < blocks_; ++b) {
-      if (block_samples_[b] == 0) continue;
-      const double v = per_block(b);
-      sum += v, sum2 += v * v, ++k;
-    }
-    const double mean = k ? sum / k : 0;
-    e.mean[slot] = mean;
-    e.stderr_[slot] = k > 1 ? std::sqrt(std::max(0.0, sum2 / k - mean * mean) / (k - 1)) : 0;
-  };
-  const auto internal_temperature = [](const Accumulator& a) {
-    return a.inv_theta > 0 ? a.n / a.inv_theta : 0.0; // 1/<1/theta>
-  };
+  const auto& samples = block_samples_;
   for (int bin = 0; bin < nbins_; ++bin) {
     auto at = [&](int b) -> const Accumulator& {
       return acc_[static_cast<std::size_t>(b) * nbins_ + bin];
     };
-    reduce(f.density, bin, [&](int b) { return at(b).n / (block_samples_[b] * bin_volume_); });
-    for (int d = 0; d < D; ++d)
-      reduce(f.velocity, static_cast<std::size_t>(bin) * D + d,
-             [&](int b) { return at(b).n > 0 ? at(b).v[d] / at(b).n : 0.0; });
-    reduce(f.temperature_kinetic, bin, [&](int b) { return kinetic_temperature(at(b)); });
-    reduce(f.temperature_internal, bin, [&](int b) { return internal_temperature(at(b)); });
-    reduce(f.internal_energy, bin, [&](int b) { return at(b).n > 0 ? at(b).u / at(b).n : 0.0; });
-    // Flux densities: the bin's sum over the sample, per volume.
+    // per volume: density and the flux densities (the bin's sums over the sample)
+    auto per_volume = [&](int b, double sum) { return sum / (samples[b] * bin_volume_); };
+    auto per_particle = [&](int b, double sum) { return at(b).n > 0 ? sum / at(b).n : 0.0; };
+    reduce_blocks(f.density, bin, samples, [&](int b) { return per_volume(b, at(b).n); });
+    reduce_blocks(f.temperature_kinetic, bin, samples,
+                  [&](int b) { return kinetic_temperature(at(b)); });
+    reduce_blocks(f.temperature_internal, bin, samples,
+                  [&](int b) { return internal_temperature(at(b)); });
+    reduce_blocks(f.internal_energy, bin, samples, [&](int b) { return per_particle(b, at(b).u); });
     for (int d = 0; d < D; ++d) {
       const std::size_t slot = static_cast<std::size_t>(bin) * D + d;
-      reduce(f.flux_conductive, slot,
-             [&](int b) { return at(b).j_conductive[d] / (block_samples_[b] * bin_volume_); });
-      reduce(f.flux_internal, slot,
-             [&](int b) { return at(b).j_internal[d] / (block_samples_[b] * bin_volume_); });
-      reduce(f.flux_kinetic, slot,
-             [&](int b) { return at(b).j_kinetic[d] / (block_samples_[b] * bin_volume_); });
-      reduce(f.flux_potential, slot,
-             [&](int b) { return at(b).j_potential[d] / (block_samples_[b] * bin_volume_); });
+      reduce_blocks(f.velocity, slot, samples, [&](int b) { return per_particle(b, at(b).v[d]); });
+      reduce_blocks(f.flux_conductive, slot, samples,
+                    [&](int b) { return per_volume(b, at(b).j_conductive[d]); });
+      reduce_blocks(f.flux_internal, slot, samples,
+                    [&](int b) { return per_volume(b, at(b).j_internal[d]); });
+      reduce_blocks(f.flux_kinetic, slot, samples,
+                    [&](int b) { return per_volume(b, at(b).j_kinetic[d]); });
+      reduce_blocks(f.flux_potential, slot, samples,
+                    [&](int b) { return per_volume(b, at(b).j_potential[d]); });
     }
   }
   for (int b = 0; b < blocks_; ++b) {
-    if (block_samples_[b] == 0) continue;
+    if (samples[b] == 0) continue;
     std::vector<double> t(nbins_), ti(nbins_);
     for (int bin = 0; bin < nbins_; ++bin) {
       const Accumulator& a = acc_[static_cast<std::size_t>(b) * nbins_ + bin];

@@ -167,6 +167,22 @@ template <class M> void Simulation<M>::conservative_blocks() {
   }
 }
 
+// The block's pair noises and weights into s (after pair_geometry): xi, zeta; w_D, w_R; and the
+// heat law's weights where the model conducts heat.
+template <class M>
+void Simulation<M>::pair_noise_and_weights(const PairNoise& noise, const std::uint32_t* I,
+                                           const std::uint32_t* J, std::size_t n,
+                                           PairScratch<D>& s) const {
+  // The weights as locals, as in the sweeps: the stores into s cannot alias them.
+  const auto friction = model_.friction.w;
+  noise.pairs(n, I, J, state_.id.data(), s.xi.data(), s.zeta.data());
+  friction.eval(n, s.r.data(), s.wd.data(), s.wr.data());
+  if constexpr (M::Heat::active) {
+    const auto heat = model_.heat.w;
+    heat.eval(n, s.r.data(), s.wh.data(), s.swh.data());
+  }
+}
+
 // All pair forces at the current state (ec-verlet): F^C + F^D + F^R along e_ij, potentials and
 // heat rates q_ij (docs/theory.md; 002:(3), (7)); the same algebra as pair_force.
 template <class M> void Simulation<M>::force_blocks(const PairNoise& noise) {
@@ -178,14 +194,11 @@ template <class M> void Simulation<M>::force_blocks(const PairNoise& noise) {
   for (int d = 0; d < D; ++d) f[d] = carried_.f[d].data();
   double* pot = carried_.potential.data();
   double* q = carried_.q.data();
-  const std::uint32_t* id = state_.id.data();
   grid_.for_each_pair_block([&](const std::uint32_t* I, const std::uint32_t* J, std::size_t n) {
     auto& s = PairScratch<D>::get(n);
     n = pair_geometry(I, J, n, s);
     pair_gather(I, J, n, s, true);
-    noise.pairs(n, I, J, id, s.xi.data(), s.zeta.data());
-    fr.w.eval(n, s.r.data(), s.wd.data(), s.wr.data());
-    if constexpr (M::Heat::active) heat.w.eval(n, s.r.data(), s.wh.data(), s.swh.data());
+    pair_noise_and_weights(noise, I, J, n, s);
     double* __restrict fe = s.a.data();
     double* __restrict phi = s.b.data();
     double* __restrict qk = s.c.data();

@@ -16,7 +16,7 @@ namespace detail {
 // The compiled sets (families.cpp): the library's own (its flags: baseline, or -march=native), and
 // with dispatch one per x86-64 level above the baseline.
 extern "C" const Families twinflow_families_default;
-#ifdef TWINFLOW_DISPATCH
+#ifndef TWINFLOW_NATIVE
 extern "C" const Families twinflow_families_avx2;
 extern "C" const Families twinflow_families_avx512;
 #endif
@@ -27,7 +27,7 @@ namespace {
 // here the dimension and the conservative force, in run_models.tpp the friction and heat laws)
 const detail::FamilyEntry& family(const ParticleParameters& p) {
   const detail::Families* set = &detail::twinflow_families_default;
-#ifdef TWINFLOW_DISPATCH
+#ifndef TWINFLOW_NATIVE
   if (io::kernel_isa() == io::Isa::avx512) set = &detail::twinflow_families_avx512;
   if (io::kernel_isa() == io::Isa::avx2) set = &detail::twinflow_families_avx2;
 #endif

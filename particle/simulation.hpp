@@ -216,6 +216,8 @@ private:
                             PairScratch<D>& s) const;
   void pair_gather(const std::uint32_t* i, const std::uint32_t* j, std::size_t n, PairScratch<D>& s,
                    bool velocities) const;
+  void pair_noise_and_weights(const PairNoise& noise, const std::uint32_t* i,
+                              const std::uint32_t* j, std::size_t n, PairScratch<D>& s) const;
   void conservative_blocks();
   void force_blocks(const PairNoise& noise);
   void shardlow_sweep(const PairNoise& noise);

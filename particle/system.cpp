@@ -207,24 +207,16 @@ template <int D> std::size_t CellGrid<D>::pair_count() const {
   return n;
 }
 
-// The pairs (i, j) of cell c with i in c: j later in c, or in a half-shell neighbour cell,
-// appended to b. Distances as in visit_cell (minimum image by nearbyint), the test vectorised
-// over candidates. Order: see the end.
-template <int D>
-template <class T>
-void CellGrid<D>::build_cell(const Positions<T>& x, int c, double rc2, std::uint32_t base,
-                             PairBuffer& b) const {
-  const std::size_t first = start_[c], ni = start_[c + 1] - first;
-  if (ni == 0) return;
+template <int D> typename CellGrid<D>::CandidateRanges CellGrid<D>::candidate_ranges(int c) const {
   std::array<int, D> idx;
   int rem = c;
   for (int d = 0; d < D; ++d) {
     idx[d] = rem % n_[d];
     rem /= n_[d];
   }
-  // Candidates: the cell's own particles first, then each neighbour cell's (contiguous ranges).
-  std::size_t begin[D == 2 ? 5 : 14], end[D == 2 ? 5 : 14], ranges = 0, nc = ni;
-  begin[ranges] = first, end[ranges++] = first + ni;
+  CandidateRanges r;
+  r.begin[r.ranges] = start_[c], r.end[r.ranges++] = start_[c + 1];
+  r.count = start_[c + 1] - start_[c];
   for (const auto& offset : stencil_) {
     int nb = 0;
     bool outside = false, zero = true;
@@ -236,27 +228,49 @@ void CellGrid<D>::build_cell(const Positions<T>& x, int c, double rc2, std::uint
       nb = nb * n_[d] + k;
     }
     if (outside || zero || start_[nb] == start_[nb + 1]) continue;
-    begin[ranges] = start_[nb], end[ranges++] = start_[nb + 1];
-    nc += start_[nb + 1] - start_[nb];
+    r.begin[r.ranges] = start_[nb], r.end[r.ranges++] = start_[nb + 1];
+    r.count += start_[nb + 1] - start_[nb];
   }
-  auto& cand = b.cand;
-  if (cand.size() < nc) {
-    cand.resize(nc + nc / 2);
+  return r;
+}
+
+template <int D>
+template <class T>
+void CellGrid<D>::gather_candidates(const Positions<T>& x, const CandidateRanges& r,
+                                    PairBuffer& b) const {
+  const std::size_t nc = r.count;
+  if (b.cand.size() < nc) {
+    b.cand.resize(nc + nc / 2);
     for (int d = 0; d < D; ++d) b.cx[d].resize(nc + nc / 2);
     b.r2.resize(nc + nc / 2);
   }
   std::size_t k = 0;
-  for (std::size_t range = 0; range < ranges; ++range)
-    for (std::size_t j = begin[range]; j < end[range]; ++j, ++k) {
-      cand[k] = static_cast<std::uint32_t>(j);
+  for (std::size_t range = 0; range < r.ranges; ++range)
+    for (std::size_t j = r.begin[range]; j < r.end[range]; ++j, ++k) {
+      b.cand[k] = static_cast<std::uint32_t>(j);
       for (int d = 0; d < D; ++d) b.cx[d][k] = x[d][j];
     }
+}
+
+// The pairs (i, j) of cell c with i in c: j later in c, or in a half-shell neighbour cell,
+// appended to b. Distances as in visit_cell (minimum image by nearbyint), the test vectorised
+// over candidates. Order: see the end.
+template <int D>
+template <class T>
+void CellGrid<D>::build_cell(const Positions<T>& x, int c, double rc2, std::uint32_t base,
+                             PairBuffer& b) const {
+  const std::size_t first = start_[c], ni = start_[c + 1] - first;
+  if (ni == 0) return;
+  const CandidateRanges ranges = candidate_ranges(c);
+  const std::size_t nc = ranges.count;
+  gather_candidates(x, ranges, b);
   const std::size_t need = b.used + ni * nc + 8; // 8: append_close's margin
   if (b.i.size() < need) {
     const std::size_t grown = std::max(need, b.i.size() + b.i.size() / 4);
     b.i.grow(grown, b.used), b.j.grow(grown, b.used);
   }
-  const Candidates cs{b.cx[0].data(), b.cx[1].data(), b.cx[D - 1].data(), cand.data(), b.r2.data()};
+  const Candidates cs{b.cx[0].data(), b.cx[1].data(), b.cx[D - 1].data(), b.cand.data(),
+                      b.r2.data()};
   const double box[3] = {box_[0], box_[1], box_[D - 1]};
   const double inv[3] = {inv_box_[0], inv_box_[1], inv_box_[D - 1]};
   std::size_t m = b.used;

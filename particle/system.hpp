@@ -417,6 +417,15 @@ private:
   template <class T>
   void build_cell(const Positions<T>& x, int c, double rc2, std::uint32_t base,
                   PairBuffer& b) const;
+  // The index ranges of cell c's candidates: its own particles, then each half-shell
+  // neighbour's that holds any (contiguous in storage).
+  struct CandidateRanges {
+    std::size_t begin[D == 2 ? 5 : 14], end[D == 2 ? 5 : 14], ranges = 0, count = 0;
+  };
+  CandidateRanges candidate_ranges(int c) const;
+  // The candidates' indices and positions into b's scratch, in the ranges' order.
+  template <class T>
+  void gather_candidates(const Positions<T>& x, const CandidateRanges& r, PairBuffer& b) const;
   void interleave_cells(PairBuffer& b) const;
   void round_robin(PairBuffer& b, const std::size_t* bounds, std::size_t runs) const;
 

@@ -152,6 +152,47 @@ particle::RunControl run_control(const CaseParameters& p, const RunOptions& opti
   return control;
 }
 
+// The parameters a checkpoint belongs to: the case's record without the keys that change no
+// result (the checkpoint interval, ...).
+std::string checkpoint_parameters(io::Json record) {
+  for (auto it = record.begin(); it != record.end();)
+    it = changes_no_result(it.key()) ? record.erase(it) : std::next(it);
+  return record.dump();
+}
+
+// SIGINT, SIGTERM and SIGUSR1 (what a launcher passes on to its ranks, grid.cpp) to `handler`.
+void handle_stop_signals(void (*handler)(int)) {
+  for (const int sig : {SIGINT, SIGTERM, SIGUSR1}) std::signal(sig, handler);
+}
+
+// The stage directory made (rank 0) with the case's warnings printed, and a fresh run's old
+// checkpoint removed.
+void prepare_stage(const CaseParameters& p, const io::StageDirectory& stage,
+                   const fs::path& checkpoint_path, bool restart) {
+  for (const auto& warning : stiff_choice_warnings(p.particle, stability_limits()))
+    std::cerr << "particle: " << warning << "\n";
+  stage.create();
+  if (!restart) fs::remove(checkpoint_path); // a fresh run leaves no old one behind
+}
+
+// write_results; when an output cannot be written the run's last checkpoint is kept, and the
+// message says how to continue once there is space.
+io::Json write_results_keeping_checkpoint(const Case& c, const io::StageDirectory& stage,
+                                          particle::RunOutput& out, double wall_time,
+                                          const fs::path& checkpoint_path,
+                                          const RunOptions& options) {
+  try {
+    return write_results(c, stage, out, wall_time);
+  } catch (const io::OutputError& e) {
+    if (!fs::exists(checkpoint_path)) throw;
+    throw io::OutputError(
+        std::string(e.what()) +
+        "; the run's last checkpoint is kept: free the "
+        "space and continue with: " +
+        (options.continue_command.empty() ? std::string("--restart") : options.continue_command));
+  }
+}
+
 int report_interrupted(const Case& c, const RunOptions& options, const fs::path& run_dir,
                        const fs::path& checkpoint_path, long steps_done) {
   std::cerr << "twinflow: particle run "
@@ -175,22 +216,12 @@ int particle_stage(const Case& c, const RunOptions& options) {
   const fs::path run_dir = run_directory(options, p.name);
   const io::StageDirectory stage(run_dir, "particle", options.force && !options.restart);
   const fs::path checkpoint_path = particle_checkpoint(run_dir);
-  io::Json record = c.record;
-  for (auto it = record.begin(); it != record.end();)
-    it = changes_no_result(it.key()) ? record.erase(it) : std::next(it);
-  const std::string parameters = record.dump();
+  const std::string parameters = checkpoint_parameters(c.record);
   std::optional<io::Checkpoint> resume;
   if (options.restart) resume = checkpoint_to_continue(checkpoint_path, parameters, root);
   stop_signal = 0; // from here on a signal stops the run cleanly, with a checkpoint
-  std::signal(SIGINT, on_stop_signal);
-  std::signal(SIGTERM, on_stop_signal);
-  std::signal(SIGUSR1, on_stop_signal); // what a launcher passes on to its ranks (grid.cpp)
-  if (root) {
-    for (const auto& warning : stiff_choice_warnings(p.particle, stability_limits()))
-      std::cerr << "particle: " << warning << "\n";
-    stage.create();
-    if (!options.restart) fs::remove(checkpoint_path); // a fresh run leaves no old one behind
-  }
+  handle_stop_signals(on_stop_signal);
+  if (root) prepare_stage(p, stage, checkpoint_path, options.restart);
   if (ranks > 1) MPI_Barrier(MPI_COMM_WORLD);
   const auto started = std::chrono::steady_clock::now();
   const particle::RunControl control =
@@ -204,25 +235,14 @@ int particle_stage(const Case& c, const RunOptions& options) {
     if (ranks > 1) MPI_Abort(MPI_COMM_WORLD, kExitUnstable); // the other ranks wait for this one
     return kExitUnstable;
   }
-  std::signal(SIGINT, SIG_DFL);
-  std::signal(SIGTERM, SIG_DFL);
-  std::signal(SIGUSR1, SIG_DFL);
+  handle_stop_signals(SIG_DFL);
   if (!root) return out.interrupted ? kExitInterrupted : 0;
   if (out.interrupted)
     return report_interrupted(c, options, run_dir, checkpoint_path, out.steps_done);
-  io::Json convection;
-  try {
-    convection = write_results(
-        c, stage, out,
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count());
-  } catch (const io::OutputError& e) {
-    if (!fs::exists(checkpoint_path)) throw;
-    throw io::OutputError(
-        std::string(e.what()) +
-        "; the run's last checkpoint is kept: free the "
-        "space and continue with: " +
-        (options.continue_command.empty() ? std::string("--restart") : options.continue_command));
-  }
+  const double wall_time =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  const io::Json convection =
+      write_results_keeping_checkpoint(c, stage, out, wall_time, checkpoint_path, options);
   fs::remove(checkpoint_path); // finished: nothing to continue
   print_summary(out.summary, convection, stage.path());
   return 0;

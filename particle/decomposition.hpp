@@ -18,6 +18,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <stdexcept>
 #include <string>
@@ -148,6 +149,26 @@ void gather_in_rank_order(const Slabs& s, const T* local, std::size_t count, std
   MPI_Gatherv(local, n, mpi_type<T>(), out.data(), counts.data(), offsets.data(), mpi_type<T>(), 0,
               s.comm);
 }
+
+// A sum of doubles with the same bits in any order (threads, ranks): each term rounded to fixed
+// point at 2^-64 and added in 128 bits (|sum| < 2^63).
+class ExactSum {
+public:
+  void add(double x) { sum_ += static_cast<Fixed>(std::nearbyint(std::ldexp(x, 64))); }
+  double value() const { return std::ldexp(static_cast<double>(sum_), -64); }
+  // Collective on several ranks: every rank's sum, on every rank.
+  void add_over_ranks(const Slabs& s) {
+    if (!s.active()) return;
+    std::vector<Fixed> all(static_cast<std::size_t>(s.ranks));
+    MPI_Allgather(&sum_, sizeof(Fixed), MPI_BYTE, all.data(), sizeof(Fixed), MPI_BYTE, s.comm);
+    sum_ = 0;
+    for (const Fixed a : all) sum_ += a;
+  }
+
+private:
+  __extension__ typedef __int128 Fixed;
+  Fixed sum_ = 0;
+};
 
 // Running sums (the walls' energy and momentum) that one process adds particle by particle in
 // storage order. On several ranks each rank logs its terms with the number of the pass (a loop

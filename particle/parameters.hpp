@@ -61,7 +61,7 @@ struct ParticleParameters {
   std::uint64_t seed = 1;
 
   Integrator integrator = Integrator::Shardlow;
-  bool energy_offset = false; // seed 002's per-particle K+P offset, for euler and shardlow
+  bool energy_offset = false; // seed 002's K+P offset (shardlow: pooled with a pair force)
   double dt = 0.005;
   // Pairs within largest_cutoff() + skin are listed; the list is kept while no pair closer than
   // the cutoff can be missing (Simulation::update_neighbours; ec-verlet, shardlow). 0: a new list

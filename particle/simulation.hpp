@@ -262,6 +262,8 @@ private:
   // One S1 update of velocity component `v` against a wall (infinite mass, at rest).
   double wall_s1(double& v, double w, double sqrt_w, double gamma, double th_i, double th_wall,
                  double xi) const;
+  void add_pooled(ExactSum& pool) const;
+  void share_pool(ExactSum& pool);
   bool bad_particle(std::size_t i) const;
   void check_energies(const char* where) const;
   [[noreturn]] void fail(std::size_t i, const char* where) const;
@@ -280,7 +282,7 @@ private:
   long step_ = 0;
   double dt_, sqrt_dt_, inv_sqrt_dt_;
   std::array<std::vector<double>, D> v_old_;
-  std::vector<double> k_old_, p_old_;
+  std::vector<double> pooled_; // shardlow's K + P changes with a pair force (step_shardlow)
   std::vector<std::size_t> slab_members_;
   bool has_external_ = false; // walls or gravity: a per-particle pass, only if present
   typename M::Friction wall_friction_;

@@ -22,9 +22,12 @@ void declare_integration(Registry& r) {
             "terms around velocity-Verlet (Lisal et al. 2011).");
   r.declare(
       p + "Energy offset", "false", Bool(),
-      "euler/shardlow: take each particle's own kinetic and potential change from its internal "
-      "energy (002 Appendix A), which makes them conserve energy exactly with conservative "
-      "forces too. ec-verlet always does this.");
+      "euler/shardlow: take the kinetic and potential changes of the conservative kicks from "
+      "the internal energies (002 Appendix A), which makes them conserve energy exactly with "
+      "conservative forces too. euler: each particle's own. shardlow: each particle's own for "
+      "gravity and walls; with a pair force the step's total, shared evenly (a particle's own "
+      "would carry the pair force's energy flow in u: a walled fluid settles ~7% hot). "
+      "ec-verlet always takes each particle's own.");
   r.declare(p + "Time step", "0.005", Double(), "Time step dt (units of tau), > 0.", kPositive);
   r.declare(p + "Neighbour skin", "0.2", Double(),
             "ec-verlet and shardlow list the pairs closer than the cutoff + skin and keep the "

@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
 # The particle solver on MPI gives the one-process answer, bit for bit (particle/decomposition.hpp):
 # thermo.csv and fields.csv are byte-identical for (ranks, threads) = (1, 1), (1, 2), (2, 1) on
-# a shrunken default cavity (2D, walls), the periodic slab (3D, heat slabs) and a 3D walled
-# cavity, for each integrator; and a run checkpointed on 2 ranks continues on 1 (and the other
-# way) to the uninterrupted run's files.
+# a shrunken default cavity (2D, walls), the periodic slab (3D, heat slabs), a 3D walled cavity
+# and the repulsive column (2D, a pair force, gravity, walls), for each integrator; and a run
+# checkpointed on 2 ranks continues on 1 (and the other way) to the uninterrupted run's files.
 #
 # usage: mpi_determinism.sh TWINFLOW SOURCE_DIR WORK_DIR MPIRUN [restart]
 set -u
@@ -20,6 +20,10 @@ slab_3d=("$source_dir/cases/slab_conduction_periodic.prm" --set "Scene/Box size=
          --set "Scene/Field bins=8, 1, 1" --set "Scene/Heat slabs/Hot slab=4, 4.5"
          --set "Scene/Heat slabs/Cold slab=0, 0.5" --set "Scene/Heat slabs/Power=20"
          --set "Particle/Equilibration steps=20" --set "Particle/Steps=100")
+# The column: a pair force, gravity and walls (shardlow's offset pooled over the ranks).
+column_2d=("$source_dir/cases/conduction_column_repulsive_2d.prm" --set "Scene/Box size=8, 12"
+           --set "Scene/Field bins=1, 4" --set "Particle/Equilibration steps=20"
+           --set "Particle/Steps=100")
 cavity_3d=("$source_dir/cases/heated_cavity_3d.prm" --set "Scene/Box size=6, 4, 8"
            --set "Scene/Field bins=2, 1, 2" --set "Particle/Equilibration steps=20"
            --set "Particle/Steps=100")
@@ -48,7 +52,7 @@ same() { # same A B: thermo.csv and fields.csv of two runs byte for byte
 }
 
 if [ "$part" = determinism ]; then
-  for scene in cavity_2d slab_3d cavity_3d; do
+  for scene in cavity_2d slab_3d cavity_3d column_2d; do
     declare -n args=$scene
     for integrator in shardlow ec-verlet euler; do
       set_integrator=(--set "Particle/Integrator=$integrator")

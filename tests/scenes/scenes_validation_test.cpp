@@ -172,7 +172,7 @@ TEST(ScenesValidation, ShippedWallsHoldAFluidAtTheirTemperature) {
 // A fluid with a conservative force (the column's: a0 = 5) between thermal walls at its own
 // start temperature, no gravity: it must stay at T_w. Measured 2026-11-28: T_kinetic 1.0025 +-
 // 0.0013, T_internal 1.0017 +- 0.0010 with shardlow's offset pooled; 1.071 / 1.078 when each
-// particle's own K + P change went into its u (docs/validation.md, "Energy conservation").
+// particle's own K + P change went into its u (docs/validation.md, "Particle core").
 TEST(ScenesValidation, ConservativeFluidBetweenWallsStaysAtTheirTemperature) {
   const auto r =
       run_case("conduction_column_repulsive_2d",

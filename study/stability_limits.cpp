@@ -1,5 +1,6 @@
 #include "study/stability_limits.hpp"
 
+#include <optional>
 #include <sstream>
 
 #include "io/files.hpp"
@@ -48,6 +49,29 @@ const std::vector<StabilityLimit>& stability_limits() {
   return limits;
 }
 
+namespace {
+
+// ec-verlet, and euler with the offset, take each particle's own K + P change from its u (002
+// Appendix A): with a pair force that is the force's energy flow (docs/theory.md, "Energy").
+std::optional<std::string> per_particle_offset_warning(const particle::ParticleParameters& p,
+                                                       bool thermal_walls) {
+  using particle::Integrator;
+  const bool per_particle = p.integrator == Integrator::EcVerlet ||
+                            (p.integrator == Integrator::Euler && p.energy_offset);
+  if (!per_particle || !thermal_walls || p.energy != particle::EnergyModel::Dpde ||
+      p.conservative == particle::ConservativeForce::None)
+    return std::nullopt;
+  return std::string("warning: ") + particle::to_string(p.integrator) +
+         " takes each particle's own kinetic and potential change from its internal energy; with "
+         "a pair force that carries the force's energy flow in u, and a fluid between thermal "
+         "walls settles above their temperature (the column's fluid, walls at 1: 7% above when "
+         "shardlow took it per particle; ec-verlet at dt 0.002 and euler at 0.005 stopped with "
+         "u < 0); shardlow pools the change "
+         "(Particle/Integrator = shardlow, Particle/Energy offset = true)";
+}
+
+} // namespace
+
 std::vector<std::string> stiff_choice_warnings(const particle::ParticleParameters& p,
                                                const std::vector<StabilityLimit>& limits) {
   std::vector<std::string> out;
@@ -79,6 +103,7 @@ std::vector<std::string> stiff_choice_warnings(const particle::ParticleParameter
       }
     }
   }
+  if (const auto w = per_particle_offset_warning(p, thermal_walls)) out.push_back(*w);
   return out;
 }
 

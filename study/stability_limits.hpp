@@ -25,7 +25,8 @@ std::filesystem::path shipped_case(const std::string& name);
 // The shipped table (data/stability_limits.csv of the source tree).
 const std::vector<StabilityLimit>& stability_limits();
 
-// One line per stiff choice of `p` (empty: none).
+// One line per stiff or biased choice of `p` (empty: none): a time step beyond the stability
+// maps, a large fluctuation number, a per-particle energy offset with a pair force between walls.
 std::vector<std::string> stiff_choice_warnings(const particle::ParticleParameters& p,
                                                const std::vector<StabilityLimit>& limits);
 

@@ -10,6 +10,7 @@
 #include <sstream>
 #include <string>
 #include <sys/wait.h>
+#include <utility>
 
 #include "io/files.hpp"
 #include "io/json.hpp"
@@ -69,17 +70,23 @@ TEST(Cli, EveryShippedCaseIsValid) {
   }
 }
 
-// Stiff choices are caught up front (data/stability_limits.csv): ec-verlet on the 3D cavity at
-// its dt, euler on stiff_cavity at dt 0.05, each naming the stable alternative.
+// Stiff and biased choices are caught up front: ec-verlet on the 3D cavity at its dt, euler on
+// stiff_cavity at dt 0.05 (data/stability_limits.csv), ec-verlet's per-particle offset on the
+// column (a pair force between thermal walls), each naming the alternative.
 TEST(Cli, StiffChoicesWarnUpFront) {
   const std::string cases = std::string(TWINFLOW_SOURCE_DIR) + "/cases/";
-  for (const std::string& args :
-       {cases + "heated_cavity_3d.prm --set 'Particle/Integrator=ec-verlet'",
-        cases +
-            "stiff_cavity.prm --set 'Particle/Integrator=euler' --set 'Particle/Time step=0.05'"}) {
+  const std::pair<std::string, std::string> choices[] = {
+      {cases + "heated_cavity_3d.prm --set 'Particle/Integrator=ec-verlet'", "stability maps"},
+      {cases + "stiff_cavity.prm --set 'Particle/Integrator=euler' --set 'Particle/Time step=0.05'",
+       "stability maps"},
+      {cases + "conduction_column_repulsive_2d.prm --set 'Particle/Integrator=ec-verlet' --set "
+               "'Particle/Time step=0.002'",
+       "energy flow in u"}};
+  for (const auto& [args, phrase] : choices) {
     const Result r = run("check-case " + args);
     EXPECT_EQ(r.code, 0) << r.output;
     EXPECT_NE(r.output.find("warning: "), std::string::npos) << args << "\n" << r.output;
+    EXPECT_NE(r.output.find(phrase), std::string::npos) << args << "\n" << r.output;
     EXPECT_NE(r.output.find("Particle/Integrator = shardlow"), std::string::npos) << r.output;
   }
 }

@@ -262,6 +262,7 @@ private:
   // One S1 update of velocity component `v` against a wall (infinite mass, at rest).
   double wall_s1(double& v, double w, double sqrt_w, double gamma, double th_i, double th_wall,
                  double xi) const;
+  void book_offset(std::size_t i, double change, bool pooled);
   void add_pooled(ExactSum& pool) const;
   void share_pool(ExactSum& pool);
   bool bad_particle(std::size_t i) const;

@@ -428,20 +428,11 @@ template <class M> void Simulation<M>::step_shardlow() {
   // N ~ 1600 a region's start costs as much as a wall's work (docs/performance.md).
   const bool kicks = M::Conservative::active || has_external_;
   const bool offset = M::has_energy && p_.energy_offset && kicks;
-  // A pair force moves mechanical energy between particles (1/2 F_ij.(v_i + v_j) each step):
-  // taken from each particle's own u, that flow would be carried by the internal energies
-  // instead, and a walled fluid settles 7% above its walls. So with one, the step's change of
-  // K + P is pooled and shared evenly; one-body forces' changes stay with their particle.
-  const bool pooled = offset && M::Conservative::active;
+  const bool pooled = offset && M::Conservative::active; // share_pool says why
   ExactSum pool;
   if (pooled) pooled_.resize(owned_);
   auto book = [&](std::size_t i, double change) { // -(dK_i + dP_i), 002 Appendix A
-    if constexpr (M::has_energy) {
-      if (pooled)
-        pooled_[i] = change;
-      else if (offset)
-        state_.u[i] += change;
-    }
+    if (offset) book_offset(i, change, pooled);
   };
   const double half = 0.5 * dt_ / model_.mass, m2 = 0.5 * model_.mass;
   auto& v = state_.v;
@@ -481,12 +472,26 @@ template <class M> void Simulation<M>::step_shardlow() {
   if (pooled) share_pool(pool);
 }
 
+// Particle i's -(dK_i + dP_i) of a kick: into its u, or kept for the pool.
+template <class M> void Simulation<M>::book_offset(std::size_t i, double change, bool pooled) {
+  if constexpr (M::has_energy) {
+    if (pooled)
+      pooled_[i] = change;
+    else
+      state_.u[i] += change;
+  }
+}
+
 // Adds this rank's pooled changes in the pool (the same bits in any order).
 template <class M> void Simulation<M>::add_pooled(ExactSum& pool) const {
   for (std::size_t i = 0; i < owned_; ++i) pool.add(pooled_[i]);
 }
 
-// The pooled change of K + P, every rank's, shared evenly among all particles.
+// The pooled change of K + P, every rank's, shared evenly among all particles. A pair force moves
+// mechanical energy between particles (1/2 F_ij . (v_i + v_j) each step): taken from each
+// particle's own u, that flow would be carried by the internal energies instead, and a walled
+// fluid settles ~7% above its walls (docs/theory.md, "Energy"). One-body forces' changes stay
+// with their particle.
 template <class M> void Simulation<M>::share_pool(ExactSum& pool) {
   if constexpr (M::has_energy) {
     add_pooled(pool);

@@ -490,8 +490,8 @@ template <class M> void Simulation<M>::add_pooled(ExactSum& pool) const {
 // The pooled change of K + P, every rank's, shared evenly among all particles. A pair force moves
 // mechanical energy between particles (1/2 F_ij . (v_i + v_j) each step): taken from each
 // particle's own u, that flow would be carried by the internal energies instead, and a walled
-// fluid settles ~7% above its walls (docs/theory.md, "Energy"). One-body forces' changes stay
-// with their particle.
+// fluid settles ~7% above its walls (docs/theory.md, "The particle model"). One-body forces'
+// changes stay with their particle.
 template <class M> void Simulation<M>::share_pool(ExactSum& pool) {
   if constexpr (M::has_energy) {
     add_pooled(pool);

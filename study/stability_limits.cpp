@@ -52,7 +52,8 @@ const std::vector<StabilityLimit>& stability_limits() {
 namespace {
 
 // ec-verlet, and euler with the offset, take each particle's own K + P change from its u (002
-// Appendix A): with a pair force that is the force's energy flow (docs/theory.md, "Energy").
+// Appendix A): with a pair force that is the force's energy flow (docs/theory.md, "The particle
+// model").
 std::optional<std::string> per_particle_offset_warning(const particle::ParticleParameters& p,
                                                        bool thermal_walls) {
   using particle::Integrator;

@@ -115,6 +115,7 @@ int bench(const CommandLine& cl) {
   "  --set 'S/Key=value'   override a case key (repeatable; twinflow print-parameters lists "      \
   "them)\n"                                                                                        \
   "  --seed N              the same as --set Particle/Seed=N\n"                                    \
+  "  --ensemble K          the same as --set Particle/Ensemble=K: K realisations, merged\n"        \
   "  --threads N, -t N     OpenMP threads (default: every core; results are the same for any N)\n" \
   "  --force               overwrite an earlier run's results\n"
 #define TWINFLOW_RESTART_OPTIONS                                                                   \

@@ -145,6 +145,8 @@ po::options_description visible_options() {
       "version", "version, git revision, deal.II, HDF5 and MPI versions")(
       "threads,t", po::value<int>(), "OpenMP threads")("seed", po::value<long>(),
                                                        "random seed (Particle/Seed)")(
+      "ensemble", po::value<long>(),
+      "independent realisations of the particle run, merged (Particle/Ensemble)")(
       "force", "overwrite an earlier run's results")(
       "restart", "continue an interrupted run from its checkpoint")(
       "wall-time", po::value<std::string>(),
@@ -164,13 +166,16 @@ po::options_description visible_options() {
   return opts;
 }
 
-// The options every command shares: --out, --set, --seed, --threads, --force, --restart,
+// The options every command shares: --out, --set, --seed, --ensemble, --threads, --force,
+// --restart,
 // --wall-time.
 void read_run_options(const po::variables_map& vm, int argc, char** argv, app::CommandLine& cl) {
   if (vm.count("out")) cl.run.out = vm["out"].as<std::string>();
   if (vm.count("set")) cl.settings = vm["set"].as<std::vector<std::string>>();
   if (vm.count("seed"))
     cl.settings.push_back("Particle/Seed=" + std::to_string(vm["seed"].as<long>()));
+  if (vm.count("ensemble"))
+    cl.settings.push_back("Particle/Ensemble=" + std::to_string(vm["ensemble"].as<long>()));
   if (vm.count("threads")) {
     cl.run.threads = vm["threads"].as<int>();
     if (cl.run.threads < 1)

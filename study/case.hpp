@@ -56,6 +56,7 @@ struct CaseParameters {
   continuum::ContinuumParameters continuum;
   TwinChoice twin;
   double checkpoint_interval_minutes = 10; // Particle/Checkpoint interval; 0: when stopped only
+  int ensemble = 1; // Particle/Ensemble: independent realisations, merged (study/ensemble.hpp)
   compare::CompareParameters compare;
   StabilityBounds stability;
 };

@@ -11,6 +11,7 @@
 #include "io/files.hpp"
 #include "particle/run.hpp"
 #include "particle/simulation.hpp"
+#include "study/ensemble.hpp"
 #include "study/inputs.hpp"
 #include "study/ranks.hpp"
 #include "study/stability_limits.hpp"
@@ -207,21 +208,19 @@ int report_interrupted(const Case& c, const RunOptions& options, const fs::path&
 }
 } // namespace
 
-int particle_stage(const Case& c, const RunOptions& options) {
+int particle_run(const Case& c, const RunOptions& options, const io::StageDirectory& stage,
+                 const fs::path& checkpoint_path, bool restart) {
   const CaseParameters& p = c.parameters;
   // Under mpirun the particles are split over the ranks (particle/decomposition.hpp); rank 0
   // writes every file, the checkpoint included.
   const int ranks = particle::Slabs::world_size();
   const bool root = particle::Slabs::world_rank() == 0;
-  const fs::path run_dir = run_directory(options, p.name);
-  const io::StageDirectory stage(run_dir, "particle", options.force && !options.restart);
-  const fs::path checkpoint_path = particle_checkpoint(run_dir);
   const std::string parameters = checkpoint_parameters(c.record);
   std::optional<io::Checkpoint> resume;
-  if (options.restart) resume = checkpoint_to_continue(checkpoint_path, parameters, root);
+  if (restart) resume = checkpoint_to_continue(checkpoint_path, parameters, root);
   stop_signal = 0; // from here on a signal stops the run cleanly, with a checkpoint
   handle_stop_signals(on_stop_signal);
-  if (root) prepare_stage(p, stage, checkpoint_path, options.restart);
+  if (root) prepare_stage(p, stage, checkpoint_path, restart);
   if (ranks > 1) MPI_Barrier(MPI_COMM_WORLD);
   const auto started = std::chrono::steady_clock::now();
   const particle::RunControl control =
@@ -238,7 +237,8 @@ int particle_stage(const Case& c, const RunOptions& options) {
   handle_stop_signals(SIG_DFL);
   if (!root) return out.interrupted ? kExitInterrupted : 0;
   if (out.interrupted)
-    return report_interrupted(c, options, run_dir, checkpoint_path, out.steps_done);
+    return report_interrupted(c, options, run_directory(options, p.name), checkpoint_path,
+                              out.steps_done);
   const double wall_time =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   const io::Json convection =
@@ -246,6 +246,13 @@ int particle_stage(const Case& c, const RunOptions& options) {
   fs::remove(checkpoint_path); // finished: nothing to continue
   print_summary(out.summary, convection, stage.path());
   return 0;
+}
+
+int particle_stage(const Case& c, const RunOptions& options) {
+  if (c.parameters.ensemble > 1) return ensemble_particle_stage(c, options);
+  const fs::path run_dir = run_directory(options, c.parameters.name);
+  const io::StageDirectory stage(run_dir, "particle", options.force && !options.restart);
+  return particle_run(c, options, stage, particle_checkpoint(run_dir), options.restart);
 }
 
 int particle_command(const Case& c, const RunOptions& options) {

@@ -63,6 +63,9 @@ int particle_step(const Case& c, const RunOptions& options, const fs::path& run_
                   << (walls ? " (nominal and calibrated)" : "") << ", compare"
                   << (ranks > 1 ? " (particle runs on " + std::to_string(ranks) + " MPI ranks)"
                                 : "")
+                  << (p.ensemble > 1 ? "; the particle stage an ensemble of " +
+                                           std::to_string(p.ensemble) + " realisations"
+                                     : "")
                   << "\n";
         return 0;
       }))

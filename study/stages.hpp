@@ -20,8 +20,13 @@ inline std::filesystem::path particle_checkpoint(const std::filesystem::path& ru
   return run_dir / "particle" / "checkpoint.twfc";
 }
 
-// RUNDIR/particle. Exit code: 0, 4 (the run went unstable), 5 (interrupted, checkpoint written).
+// RUNDIR/particle (Particle/Ensemble > 1: its realisations, merged; study/ensemble.hpp). Exit
+// code: 0, 4 (the run went unstable), 5 (interrupted, checkpoint written).
 int particle_stage(const Case& c, const RunOptions& options);
+// One particle run into `stage`'s folder, its checkpoint at `checkpoint` (restart: continued
+// from it); every rank takes part, rank 0 writes.
+int particle_run(const Case& c, const RunOptions& options, const io::StageDirectory& stage,
+                 const std::filesystem::path& checkpoint, bool restart);
 // `twinflow particle`: the stage, its inputs recorded as `run` records them (a later `run` of
 // the same case reuses the results).
 int particle_command(const Case& c, const RunOptions& options);

@@ -34,7 +34,7 @@ io::Json measurement_inputs(const Case& c, const particle::ParticleParameters& p
   for (const auto& [path, value] : resolved.items()) {
     const bool fluid = path.rfind("Particle/", 0) == 0 && path.rfind("Particle/Walls/", 0) != 0 &&
                        path != "Particle/Steps" && path != "Particle/Equilibration steps" &&
-                       path != "Particle/Initial velocities" &&
+                       path != "Particle/Ensemble" && path != "Particle/Initial velocities" &&
                        path != "Particle/Initial internal energy" && !changes_no_result(path);
     if (fluid) j[path] = value;
   }

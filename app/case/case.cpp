@@ -54,6 +54,7 @@ study::Case CaseFile::resolve(const std::string& filename) const {
   c.scene = resolve_scene(registry_);
   c.particle = resolve_particle(registry_, c.scene);
   c.checkpoint_interval_minutes = registry_.get_double("Particle/Checkpoint interval");
+  c.ensemble = static_cast<int>(registry_.get_integer("Particle/Ensemble"));
   c.transport = resolve_transport(registry_);
   resolve_compare(registry_, c);
   c.continuum = resolve_continuum(registry_, c.scene, c.particle);

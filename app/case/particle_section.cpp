@@ -45,6 +45,11 @@ void declare_integration(Registry& r) {
             "Steps run before averages start (not sampled).");
   r.declare(p + "Steps", "1000", Integer(0), "Sampled steps after equilibration.");
   r.declare(p + "Seed", "1", Integer(0), "Seed of the counter-based random numbers.");
+  r.declare(p + "Ensemble", "1", Integer(1, 1000),
+            "Independent realisations of the particle run (seeds Seed, Seed + 1, ...), one after "
+            "another into particle/realisations/NN/, merged into particle/: each field, flux and "
+            "wall number the realisations' mean, its error the larger of their spread's, sd / "
+            "sqrt(K), and their blocks', sqrt(sum e^2) / K. 1-1000.");
   r.declare(p + "Checkpoint interval", "10", Double(0),
             "Wall-clock minutes between the checkpoints a particle run writes as it goes "
             "(particle/checkpoint.twfc; a crash or kill -9 loses at most this much; --restart "

@@ -163,7 +163,7 @@ def report_run(run_dir, out_dir):
     verdict_section(doc, run.metrics)
     doc.paragraph(f"Run directory: {os.path.abspath(run_dir)}. Twins compared: "
                   + (", ".join(TWIN_LABEL[t] for t in run.twins) or "none") + ". " + UNITS_NOTE
-                  + ".")
+                  + "." + ensemble_sentence(run.particle_summary))
     dimensionless_numbers_section(doc, run)
     what_was_compared_section(doc, run)
     distances_section(doc, run)
@@ -174,6 +174,17 @@ def report_run(run_dir, out_dir):
     continuum_accuracy(doc, run.summaries, run.twins)
     figures_section(doc, run, out_dir)
     write_documents(doc, out_dir)
+
+
+def ensemble_sentence(particle_summary):
+    """The sentence naming a merged ensemble (Particle/Ensemble > 1); "" for one run."""
+    ensemble = lookup(lookup(particle_summary, "results"), "ensemble", optional=True)
+    if not isinstance(ensemble, dict):
+        return ""
+    seeds = ensemble.get("seeds") or []
+    return (f" The particle stage: an ensemble of {ensemble.get('realisations')} realisations "
+            f"(seeds {', '.join(str(s) for s in seeds)}; particle/realisations/), merged: each "
+            f"error {ensemble.get('error_rule', '')}.")
 
 
 def verdict_section(doc, metrics):

@@ -49,6 +49,8 @@ namespace {
 // The measured coefficients' standard errors (NaN for estimates): the twin's own uncertainty.
 struct CoefficientErrors {
   double conductivity = std::nan(""), viscosity = std::nan("");
+  // their laws' powers of T (the fits' errors; a measured law's shape is uncertain too)
+  double conductivity_exponent = std::nan(""), viscosity_exponent = std::nan("");
 };
 
 // What the twin took from the transport stage.
@@ -103,7 +105,9 @@ TakenCoefficients take_transport_coefficients(const fs::path& run_dir, const Cas
                    "fluid's\n";
   }
   if (c.twin.wall_jumps_from_theory) take_wall_jumps(c, k, p);
-  return {k, {k.conductivity.stderr_, k.viscosity.stderr_}};
+  return {k,
+          {k.conductivity.stderr_, k.viscosity.stderr_, k.conductivity.exponent_stderr,
+           k.viscosity.exponent_stderr}};
 }
 
 // The wall theory's fluid density is the twin's own at each wall (its pressure, its
@@ -166,6 +170,19 @@ io::Json coefficient_uncertainty(const continuum::ContinuumParameters& p,
   };
   vary("conductivity", errors.conductivity, law(&continuum::ContinuumParameters::conductivity));
   vary("viscosity", errors.viscosity, law(&continuum::ContinuumParameters::viscosity));
+  // A law's power of T, its value at the reference temperature held (where the law has one).
+  const auto power = [](auto member) {
+    return [member](continuum::ContinuumParameters& q, double by) {
+      (q.*member).exponent += by;
+      return (q.*member).exponent - by;
+    };
+  };
+  if (p.conductivity.exponent != 0)
+    vary("conductivity_exponent", errors.conductivity_exponent,
+         power(&continuum::ContinuumParameters::conductivity));
+  if (p.viscosity.exponent != 0)
+    vary("viscosity_exponent", errors.viscosity_exponent,
+         power(&continuum::ContinuumParameters::viscosity));
   for (int d = 0; d < p.dim; ++d)
     for (int side = 0; side < 2; ++side)
       vary("kapitza_" + scene::wall_name(d, side), p.boundary[d].kapitza_conductance_stderr[side],

@@ -28,6 +28,7 @@ void with_power_law(const io::Json& summary, const std::string& key, double meas
   const double n_stderr = measured(summary, key + "_exponent_stderr");
   c.stderr_ = scale * std::hypot(c.stderr_, c.value * log_ratio * n_stderr);
   c.exponent = n;
+  c.exponent_stderr = n_stderr;
   c.value *= scale;
 }
 
@@ -40,6 +41,7 @@ bool with_state_law(const io::Json& summary, const std::string& key, double refe
   c.value = l.at(l.n0, reference_temperature);
   c.stderr_ = l.stderr_at(reference_temperature);
   c.exponent = l.a;
+  c.exponent_stderr = l.a_stderr;
   c.pair_fraction = l.pair_fraction(reference_temperature);
   c.pair_exponent = l.b;
   return true;

@@ -4,6 +4,7 @@
 // stage measured it, else the estimate with the measured g(r). Used by the continuum twin and
 // by `sweep --rayleigh`, so that both take the same numbers.
 
+#include <cmath>
 #include <string>
 
 #include "io/json.hpp"
@@ -18,6 +19,7 @@ struct Coefficient {
   // A measured law c(n, T) (transport/laws.hpp) at the requested temperature T_ref: the pair
   // part's fraction there and its power of T (the rest goes as T^exponent and not with n).
   double pair_fraction = 0, pair_exponent = 0;
+  double exponent_stderr = std::nan(""); // the fit's error of `exponent`
 };
 
 // p = n k T + n^2 (b0 + b1 k T + b2 (n - n_ref)): the ideal fluid (all 0) or the fit of a fluid

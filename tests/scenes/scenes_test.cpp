@@ -143,12 +143,19 @@ TEST(Scenes, ContinuumRescalesMeasuredPowerLawsToItsReferenceTemperature) {
               scale * std::hypot(kappa_se, kappa * log_ratio * n_se), 1e-9);
   EXPECT_NEAR(twinflow::io::find(u, {"viscosity", "stderr"})->get<double>(), 0.1,
               1e-12); // no exponent: as is
-  // More kappa carries more heat; the combined error is the two responses in quadrature.
+  // More kappa carries more heat; kappa's power of T moves by its error too (its value at the
+  // reference held); the combined error is the three responses in quadrature.
   const double dk =
       twinflow::io::find(u, {"conductivity", "heat_flux_relative_change"})->get<double>();
   const double de =
       twinflow::io::find(u, {"viscosity", "heat_flux_relative_change"})->get<double>();
+  EXPECT_NEAR(twinflow::io::find(u, {"conductivity_exponent", "stderr"})->get<double>(), n_se,
+              1e-12);
+  const double dn =
+      twinflow::io::find(u, {"conductivity_exponent", "heat_flux_relative_change"})->get<double>();
+  EXPECT_NE(dn, 0);
+  EXPECT_EQ(twinflow::io::find(u, {"viscosity_exponent"}), nullptr); // eta has no law in T here
   EXPECT_GT(dk, 0);
   EXPECT_NEAR(twinflow::io::find(u, {"heat_flux_relative_stderr"})->get<double>(),
-              std::hypot(dk, de), 1e-12);
+              std::sqrt(dk * dk + de * de + dn * dn), 1e-12);
 }

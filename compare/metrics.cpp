@@ -458,7 +458,8 @@ io::Json twin_results(const TwinRecord& t, const BinnedState& final_state,
   twin_heat_flow(t, scene, particle, q0, compare, j, table, verdict, log);
   if (verdict.line.rfind("; ", 0) == 0) verdict.line.erase(0, 2);
   verdict.line = "particle vs " + t.name + " twin: " + verdict.line;
-  j["within_errors"] = verdict.agrees; // the strict verdict, as a sweep's table reads it
+  j["within_errors"] = verdict.agrees;        // the strict verdict, as a sweep's table reads it
+  j["beyond_errors"] = verdict.disagreements; // what it names: "Nu", "temperature", ...
   table["within_errors_" + t.name] = verdict.agrees;
   j["rayleigh"] = io::number(t.summary, {"dimensionless", "rayleigh"});
   table["rayleigh_" + t.name] = io::number(t.summary, {"dimensionless", "rayleigh"});

@@ -86,6 +86,8 @@ struct RunOptions {
 // Case keys that change no result (how often a run checkpoints): left out of every inputs hash,
 // transport cache key and checkpoint comparison, so that changing them reuses and restarts.
 bool changes_no_result(const std::string& path);
+// The record without them: what a checkpoint or a finished run belongs to.
+io::Json without_keys_that_change_no_result(io::Json record);
 
 std::filesystem::path run_directory(const RunOptions& options, const std::string& case_name);
 

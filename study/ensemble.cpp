@@ -153,12 +153,13 @@ std::string merged_cell(const std::vector<io::CsvTable>& t, std::size_t row, std
   return exact_text(sum / static_cast<double>(t.size()));
 }
 
+// The realisations' tables, parsed; their columns (and with same_rows their row counts) equal.
 std::vector<io::CsvTable> parse_alike(const std::vector<std::string>& tables,
-                                      const std::string& name) {
+                                      const std::string& name, bool same_rows = true) {
   std::vector<io::CsvTable> t;
   for (const auto& text : tables) t.push_back(io::parse_csv(text));
   for (const auto& x : t)
-    if (x.header != t[0].header || x.rows.size() != t[0].rows.size())
+    if (x.header != t[0].header || (same_rows && x.rows.size() != t[0].rows.size()))
       throw std::runtime_error(name + ": the realisations' tables differ in their columns or rows");
   return t;
 }
@@ -206,11 +207,7 @@ std::string merge_table(const std::vector<std::string>& tables, const std::strin
 }
 
 std::string concatenate_blocks(const std::vector<std::string>& tables, const std::string& name) {
-  std::vector<io::CsvTable> t;
-  for (const auto& text : tables) t.push_back(io::parse_csv(text));
-  for (const auto& x : t)
-    if (x.header != t[0].header)
-      throw std::runtime_error(name + ": the realisations' tables differ in their columns");
+  const std::vector<io::CsvTable> t = parse_alike(tables, name, false);
   std::string out = t[0].comments + csv_line(t[0].header);
   long offset = 0;
   for (const auto& x : t) {
@@ -285,11 +282,8 @@ std::string realisation_name(int k) {
 bool finished_run_of(const fs::path& dir, const Case& c) {
   if (!fs::exists(dir / "summary.json")) return false;
   const io::Json summary = io::read_json(dir / "summary.json");
-  io::Json recorded = summary.value("parameters", io::Json::object()), wanted = c.record;
-  for (io::Json* r : {&recorded, &wanted})
-    for (auto it = r->begin(); it != r->end();)
-      it = changes_no_result(it.key()) ? r->erase(it) : std::next(it);
-  return recorded == wanted;
+  return without_keys_that_change_no_result(summary.value("parameters", io::Json::object())) ==
+         without_keys_that_change_no_result(c.record);
 }
 
 // The options for the next realisation: --wall-time counts from the ensemble's start (past it,
@@ -310,12 +304,13 @@ io::Json spread_over_blocks(const std::vector<io::FieldFile::Contents>& files) {
   io::Json out = io::Json::object();
   for (const io::Field& field : files[0].snapshots.back().fields) {
     if (field.standard_error.empty()) continue;
+    std::vector<const io::Field*> each;
+    for (const auto& f : files) each.push_back(f.snapshots.back().find(field.name));
     double sum2 = 0;
     std::size_t cells = 0;
     for (std::size_t i = 0; i < field.values.size(); ++i) {
       std::vector<double> values, errors;
-      for (const auto& f : files) {
-        const io::Field* x = f.snapshots.back().find(field.name);
+      for (const io::Field* x : each) {
         values.push_back(x->values[i]);
         errors.push_back(x->standard_error[i]);
       }
@@ -387,6 +382,7 @@ int ensemble_particle_stage(const Case& c, const RunOptions& options) {
     stage.create();
     if (!options.restart) fs::remove_all(realisations); // a fresh ensemble starts afresh
   }
+  const fs::path checkpoint = particle_checkpoint(run_dir); // the running realisation's
   std::vector<fs::path> dirs;
   for (int k = 0; k < p.ensemble; ++k) {
     const Case one = realisation_case(c, k);
@@ -398,7 +394,6 @@ int ensemble_particle_stage(const Case& c, const RunOptions& options) {
       std::cout << "particle: realisation " << k + 1 << " of " << p.ensemble << " (seed " << seed
                 << (done ? "): done earlier, kept" : ")") << std::endl;
     if (done) continue;
-    const fs::path checkpoint = particle_checkpoint(run_dir);
     const bool resume = from_rank_zero(options.restart && fs::exists(checkpoint) ? 1. : 0.);
     if (const int rc = particle_run(one, time_left(options, started), dir, checkpoint, resume))
       return rc;

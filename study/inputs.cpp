@@ -13,6 +13,12 @@ bool changes_no_result(const std::string& path) {
   return path == "Particle/Checkpoint interval";
 }
 
+io::Json without_keys_that_change_no_result(io::Json record) {
+  for (auto it = record.begin(); it != record.end();)
+    it = changes_no_result(it.key()) ? record.erase(it) : std::next(it);
+  return record;
+}
+
 fs::path run_directory(const RunOptions& options, const std::string& case_name) {
   return options.out.empty() ? fs::path("twinflow-runs") / case_name : options.out;
 }

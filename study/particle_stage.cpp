@@ -153,14 +153,6 @@ particle::RunControl run_control(const CaseParameters& p, const RunOptions& opti
   return control;
 }
 
-// The parameters a checkpoint belongs to: the case's record without the keys that change no
-// result (the checkpoint interval, ...).
-std::string checkpoint_parameters(io::Json record) {
-  for (auto it = record.begin(); it != record.end();)
-    it = changes_no_result(it.key()) ? record.erase(it) : std::next(it);
-  return record.dump();
-}
-
 // SIGINT, SIGTERM and SIGUSR1 (what a launcher passes on to its ranks, grid.cpp) to `handler`.
 void handle_stop_signals(void (*handler)(int)) {
   for (const int sig : {SIGINT, SIGTERM, SIGUSR1}) std::signal(sig, handler);
@@ -215,7 +207,7 @@ int particle_run(const Case& c, const RunOptions& options, const io::StageDirect
   // writes every file, the checkpoint included.
   const int ranks = particle::Slabs::world_size();
   const bool root = particle::Slabs::world_rank() == 0;
-  const std::string parameters = checkpoint_parameters(c.record);
+  const std::string parameters = without_keys_that_change_no_result(c.record).dump();
   std::optional<io::Checkpoint> resume;
   if (restart) resume = checkpoint_to_continue(checkpoint_path, parameters, root);
   stop_signal = 0; // from here on a signal stops the run cleanly, with a checkpoint

@@ -35,13 +35,17 @@ struct TwinVerdict {
 // errors (the report's rule, compare/report/run.py WITHIN_NOISE_STDERRS).
 constexpr double kWithinStderrs = 2;
 
+// Within errors: L2 no larger than what the particle's noise and the twin's inputs' errors give
+// together, or above it by at most kWithinStderrs of L2's own error.
 void distance_verdict(TwinVerdict& v, const char* name, const Distance& d) {
+  const double errors = std::hypot(d.noise, d.noise_twin);
   const bool within =
-      std::isfinite(d.l2) && std::isfinite(d.noise) &&
-      (d.l2 <= d.noise || (d.l2_stderr > 0 && d.l2 - d.noise <= kWithinStderrs * d.l2_stderr));
+      std::isfinite(d.l2) && std::isfinite(errors) &&
+      (d.l2 <= errors || (d.l2_stderr > 0 && d.l2 - errors <= kWithinStderrs * d.l2_stderr));
   v.line += std::string("; ") + name + " L2 " + say(d.l2, 3) + " +- " + say(d.l2_stderr, 2) +
-            " against noise " + say(d.noise, 3) + ": " +
-            (within ? "within noise" : "NOT within noise");
+            " against noise " + say(d.noise, 3) +
+            (d.noise_twin > 0 ? " and the twin's inputs' " + say(d.noise_twin, 3) : "") + ": " +
+            (within ? "within errors" : "NOT within errors");
   if (!within) v.agrees = false, v.disagreements.push_back(name);
 }
 } // namespace
@@ -81,6 +85,7 @@ std::vector<TwinRecord> read_twins(const fs::path& run_dir, const io::Grid& grid
     t.stage = stage;
     t.summary = io::read_json(dir / "summary.json");
     t.state = continuum_state(grid, dir / "bins.csv");
+    read_coefficient_responses(dir / "coefficient_responses.csv", t.state);
     twins.push_back(std::move(t));
   }
   if (twins.empty() || twins.front().name != "nominal")

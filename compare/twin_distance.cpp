@@ -40,10 +40,12 @@ std::vector<long> central_layers(long n) {
 } // namespace
 
 io::Json Distance::to_json() const {
-  return io::Json{{"l2", l2},         {"l2_stderr", l2_stderr},
-                  {"noise", noise},   {"excess_over_noise", excess},
-                  {"max", max},       {"max_stderr", max_stderr},
-                  {"max_at", max_at}, {"bins", static_cast<double>(bins)}};
+  io::Json j{{"l2", l2},         {"l2_stderr", l2_stderr},
+             {"noise", noise},   {"excess_over_noise", excess},
+             {"max", max},       {"max_stderr", max_stderr},
+             {"max_at", max_at}, {"bins", static_cast<double>(bins)}};
+  if (noise_twin > 0) j["noise_twin"] = noise_twin;
+  return j;
 }
 
 BinnedState particle_state(const io::Grid& grid, const io::Snapshot& snapshot) {
@@ -62,8 +64,11 @@ BinnedState particle_state(const io::Grid& grid, const io::Snapshot& snapshot) {
   return s;
 }
 
-BinnedState continuum_state(const io::Grid& grid, const std::filesystem::path& bins_csv) {
-  const io::CsvTable table = io::parse_csv(io::read_file(bins_csv));
+namespace {
+// The twin's bins from the rows of a table laid out as bins.csv (those of one `input` where the
+// table has that column, else all); `file` names it in errors.
+BinnedState state_from_table(const io::Grid& grid, const io::CsvTable& table,
+                             const std::string& file, const std::string& input = "") {
   const auto& header = table.header;
   const auto column = [&](const std::string& name) { return table.find(name); };
   const char* index_names[3] = {"ix", "iy", "iz"};
@@ -73,13 +78,14 @@ BinnedState continuum_state(const io::Grid& grid, const std::filesystem::path& b
     index_column[d] = column(index_names[d]);
     velocity_column[d] = column(velocity_names[d]);
     if (index_column[d] < 0)
-      throw io::InputError(bins_csv.string() + ": no column '" + index_names[d] +
+      throw io::InputError(file + ": no column '" + index_names[d] +
                            "'; the continuum's bins do not match the particle grid");
   }
   const int t_column = column("T");
-  if (t_column < 0) throw io::InputError(bins_csv.string() + ": no temperature column 'T'");
+  if (t_column < 0) throw io::InputError(file + ": no temperature column 'T'");
   const bool has_velocity = velocity_column[0] >= 0;
   const int n_column = column("n"); // the low-Mach twin's number density
+  const int input_column = column("input");
 
   BinnedState s;
   s.grid = grid;
@@ -90,13 +96,14 @@ BinnedState continuum_state(const io::Grid& grid, const std::filesystem::path& b
   long rows = 0;
   for (const auto& v : table.rows) {
     if (v.size() != header.size())
-      throw io::InputError(bins_csv.string() + ": a row has " + std::to_string(v.size()) +
+      throw io::InputError(file + ": a row has " + std::to_string(v.size()) +
                            " values, the header " + std::to_string(header.size()));
+    if (input_column >= 0 && v[input_column] != input) continue;
     std::array<long, 3> i{{0, 0, 0}};
     for (int d = 0; d < grid.dim; ++d) {
       i[d] = std::stol(v[index_column[d]]);
       if (i[d] < 0 || i[d] >= grid.counts[d])
-        throw io::InputError(bins_csv.string() + ": bin index " + std::to_string(i[d]) +
+        throw io::InputError(file + ": bin index " + std::to_string(i[d]) +
                              " outside the particle grid's " + std::to_string(grid.counts[d]));
     }
     const long b = flat_index(grid, i);
@@ -108,9 +115,33 @@ BinnedState continuum_state(const io::Grid& grid, const std::filesystem::path& b
     ++rows;
   }
   if (rows != cells)
-    throw io::InputError(bins_csv.string() + ": " + std::to_string(rows) +
-                         " bins, the particle grid has " + std::to_string(cells));
+    throw io::InputError(file + ": " + std::to_string(rows) + " bins" +
+                         (input.empty() ? "" : " for '" + input + "'") +
+                         ", the particle grid has " + std::to_string(cells));
   return s;
+}
+} // namespace
+
+BinnedState continuum_state(const io::Grid& grid, const std::filesystem::path& bins_csv) {
+  return state_from_table(grid, io::parse_csv(io::read_file(bins_csv)), bins_csv.string());
+}
+
+void read_coefficient_responses(const std::filesystem::path& csv, BinnedState& twin) {
+  twin.responses.clear();
+  if (!std::filesystem::exists(csv)) return;
+  const io::CsvTable table = io::parse_csv(io::read_file(csv));
+  const int input_column = table.find("input");
+  if (table.rows.empty()) return;
+  if (input_column < 0) throw io::InputError(csv.string() + ": no column 'input'");
+  std::vector<std::string> inputs; // in the file's order
+  for (const auto& v : table.rows)
+    if (std::find(inputs.begin(), inputs.end(), v.at(input_column)) == inputs.end())
+      inputs.push_back(v.at(input_column));
+  for (const std::string& input : inputs) {
+    BinnedState r = state_from_table(twin.grid, table, csv.string(), input);
+    twin.responses.push_back(
+        {input, std::move(r.temperature), std::move(r.velocity), std::move(r.density)});
+  }
 }
 
 std::vector<char> interior_bins(const io::Grid& grid, const std::array<bool, 3>& walled,
@@ -131,18 +162,29 @@ std::vector<char> interior_bins(const io::Grid& grid, const std::array<bool, 3>&
 }
 
 namespace {
-// l2, its error and the noise from per-bin squared differences and their error terms.
-Distance finish(double sum_d2, double sum_sigma2, double sum_d2_sigma2, long n, double max,
-                double max_se, std::array<double, 3> max_at) {
+// One field's sums over the interior bins: the squared differences, the particle's variances,
+// their products, and per twin response its dot product with the difference and its square.
+struct Sums {
+  double d2 = 0, sigma2 = 0, d2_sigma2 = 0, twin2 = 0;
+  std::vector<double> dot; // per response: sum of d . response
+};
+
+// l2, its error and the noises from the sums. d(mean d^2) = (2/n) sqrt(sum d^2 sigma^2 + sum over
+// responses (d . response)^2) (the particle's errors bin by bin, the twin's linearised in its
+// inputs' errors); d l2 = d(mean d^2) / (2 l2). docs/theory.md, "The distance between the twins
+// and its errors".
+Distance finish(const Sums& s, long n, double max, double max_se, std::array<double, 3> max_at) {
   Distance r;
   r.bins = n;
   if (n == 0) return r;
-  const double mean_d2 = sum_d2 / n;
+  const double mean_d2 = s.d2 / n;
   r.l2 = std::sqrt(mean_d2);
-  r.noise = std::sqrt(sum_sigma2 / n);
-  r.excess = std::sqrt(std::max(0.0, mean_d2 - sum_sigma2 / n));
-  // d(mean d^2) = (2/n) sqrt(sum d^2 sigma^2); d l2 = d(mean d^2) / (2 l2)
-  r.l2_stderr = r.l2 > 0 ? std::sqrt(sum_d2_sigma2) / (n * r.l2) : r.noise;
+  r.noise = std::sqrt(s.sigma2 / n);
+  r.noise_twin = std::sqrt(s.twin2 / n);
+  r.excess = std::sqrt(std::max(0.0, mean_d2 - s.sigma2 / n));
+  double var = s.d2_sigma2;
+  for (const double dot : s.dot) var += dot * dot;
+  r.l2_stderr = r.l2 > 0 ? std::sqrt(var) / (n * r.l2) : r.noise;
   r.max = max;
   r.max_stderr = max_se;
   r.max_at = max_at;
@@ -150,26 +192,35 @@ Distance finish(double sum_d2, double sum_sigma2, double sum_d2_sigma2, long n, 
 }
 
 // The distance of fields with `components` values per bin (1: scalar, dim: vector, compared by
-// the norm of the difference); `a_se` may be empty.
+// the norm of the difference); `a_se` may be empty; `responses` the twin's, one field each.
 Distance field_distance(const io::Grid& grid, const std::vector<double>& a,
                         const std::vector<double>& a_se, const std::vector<double>& c,
-                        int components, const std::vector<char>& interior, double scale) {
-  double s_d2 = 0, s_sig2 = 0, s_d2sig2 = 0, max = -1, max_se = 0;
+                        int components, const std::vector<char>& interior, double scale,
+                        const std::vector<const std::vector<double>*>& responses) {
+  Sums sums;
+  sums.dot.assign(responses.size(), 0.0);
+  double max = -1, max_se = 0;
   std::array<double, 3> at{{0, 0, 0}};
   long n = 0;
   for (long b = 0; b < grid.cell_count(); ++b) {
     if (!interior[b]) continue;
     double d2 = 0, sig2 = 0, d2sig2 = 0;
     for (int k = 0; k < components; ++k) {
-      const double d = (a[b * components + k] - c[b * components + k]) / scale;
-      const double sig = a_se.empty() ? 0 : a_se[b * components + k] / scale;
+      const long i = b * components + k;
+      const double d = (a[i] - c[i]) / scale;
+      const double sig = a_se.empty() ? 0 : a_se[i] / scale;
       d2 += d * d;
       sig2 += sig * sig;
       d2sig2 += d * d * sig * sig;
+      for (std::size_t r = 0; r < responses.size(); ++r) {
+        const double g = (*responses[r])[i] / scale;
+        sums.dot[r] += d * g;
+        sums.twin2 += g * g;
+      }
     }
-    s_d2 += d2;
-    s_sig2 += sig2;
-    s_d2sig2 += d2sig2;
+    sums.d2 += d2;
+    sums.sigma2 += sig2;
+    sums.d2_sigma2 += d2sig2;
     if (std::sqrt(d2) > max) {
       max = std::sqrt(d2);
       // error of |a - c| along its own direction
@@ -179,25 +230,37 @@ Distance field_distance(const io::Grid& grid, const std::vector<double>& a,
     }
     ++n;
   }
-  return finish(s_d2, s_sig2, s_d2sig2, n, std::max(max, 0.0), max_se, at);
+  return finish(sums, n, std::max(max, 0.0), max_se, at);
+}
+
+// The twin's responses of one field (those that have it).
+template <class Member>
+std::vector<const std::vector<double>*> responses_of(const BinnedState& twin, Member field) {
+  std::vector<const std::vector<double>*> out;
+  for (const auto& r : twin.responses)
+    if (!(r.*field).empty()) out.push_back(&(r.*field));
+  return out;
 }
 } // namespace
 
 Distance temperature_distance(const BinnedState& p, const BinnedState& c,
                               const std::vector<char>& interior, double scale) {
-  return field_distance(p.grid, p.temperature, p.temperature_se, c.temperature, 1, interior, scale);
+  return field_distance(p.grid, p.temperature, p.temperature_se, c.temperature, 1, interior, scale,
+                        responses_of(c, &BinnedState::Response::temperature));
 }
 
 Distance velocity_distance(const BinnedState& p, const BinnedState& c,
                            const std::vector<char>& interior, double scale) {
   if (!p.has_velocity() || !c.has_velocity()) return {};
-  return field_distance(p.grid, p.velocity, p.velocity_se, c.velocity, p.grid.dim, interior, scale);
+  return field_distance(p.grid, p.velocity, p.velocity_se, c.velocity, p.grid.dim, interior, scale,
+                        responses_of(c, &BinnedState::Response::velocity));
 }
 
 Distance density_distance(const BinnedState& p, const BinnedState& c,
                           const std::vector<char>& interior, double scale) {
   if (c.density.empty()) return {};
-  return field_distance(p.grid, p.density, p.density_se, c.density, 1, interior, scale);
+  return field_distance(p.grid, p.density, p.density_se, c.density, 1, interior, scale,
+                        responses_of(c, &BinnedState::Response::density));
 }
 
 WallFluidTemperature wall_fluid_temperature(const BinnedState& p, const std::vector<char>& interior,

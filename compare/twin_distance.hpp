@@ -21,6 +21,13 @@ struct BinnedState {
   std::vector<double> velocity, velocity_se; // empty if the twin has no flow
   std::vector<double> density, density_se;   // the particle's; the low-Mach twin's (no errors)
   std::vector<std::vector<double>> temperature_blocks; // the particle's per block (blocks.csv)
+  // A twin's change with each input moved by +1 standard error (coefficient_responses.csv), laid
+  // out as the fields; empty where the twin's inputs carry no errors.
+  struct Response {
+    std::string input;
+    std::vector<double> temperature, velocity, density;
+  };
+  std::vector<Response> responses;
   bool has_velocity() const { return !velocity.empty(); }
 };
 
@@ -33,6 +40,9 @@ std::vector<std::vector<double>> read_temperature_blocks(const io::Grid& grid,
 // RUNDIR/<continuum stage>/bins.csv on the same grid (throws io::InputError if it does not fit);
 // the density from its column "n" where there is one.
 BinnedState continuum_state(const io::Grid& grid, const std::filesystem::path& bins_csv);
+// A twin's coefficient_responses.csv (the continuum stage's, where its inputs carry errors) into
+// `twin.responses`; nothing where the file is absent.
+void read_coefficient_responses(const std::filesystem::path& csv, BinnedState& twin);
 
 // Bins whose whole extent lies at least `wall_layer` from every wall; `walled[d]`: direction d
 // has walls (else periodic).
@@ -45,8 +55,10 @@ std::vector<char> interior_bins(const io::Grid& grid, const std::array<bool, 3>&
 //   the particle's statistical error alone; excess = sqrt(max(0, l2^2 - noise^2)): the part
 //   that noise does not explain; l2_stderr propagates the block errors to l2;
 //   max = max_b |a_b - c_b| / scale with the standard error at that bin.
+// noise: the particle's, the L2 that its errors alone give; noise_twin: the L2 that the twin's
+// inputs' errors give (its responses); l2_stderr from both, the twin's linearised.
 struct Distance {
-  double l2 = 0, l2_stderr = 0, noise = 0, excess = 0;
+  double l2 = 0, l2_stderr = 0, noise = 0, excess = 0, noise_twin = 0;
   double max = 0, max_stderr = 0;
   std::array<double, 3> max_at{{0, 0, 0}}; // centre of the bin of the max
   long bins = 0;

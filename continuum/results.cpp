@@ -315,25 +315,50 @@ io::Json to_json(const ContinuumResult& r) {
   return j;
 }
 
-std::string bins_csv(const ContinuumResult& r, const ContinuumParameters& p) {
-  std::ostringstream out;
-  out << std::setprecision(12);
+namespace {
+void bins_header(std::ostream& out, const BinAverages& bins, int dim) {
   const char* axes = "xyz";
-  for (int d = 0; d < r.dim; ++d) out << "i" << axes[d] << ",";
-  for (int d = 0; d < r.dim; ++d) out << axes[d] << "_centre,";
-  for (std::size_t c = 0; c < r.bins.names.size(); ++c)
-    out << r.bins.names[c] << (c + 1 < r.bins.names.size() ? "," : "\n");
-  const auto& b = r.bins.bins;
-  const unsigned n = b[0] * (r.dim > 1 ? b[1] : 1) * (r.dim > 2 ? b[2] : 1);
+  for (int d = 0; d < dim; ++d) out << "i" << axes[d] << ",";
+  for (int d = 0; d < dim; ++d) out << axes[d] << "_centre,";
+  for (std::size_t c = 0; c < bins.names.size(); ++c)
+    out << bins.names[c] << (c + 1 < bins.names.size() ? "," : "\n");
+}
+
+// Each bin's line after `prefix`: indices (x fastest), centre, every field.
+void bins_rows(std::ostream& out, const BinAverages& bins, const ContinuumParameters& p, int dim,
+               const std::string& prefix) {
+  const auto& b = bins.bins;
+  const unsigned n = b[0] * (dim > 1 ? b[1] : 1) * (dim > 2 ? b[2] : 1);
   for (unsigned k = 0; k < n; ++k) {
     unsigned rest = k;
     std::array<unsigned, 3> idx{{0, 0, 0}};
-    for (int d = 0; d < r.dim; ++d) idx[d] = rest % b[d], rest /= b[d];
-    for (int d = 0; d < r.dim; ++d) out << idx[d] << ",";
-    for (int d = 0; d < r.dim; ++d) out << (idx[d] + 0.5) * p.bin_extent(d) / b[d] << ",";
-    for (std::size_t c = 0; c < r.bins.names.size(); ++c)
-      out << r.bins.values[c][k] << (c + 1 < r.bins.names.size() ? "," : "\n");
+    for (int d = 0; d < dim; ++d) idx[d] = rest % b[d], rest /= b[d];
+    out << prefix;
+    for (int d = 0; d < dim; ++d) out << idx[d] << ",";
+    for (int d = 0; d < dim; ++d) out << (idx[d] + 0.5) * p.bin_extent(d) / b[d] << ",";
+    for (std::size_t c = 0; c < bins.names.size(); ++c)
+      out << bins.values[c][k] << (c + 1 < bins.names.size() ? "," : "\n");
   }
+}
+} // namespace
+
+std::string bins_csv(const ContinuumResult& r, const ContinuumParameters& p) {
+  std::ostringstream out;
+  out << std::setprecision(12);
+  bins_header(out, r.bins, r.dim);
+  bins_rows(out, r.bins, p, r.dim, "");
+  return out.str();
+}
+
+std::string bin_responses_csv(const std::vector<BinResponse>& responses,
+                              const ContinuumParameters& p, int dim) {
+  std::ostringstream out;
+  out << std::setprecision(12)
+      << "# the twin's bins with one input moved by +1 standard error, minus its own\n";
+  if (responses.empty()) return out.str();
+  out << "input,";
+  bins_header(out, responses.front().change, dim);
+  for (const BinResponse& r : responses) bins_rows(out, r.change, p, dim, r.input + ",");
   return out.str();
 }
 

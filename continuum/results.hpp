@@ -109,6 +109,14 @@ io::Json to_json(const ContinuumParameters&);
 io::Json to_json(const ContinuumResult&);
 // One line per bin: indices, centre, every field.
 std::string bins_csv(const ContinuumResult&, const ContinuumParameters&);
+// The twin's bins with one input moved by +1 standard error, minus its own: the part of a
+// particle-twin difference that input's error can explain, bin by bin.
+struct BinResponse {
+  std::string input; // "conductivity", "kapitza_x_lower", ...
+  BinAverages change;
+};
+// One line per bin of each response: the input's name, then as bins_csv.
+std::string bin_responses_csv(const std::vector<BinResponse>&, const ContinuumParameters&, int dim);
 // One line per face quadrature point of each fixed-temperature wall.
 std::string wall_nusselt_csv(const ContinuumResult&);
 // One line per TimeSample, units in the header.

@@ -9,8 +9,10 @@ error over the runs and how many strict verdicts read "within errors".
 Everything is read from the runs' own files: particle/summary.json (the seed, the heat flow
 across the heated pair of walls), compare/metrics.json (Nu, the wall jumps, the distances,
 the strict verdict's `within_errors` and `beyond_errors`, the prediction tolerances) and
-continuum/summary.json (the twin's heat flux error from its coefficients)."""
+continuum/summary.json (the twin's heat flux error from its coefficients), compare/bins.csv (the
+twin's fields, whose scatter over the runs is checked against compare's `noise_twin`)."""
 
+import csv
 import glob
 import json
 import math
@@ -49,7 +51,39 @@ def run_row(run_dir):
         "beyond": nominal.get("beyond_errors", []),
         "within": nominal["within_errors"],
         "prediction": metrics["prediction"]["pass"],
+        "twin_fields": twin_fields(run_dir, metrics),
     }
+
+
+def twin_fields(run_dir, metrics):
+    """The nominal twin's interior bins (T, and the velocity vector) and their stated errors
+    from its inputs (compare's noise_twin, in the fields' own units; None without)."""
+    with open(os.path.join(run_dir, "compare", "bins.csv")) as f:
+        bins = [b for b in csv.DictReader(line for line in f if not line.startswith("#"))
+                if b["interior"] == "1"]
+    nominal = metrics["twins"]["nominal"]
+    velocity = [c for c in bins[0] if c.startswith("v") and c.endswith("_nominal")]
+
+    def stated(name, scale):
+        error = nominal.get(name, {}).get("noise_twin")
+        return None if error is None else error * metrics[scale]
+
+    return {"temperature": ([[float(b["T_nominal"])] for b in bins],
+                            stated("temperature", "temperature_scale")),
+            "velocity": ([[float(b[c]) for c in velocity] for b in bins],
+                         stated("velocity", "velocity_scale"))}
+
+
+def field_scatter(fields):
+    """The runs' sample variance per bin (a vector's summed over its components), rms over the
+    bins: what compare's noise_twin states for one run."""
+    runs, total = len(fields), 0.0
+    for b in range(len(fields[0])):
+        for c in range(len(fields[0][b])):
+            values = [f[b][c] for f in fields]
+            mean = sum(values) / runs
+            total += sum((v - mean) ** 2 for v in values) / (runs - 1)
+    return math.sqrt(total / len(fields[0]))
 
 
 def chi2_per_dof(pairs):
@@ -107,6 +141,14 @@ def print_checks(rows):
         chi2, sd, rms = chi2_per_dof(pairs)
         inside = "inside" if low <= chi2 <= high else "OUTSIDE"
         print(f"- {name}: {chi2:.3f} ({inside}; sd {sd:.4g}, rms stated {rms:.4g})")
+    for name in ("temperature", "velocity"):
+        stated = [r["twin_fields"][name][1] for r in rows]
+        if any(e is None for e in stated):
+            continue
+        scatter = field_scatter([r["twin_fields"][name][0] for r in rows])
+        rms = math.sqrt(sum(e * e for e in stated) / len(stated))
+        print(f"- the twin's {name} field over the runs' transport stages: scatter {scatter:.4g} "
+              f"against its stated error {rms:.4g} (ratio {scatter / rms:.2f}; 1 when right)")
     for name in ("Nu", "temperature", "velocity"):
         within = sum(1 for r in rows if name not in r["beyond"])
         print(f"- strict verdict, {name} within errors: {within} of {len(rows)}")

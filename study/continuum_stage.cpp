@@ -136,12 +136,28 @@ void take_wall_densities_from_twin(const CaseParameters& c, const transport::Coe
   }
 }
 
-// The twin's heat flux as its coefficients, and its Kapitza conductances, move by their standard
-// errors, one at a time (one more solve each, no files): the part of a particle-twin difference
-// the twin's own inputs can explain.
-io::Json coefficient_uncertainty(const continuum::ContinuumParameters& p,
-                                 const CoefficientErrors& errors, double heat_flux, MPI_Comm comm) {
-  io::Json j = io::Json::object();
+// The twin's heat flux and bins as its coefficients, and its Kapitza conductances, move by their
+// standard errors, one at a time (one more solve each, no files): the part of a particle-twin
+// difference the twin's own inputs can explain.
+struct Uncertainty {
+  io::Json json;
+  std::vector<continuum::BinResponse> responses; // each input's +1 stderr change of the bins
+};
+
+continuum::BinAverages bins_change(const continuum::BinAverages& moved,
+                                   const continuum::BinAverages& base) {
+  continuum::BinAverages d = moved;
+  for (std::size_t c = 0; c < d.values.size(); ++c)
+    for (std::size_t k = 0; k < d.values[c].size(); ++k) d.values[c][k] -= base.values[c][k];
+  return d;
+}
+
+Uncertainty coefficient_uncertainty(const continuum::ContinuumParameters& p,
+                                    const CoefficientErrors& errors,
+                                    const continuum::ContinuumResult& base, MPI_Comm comm) {
+  Uncertainty u;
+  io::Json& j = u.json = io::Json::object();
+  const double heat_flux = base.nusselt * base.numbers.conduction_flux;
   double variance = 0;
   const auto vary = [&](const std::string& name, double stderr_, auto shift) {
     if (!std::isfinite(stderr_) || stderr_ <= 0) return;
@@ -151,6 +167,8 @@ io::Json coefficient_uncertainty(const continuum::ContinuumParameters& p,
     try {
       const continuum::ContinuumResult r = continuum::run(shifted, "", comm);
       change = r.nusselt * r.numbers.conduction_flux / heat_flux - 1;
+      if (r.bins.names == base.bins.names && r.bins.bins == base.bins.bins)
+        u.responses.push_back({name, bins_change(r.bins, base.bins)});
     } catch (const std::exception& e) { // the twin itself converged: keep it, say what failed
       std::cout << "continuum: the solve with " << name << " + 1 stderr failed (" << e.what()
                 << ")\n";
@@ -191,7 +209,7 @@ io::Json coefficient_uncertainty(const continuum::ContinuumParameters& p,
              return q.boundary[d].kapitza_conductance[side] - by;
            });
   j["heat_flux_relative_stderr"] = std::sqrt(variance); // the errors taken as independent
-  return j;
+  return u;
 }
 
 bool has_kapitza_errors(const continuum::ContinuumParameters& p) {
@@ -286,25 +304,31 @@ void print_twin_result(const continuum::ContinuumResult& result,
   for (const auto& f : files) std::cout << ", " << f;
   std::cout << ")" << std::endl;
 }
-// summary.json's "coefficient_uncertainty" where the twin's inputs carry errors (a steady flow
-// on one process: the extra solves run there).
+// summary.json's "coefficient_uncertainty" and coefficient_responses.csv (compare's twin error
+// per bin) where the twin's inputs carry errors (a steady flow on one process: the extra solves
+// run there).
 void add_coefficient_uncertainty(const continuum::ContinuumParameters& p,
                                  const continuum::ContinuumResult& result,
                                  const CoefficientErrors& coefficient_errors, unsigned n_processes,
-                                 MPI_Comm comm, io::Json& summary) {
+                                 MPI_Comm comm, const io::StageDirectory& stage, io::Json& summary,
+                                 std::vector<std::string>& files) {
   const bool has_errors = std::isfinite(coefficient_errors.conductivity) ||
                           std::isfinite(coefficient_errors.viscosity) || has_kapitza_errors(p);
   if (has_errors && n_processes > 1)
     std::cout << "continuum: the coefficients' effect on the heat flux is not computed under "
                  "mpirun (its extra solves run on one process)\n";
-  if (result.model != "heat-conduction" && !p.transient() && n_processes == 1 && has_errors) {
-    summary["coefficient_uncertainty"] = coefficient_uncertainty(
-        p, coefficient_errors, result.nusselt * result.numbers.conduction_flux, comm);
-    std::cout << "continuum: heat flux +- "
-              << 100 * io::number(summary, {"coefficient_uncertainty", "heat_flux_relative_stderr"})
-              << "% from the measured coefficients' errors"
-              << (has_kapitza_errors(p) ? " and the Kapitza conductances'" : "") << "\n";
+  if (result.model == "heat-conduction" || p.transient() || n_processes > 1 || !has_errors) return;
+  const Uncertainty u = coefficient_uncertainty(p, coefficient_errors, result, comm);
+  summary["coefficient_uncertainty"] = u.json;
+  if (!u.responses.empty()) {
+    io::write_file_atomically(stage.file("coefficient_responses.csv"),
+                              continuum::bin_responses_csv(u.responses, p, result.dim));
+    files.push_back("coefficient_responses.csv");
   }
+  std::cout << "continuum: heat flux +- "
+            << 100 * io::number(summary, {"coefficient_uncertainty", "heat_flux_relative_stderr"})
+            << "% from the measured coefficients' errors"
+            << (has_kapitza_errors(p) ? " and the Kapitza conductances'" : "") << "\n";
 }
 } // namespace
 
@@ -343,7 +367,7 @@ int continuum_stage(const Case& c, const RunOptions& options, const std::string&
     take_wall_densities_from_twin(parameters, taken.coefficients, p, comm);
   const continuum::ContinuumResult result = continuum::run(p, stage.path(), comm);
   if (!root) return 0;
-  const std::vector<std::string> files = write_twin_tables(stage, result, p);
+  std::vector<std::string> files = write_twin_tables(stage, result, p);
   io::Json summary = io::Json::object();
   summary["stage"] = "continuum";
   summary["case"] = parameters.name;
@@ -355,7 +379,8 @@ int continuum_stage(const Case& c, const RunOptions& options, const std::string&
   summary["continuum_parameters"] = continuum::to_json(p);
   const io::Json measured = continuum::to_json(result);
   for (const auto& [key, value] : measured.items()) summary[key] = value;
-  add_coefficient_uncertainty(p, result, coefficient_errors, n_processes, comm, summary);
+  add_coefficient_uncertainty(p, result, coefficient_errors, n_processes, comm, stage, summary,
+                              files);
   summary["files"] = io::Json::array();
   for (const auto& f : files) summary["files"].push_back(f);
   summary["stage_wall_time_s"] =

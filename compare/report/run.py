@@ -33,14 +33,22 @@ def within_noise_sentence(name, distance):
     l2, se, noise = (number(distance, k) for k in ("l2", "l2_stderr", "noise"))
     if not (finite(l2) and finite(noise)):
         return f"{name}: no L2 in metrics.json."
+    # The twin's own error from its measured inputs, where compare had their responses.
+    twin = number(distance, "noise_twin", optional=True)
+    twin = twin if finite(twin) and twin > 0 else 0.0
+    errors = math.hypot(noise, twin)
     head = f"{name}: L2 = {fmt_pm(l2, se)} against a noise of {fmt(noise, 3)}"
+    if twin > 0:
+        head += (f" and the twin's {fmt(twin, 3)} from its measured inputs' errors "
+                 f"({fmt(errors, 3)} together)")
+    within, beyond = ("within errors", "not within errors: a difference between the twins") \
+        if twin > 0 else ("within noise", "not within noise: a difference between the twins")
     if finite(se) and se > 0:
-        over = (l2 - noise) / se
-        verdict = ("within noise" if over <= WITHIN_NOISE_STDERRS else
-                   "not within noise: a difference between the twins")
+        over = (l2 - errors) / se
+        verdict = within if over <= WITHIN_NOISE_STDERRS else beyond
         side = "above" if over >= 0 else "below"
         return f"{head}, {fmt(abs(over), 3)} standard errors {side} it — {verdict}."
-    return head + (" — within noise." if l2 <= noise else
+    return head + (f" — {within}." if l2 <= errors else
                    " — above the noise (no standard error).")
 
 
@@ -263,7 +271,9 @@ def distances_section(doc, run):
     sentences = within_noise_sentences(run)
     bound = fmt(WITHIN_NOISE_STDERRS, 2)
     doc.paragraph(f"Within noise? A difference counts as within noise when the L2 exceeds the "
-                  f"noise by at most {bound} of its standard errors (for Nu: when "
+                  f"noise by at most {bound} of its standard errors; where the twin's inputs "
+                  "were measured, the noise is combined with the L2 their errors give the twin "
+                  "(its fields re-solved with each input moved by its error) (for Nu: when "
                   f"|Nu particle − Nu twin| is at most {bound} "
                   "standard errors: the particle's, combined with the twin's where its "
                   "coefficients were measured).")

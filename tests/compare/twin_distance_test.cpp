@@ -85,6 +85,52 @@ TEST(TwinDistance, NoiseAloneIsRecognisedAsNoise) {
   EXPECT_LT(d.excess, 0.5 * d.noise);
 }
 
+// The twin's inputs' errors: a twin whose only difference from the particles is one input's
+// response g (moved by +1 of its errors) sits exactly at the twin's error, noise_twin = |g|; the
+// L2's error carries the response linearised (d . g); an offset five times the response is not
+// explained by it. Responses read back from the continuum stage's file by input.
+TEST(TwinDistance, TheTwinsInputsErrorsJoinTheParticleNoise) {
+  const io::Grid g = grid_2d(6, 4, 1.0);
+  const auto interior = compare::interior_bins(g, {{false, false, false}}, 0.0);
+  const auto p = linear_state(g, 1.0, 0.05, 0.002);
+  auto c = linear_state(g, 1.0, 0.05, 0);
+  compare::BinnedState::Response r{"conductivity", {}, {}, {}};
+  for (long b = 0; b < g.cell_count(); ++b) r.temperature.push_back(0.01 * (b % 2 ? 1 : -1));
+  c.responses.push_back(r);
+  for (long b = 0; b < g.cell_count(); ++b) c.temperature[b] -= r.temperature[b];
+  const auto d = compare::temperature_distance(p, c, interior, 1.0);
+  EXPECT_NEAR(d.noise, 0.002, 1e-15);
+  EXPECT_NEAR(d.noise_twin, 0.01, 1e-15);
+  EXPECT_NEAR(d.l2, 0.01, 1e-15);
+  // var(mean d^2) = (4/n^2) (sum d^2 sigma^2 + (d . g)^2), d = g: l2_se = sqrt(sigma^2/n + g^2):
+  // moved by one of its errors, the input would take the whole difference away (or double it)
+  const double n = g.cell_count();
+  EXPECT_NEAR(d.l2_stderr, std::sqrt(0.002 * 0.002 / n + 0.01 * 0.01), 1e-15);
+  EXPECT_NEAR(d.to_json().at("noise_twin").get<double>(), 0.01, 1e-15);
+  EXPECT_EQ(compare::temperature_distance(p, linear_state(g, 1.0, 0.05, 0), interior, 1.0)
+                .to_json()
+                .count("noise_twin"),
+            0u); // no responses: the record as before
+
+  const auto dir = std::filesystem::temp_directory_path() / "twinflow_twin_responses";
+  std::filesystem::create_directories(dir);
+  std::ofstream csv(dir / "coefficient_responses.csv");
+  csv << "# comment\ninput,ix,iy,x_centre,y_centre,u_x,u_y,T\n";
+  for (const char* input : {"conductivity", "viscosity"})
+    for (long b = 0; b < g.cell_count(); ++b)
+      csv << input << "," << b % 6 << "," << b / 6 << ",0,0," << 0.5 << "," << 0.25 << ","
+          << (std::string(input) == "viscosity" ? 0.001 * b : 0.0) << "\n";
+  csv.close();
+  compare::BinnedState twin = linear_state(g, 1.0, 0.0, 0);
+  compare::read_coefficient_responses(dir / "coefficient_responses.csv", twin);
+  ASSERT_EQ(twin.responses.size(), 2u);
+  EXPECT_EQ(twin.responses[1].input, "viscosity");
+  EXPECT_DOUBLE_EQ(twin.responses[1].temperature[7], 0.007);
+  EXPECT_DOUBLE_EQ(twin.responses[0].velocity[2 * 5 + 1], 0.25);
+  compare::read_coefficient_responses(dir / "absent.csv", twin);
+  EXPECT_TRUE(twin.responses.empty());
+}
+
 TEST(TwinDistance, WallTemperatureOfALinearProfileIsExact) {
   const io::Grid g = grid_2d(10, 10, 2.0);
   const auto interior = compare::interior_bins(g, {{true, true, false}}, 1.0);

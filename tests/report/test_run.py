@@ -47,6 +47,18 @@ class WithinNoise(unittest.TestCase):
         self.assertTrue(within_noise_sentence("t", {"l2": 0.04, "l2_stderr": None, "noise": 0.03})
                         .endswith(" — above the noise (no standard error)."))
 
+    def test_the_twins_inputs_join_the_noise(self):
+        # hypot(0.03, 0.04) = 0.05; (0.06 - 0.05) / 0.01 = 1 standard error above it.
+        sentence = within_noise_sentence(
+            "t", {"l2": 0.06, "l2_stderr": 0.01, "noise": 0.03, "noise_twin": 0.04})
+        self.assertEqual(
+            sentence, "t: L2 = 0.060 ± 0.010 against a noise of 0.03 and the twin's 0.04 from its "
+            "measured inputs' errors (0.05 together), 1 standard errors above it — within errors.")
+        sentence = within_noise_sentence(
+            "t", {"l2": 0.2, "l2_stderr": 0.01, "noise": 0.03, "noise_twin": 0.04})
+        self.assertTrue(sentence.endswith("not within errors: a difference between the twins."),
+                        sentence)
+
     def test_without_l2(self):
         self.assertEqual(within_noise_sentence("t", {"noise": 0.03}), "t: no L2 in metrics.json.")
 

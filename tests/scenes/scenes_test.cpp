@@ -1,6 +1,10 @@
 // The shipped scene cases, shrunk: what each reports is there and physically sound.
 #include "scene_run.hpp"
 
+#include <algorithm>
+
+#include "io/csv.hpp"
+
 using namespace twinflow::testing;
 
 // Ideal DPDE fluid between thermal walls at T = 1.1: no potential, so the density is uniform and
@@ -158,4 +162,18 @@ TEST(Scenes, ContinuumRescalesMeasuredPowerLawsToItsReferenceTemperature) {
   EXPECT_GT(dk, 0);
   EXPECT_NEAR(twinflow::io::find(u, {"heat_flux_relative_stderr"})->get<double>(),
               std::sqrt(dk * dk + de * de + dn * dn), 1e-12);
+  // Each input's response bin by bin, for compare: the three inputs, every bin once, not all
+  // zero.
+  const auto responses = twinflow::io::parse_csv(
+      twinflow::io::read_file(dir / "continuum" / "coefficient_responses.csv"));
+  const auto& bins = *twinflow::io::find(summary, {"continuum_parameters", "bins"});
+  const std::size_t per_input = bins[0].get<std::size_t>() * bins[1].get<std::size_t>();
+  ASSERT_EQ(responses.rows.size(), 3 * per_input);
+  const std::size_t input = responses.column("input", "coefficient_responses.csv");
+  const std::size_t T = responses.column("T", "coefficient_responses.csv");
+  EXPECT_EQ(responses.rows.front()[input], "conductivity");
+  EXPECT_EQ(responses.rows.back()[input], "conductivity_exponent");
+  double largest = 0;
+  for (const auto& row : responses.rows) largest = std::max(largest, std::fabs(std::stod(row[T])));
+  EXPECT_GT(largest, 1e-5);
 }

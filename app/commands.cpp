@@ -127,107 +127,126 @@ int bench(const CommandLine& cl) {
   "continues), 6 an output could not be written (disk full, permission denied: the message\n"      \
   "names the file and the reason; no incomplete file is left under a final name)\n"
 
+// Each command's `--help` text: usage, what it writes, options, an example, exit codes.
+namespace details {
+const char* const run =
+    "twinflow run CASE [options]\n\n"
+    "All stages into RUNDIR: particle/, transport/, continuum/ (nominal twin),\n"
+    "continuum_calibrated/ (walled scenes), compare/ and report/report.html. A stage whose\n"
+    "inputs are unchanged is reused; changed particle inputs need --force.\n\n"
+    "options:\n" TWINFLOW_STAGE_OPTIONS TWINFLOW_RESTART_OPTIONS
+    "\nexample (every stage in under a minute):\n"
+    "  twinflow run cases/quickstart_2d.prm --out runs/quickstart\n\n" TWINFLOW_EXIT_CODES;
+const char* const particle =
+    "twinflow particle CASE [options]\n\n"
+    "The case's Scene and Particle sections as DPDE particles into RUNDIR/particle/\n"
+    "(summary.json, fields.h5 + fields.xdmf, thermo.csv, ...). Checkpoints every\n"
+    "Particle/Checkpoint interval minutes (default 10) and when stopped (Ctrl-C, SIGTERM, "
+    "SIGUSR1).\n\n"
+    "options:\n" TWINFLOW_STAGE_OPTIONS TWINFLOW_RESTART_OPTIONS "\nexample:\n"
+    "  twinflow particle cases/heated_cavity_2d.prm --out runs/cavity --set "
+    "'Particle/Steps=4000'\n\n" TWINFLOW_EXIT_CODES;
+const char* const transport =
+    "twinflow transport CASE [options]\n\n"
+    "The fluid's coefficients at the case's state point into RUNDIR/transport/: theory, and\n"
+    "measured D, p, alpha (kappa and eta with Transport/Measure kappa and eta = true).\n"
+    "Measurements are cached in $TWINFLOW_CACHE (default ~/.cache/twinflow; off: none).\n\n"
+    "options:\n" TWINFLOW_STAGE_OPTIONS "\nexample:\n"
+    "  twinflow transport cases/thermal_relaxation.prm --out "
+    "runs/relaxation\n\n" TWINFLOW_EXIT_CODES;
+const char* const continuum =
+    "twinflow continuum CASE [options]\n\n"
+    "The case's continuum twin (Boussinesq, low-Mach or heat conduction) into\n"
+    "RUNDIR/continuum/ (summary.json, fields.h5 + fields.xdmf, bins.csv). With\n"
+    "Continuum/Coefficients/Source = transport it needs RUNDIR/transport/ first.\n\n"
+    "options:\n" TWINFLOW_STAGE_OPTIONS "\nexample:\n"
+    "  twinflow continuum cases/continuum_de_vahl_davis_1e4.prm --out "
+    "runs/dvd\n\n" TWINFLOW_EXIT_CODES;
+const char* const compare =
+    "twinflow compare RUNDIR [--set 'Compare/...=value' ...]\n\n"
+    "The twins' distances to the particle run of RUNDIR (the --out of twinflow run), with\n"
+    "error bars, into RUNDIR/compare/ (metrics.json, bins.csv, ...) and RUNDIR/report/.\n\n"
+    "options:\n"
+    "  --set 'S/Key=value'   Transport/, Continuum/ and Compare/ keys over the recorded case\n"
+    "\nexample:\n"
+    "  twinflow compare runs/quickstart\n\n" TWINFLOW_EXIT_CODES;
+const char* const sweep =
+    "twinflow sweep CASE --out DIR --vary 'Section/Key=V1,V2,...' [--vary ...] [options]\n\n"
+    "`run` at every point of a grid (the Cartesian product of the --vary axes) into\n"
+    "DIR/points/NNN/, one table DIR/sweep.csv and a report. The same command again\n"
+    "continues an interrupted sweep.\n\n"
+    "options:\n"
+    "  --vary 'S/Key=V1,V2'  one axis (repeatable; vector components separated by spaces)\n"
+    "  --rayleigh R1,R2      target Rayleigh numbers, reached by scaling |g|\n"
+    "  --jobs N, -j N        points run at once (default: cores / --threads)\n"
+    "  --launcher 'T {cmd}'  each point under a launcher: 'mpirun -np 2 {cmd}', 'srun -n 4 "
+    "{cmd}'\n"
+    "  --plan                write DIR/points/NNN/command.sh, run nothing (job arrays)\n"
+    "  --out, --set, --threads, --force as for run\n"
+    "\nexample:\n"
+    "  twinflow sweep cases/quickstart_2d.prm --out runs/seeds --vary 'Particle/Seed=1,2,3'\n\n"
+    "exit codes: 0 done (however many points failed), 2 bad input (nothing written),\n"
+    "5 interrupted (the same command continues), 6 an output could not be written\n";
+const char* const stability =
+    "twinflow stability CASE --out DIR --vary 'Section/Key=V1,V2,...' [options]\n\n"
+    "`particle` at every point of a grid, each classified (stable, energy_drift,\n"
+    "negative_internal_energy, ...) into DIR/stability.csv and a report.\n\n"
+    "options:\n"
+    "  --vary 'S/Key=V1,V2'  one axis (repeatable)\n"
+    "  --jobs N, -j N        points run at once (default: cores / --threads)\n"
+    "  --launcher 'T {cmd}'  each point under a launcher: 'mpirun -np 2 {cmd}', 'srun -n 4 "
+    "{cmd}'\n"
+    "  --plan                write DIR/points/NNN/command.sh, run nothing (job arrays)\n"
+    "  --out, --set, --threads, --force as for run\n"
+    "\nexample:\n"
+    "  twinflow stability cases/stiff_cavity.prm --out runs/map --vary 'Particle/Time "
+    "step=0.005,0.01'\n\n"
+    "exit codes: 0 done (however many points failed), 2 bad input (nothing written),\n"
+    "5 interrupted (the same command continues), 6 an output could not be written\n";
+const char* const bench =
+    "twinflow bench [--out DIR] [--set 'Bench/Key=value' ...]\n\n"
+    "Particle-steps/s per integrator, scene, size and thread count into DIR/bench/\n"
+    "(default twinflow-runs/bench). Keys: Bench/N, Bench/N2D, Bench/Scenes,\n"
+    "Bench/Integrators, Bench/Threads, Bench/Skin, Bench/Noise, Bench/Steps, Bench/Thermo;\n"
+    "Bench/Cavity (particle counts of the default cavity, walled beside its bulk fluid).\n"
+    "\nexample:\n"
+    "  twinflow bench --set 'Bench/N=6000' --set 'Bench/Threads=1,2'\n"
+    "  twinflow bench --set 'Bench/Cavity=1600,6400' --set "
+    "'Bench/Threads=1,2'\n\n" TWINFLOW_EXIT_CODES;
+const char* const check_case =
+    "twinflow check-case CASE [--set 'Section/Key=value' ...]\n\n"
+    "Loads the case as every stage would (includes, --set, every value checked) and prints\n"
+    "the resolved parameters. Writes nothing.\n"
+    "\nexample:\n"
+    "  twinflow check-case cases/quickstart_2d.prm --set 'Particle/Steps=2000'\n\n"
+    "exit codes: 0 valid, 2 not (one line naming file, line, key and the allowed range)\n";
+const char* const print_parameters =
+    "twinflow print-parameters\n\n"
+    "Every case-file key with its default, allowed values and documentation, as a valid\n"
+    "case file (the reference documentation of case files).\n"
+    "\nexample:\n"
+    "  twinflow print-parameters > all-keys.prm\n\n"
+    "exit codes: 0\n";
+} // namespace details
+
 const std::vector<Command>& commands() {
   static const std::vector<Command> table = {
       {"run", "CASE", "all stages: particle, transport, continuum twins, compare and report", run,
-       "twinflow run CASE [options]\n\n"
-       "All stages into RUNDIR: particle/, transport/, continuum/ (nominal twin),\n"
-       "continuum_calibrated/ (walled scenes), compare/ and report/report.html. A stage whose\n"
-       "inputs are unchanged is reused; changed particle inputs need --force.\n\n"
-       "options:\n" TWINFLOW_STAGE_OPTIONS TWINFLOW_RESTART_OPTIONS
-       "\nexample (every stage in under a minute):\n"
-       "  twinflow run cases/quickstart_2d.prm --out runs/quickstart\n\n" TWINFLOW_EXIT_CODES},
-      {"particle", "CASE", "the DPDE particle scene", particle,
-       "twinflow particle CASE [options]\n\n"
-       "The case's Scene and Particle sections as DPDE particles into RUNDIR/particle/\n"
-       "(summary.json, fields.h5 + fields.xdmf, thermo.csv, ...). Checkpoints every\n"
-       "Particle/Checkpoint interval minutes (default 10) and when stopped (Ctrl-C, SIGTERM, "
-       "SIGUSR1).\n\n"
-       "options:\n" TWINFLOW_STAGE_OPTIONS TWINFLOW_RESTART_OPTIONS "\nexample:\n"
-       "  twinflow particle cases/heated_cavity_2d.prm --out runs/cavity --set "
-       "'Particle/Steps=4000'\n\n" TWINFLOW_EXIT_CODES},
+       details::run},
+      {"particle", "CASE", "the DPDE particle scene", particle, details::particle},
       {"transport", "CASE", "the fluid's coefficients: estimated and measured", transport,
-       "twinflow transport CASE [options]\n\n"
-       "The fluid's coefficients at the case's state point into RUNDIR/transport/: theory, and\n"
-       "measured D, p, alpha (kappa and eta with Transport/Measure kappa and eta = true).\n"
-       "Measurements are cached in $TWINFLOW_CACHE (default ~/.cache/twinflow; off: none).\n\n"
-       "options:\n" TWINFLOW_STAGE_OPTIONS "\nexample:\n"
-       "  twinflow transport cases/thermal_relaxation.prm --out "
-       "runs/relaxation\n\n" TWINFLOW_EXIT_CODES},
-      {"continuum", "CASE", "the deal.II continuum twin", continuum,
-       "twinflow continuum CASE [options]\n\n"
-       "The case's continuum twin (Boussinesq, low-Mach or heat conduction) into\n"
-       "RUNDIR/continuum/ (summary.json, fields.h5 + fields.xdmf, bins.csv). With\n"
-       "Continuum/Coefficients/Source = transport it needs RUNDIR/transport/ first.\n\n"
-       "options:\n" TWINFLOW_STAGE_OPTIONS "\nexample:\n"
-       "  twinflow continuum cases/continuum_de_vahl_davis_1e4.prm --out "
-       "runs/dvd\n\n" TWINFLOW_EXIT_CODES},
+       details::transport},
+      {"continuum", "CASE", "the deal.II continuum twin", continuum, details::continuum},
       {"compare", "RUNDIR", "compare the twins of a finished run (and write its report)", compare,
-       "twinflow compare RUNDIR [--set 'Compare/...=value' ...]\n\n"
-       "The twins' distances to the particle run of RUNDIR (the --out of twinflow run), with\n"
-       "error bars, into RUNDIR/compare/ (metrics.json, bins.csv, ...) and RUNDIR/report/.\n\n"
-       "options:\n"
-       "  --set 'S/Key=value'   Transport/, Continuum/ and Compare/ keys over the recorded case\n"
-       "\nexample:\n"
-       "  twinflow compare runs/quickstart\n\n" TWINFLOW_EXIT_CODES},
-      {"sweep", "CASE", "a grid of paired runs (--vary, --rayleigh)", sweep,
-       "twinflow sweep CASE --out DIR --vary 'Section/Key=V1,V2,...' [--vary ...] [options]\n\n"
-       "`run` at every point of a grid (the Cartesian product of the --vary axes) into\n"
-       "DIR/points/NNN/, one table DIR/sweep.csv and a report. The same command again\n"
-       "continues an interrupted sweep.\n\n"
-       "options:\n"
-       "  --vary 'S/Key=V1,V2'  one axis (repeatable; vector components separated by spaces)\n"
-       "  --rayleigh R1,R2      target Rayleigh numbers, reached by scaling |g|\n"
-       "  --jobs N, -j N        points run at once (default: cores / --threads)\n"
-       "  --launcher 'T {cmd}'  each point under a launcher: 'mpirun -np 2 {cmd}', 'srun -n 4 "
-       "{cmd}'\n"
-       "  --plan                write DIR/points/NNN/command.sh, run nothing (job arrays)\n"
-       "  --out, --set, --threads, --force as for run\n"
-       "\nexample:\n"
-       "  twinflow sweep cases/quickstart_2d.prm --out runs/seeds --vary 'Particle/Seed=1,2,3'\n\n"
-       "exit codes: 0 done (however many points failed), 2 bad input (nothing written),\n"
-       "5 interrupted (the same command continues), 6 an output could not be written\n"},
+       details::compare},
+      {"sweep", "CASE", "a grid of paired runs (--vary, --rayleigh)", sweep, details::sweep},
       {"stability", "CASE", "classify particle runs over a parameter grid (--vary)", stability,
-       "twinflow stability CASE --out DIR --vary 'Section/Key=V1,V2,...' [options]\n\n"
-       "`particle` at every point of a grid, each classified (stable, energy_drift,\n"
-       "negative_internal_energy, ...) into DIR/stability.csv and a report.\n\n"
-       "options:\n"
-       "  --vary 'S/Key=V1,V2'  one axis (repeatable)\n"
-       "  --jobs N, -j N        points run at once (default: cores / --threads)\n"
-       "  --launcher 'T {cmd}'  each point under a launcher: 'mpirun -np 2 {cmd}', 'srun -n 4 "
-       "{cmd}'\n"
-       "  --plan                write DIR/points/NNN/command.sh, run nothing (job arrays)\n"
-       "  --out, --set, --threads, --force as for run\n"
-       "\nexample:\n"
-       "  twinflow stability cases/stiff_cavity.prm --out runs/map --vary 'Particle/Time "
-       "step=0.005,0.01'\n\n"
-       "exit codes: 0 done (however many points failed), 2 bad input (nothing written),\n"
-       "5 interrupted (the same command continues), 6 an output could not be written\n"},
-      {"bench", "", "particle-steps/s of the particle core", bench,
-       "twinflow bench [--out DIR] [--set 'Bench/Key=value' ...]\n\n"
-       "Particle-steps/s per integrator, scene, size and thread count into DIR/bench/\n"
-       "(default twinflow-runs/bench). Keys: Bench/N, Bench/N2D, Bench/Scenes,\n"
-       "Bench/Integrators, Bench/Threads, Bench/Skin, Bench/Noise, Bench/Steps, Bench/Thermo;\n"
-       "Bench/Cavity (particle counts of the default cavity, walled beside its bulk fluid).\n"
-       "\nexample:\n"
-       "  twinflow bench --set 'Bench/N=6000' --set 'Bench/Threads=1,2'\n"
-       "  twinflow bench --set 'Bench/Cavity=1600,6400' --set "
-       "'Bench/Threads=1,2'\n\n" TWINFLOW_EXIT_CODES},
+       details::stability},
+      {"bench", "", "particle-steps/s of the particle core", bench, details::bench},
       {"check-case", "CASE", "validate a case file and print its resolved parameters", check_case,
-       "twinflow check-case CASE [--set 'Section/Key=value' ...]\n\n"
-       "Loads the case as every stage would (includes, --set, every value checked) and prints\n"
-       "the resolved parameters. Writes nothing.\n"
-       "\nexample:\n"
-       "  twinflow check-case cases/quickstart_2d.prm --set 'Particle/Steps=2000'\n\n"
-       "exit codes: 0 valid, 2 not (one line naming file, line, key and the allowed range)\n"},
+       details::check_case},
       {"print-parameters", "", "every parameter with its default, range and documentation",
-       print_parameters,
-       "twinflow print-parameters\n\n"
-       "Every case-file key with its default, allowed values and documentation, as a valid\n"
-       "case file (the reference documentation of case files).\n"
-       "\nexample:\n"
-       "  twinflow print-parameters > all-keys.prm\n\n"
-       "exit codes: 0\n"},
+       print_parameters, details::print_parameters},
   };
   return table;
 }

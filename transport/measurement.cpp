@@ -154,6 +154,29 @@ Job relaxation_job(const Plan& plan, const PairDistribution& g, particle::Partic
           }};
 }
 
+// The heat slabs' job: kappa and its law at the scene's scale (slab_kappa.cpp).
+Job slab_job(const Plan& plan, Results& r, Clock::time_point start) {
+  const particle::ParticleParameters& p = plan.p;
+  // kappa's guess for the slabs' power: the particles' part rho (c_v + k) D with the measured D
+  // and the pair part; within ~15% for the default fluid, which sets the span within as much.
+  const double cv = p.energy == particle::EnergyModel::Dpde ? p.cv : 0.0;
+  const double guess = p.density * (cv + 1) * r.bulk.diffusion.mean + pair_parts(plan, r).kappa;
+  const particle::ParticleParameters slab =
+      slab_fluid(plan.scene, p, guess, r.with_g.heat_capacity_p);
+  const PairParts pairs = pair_parts(plan, r);
+  std::printf("transport: kappa from periodic heat slabs: %ld particles, %ld + %ld steps\n",
+              slab.particle_count(), slab.equilibration_steps, slab.steps);
+  std::fflush(stdout);
+  return {static_cast<double>(slab.particle_count()) * (slab.steps + slab.equilibration_steps),
+          [&plan, &r, start, slab, pairs] {
+            r.slab = kappa_from_slabs(slab, plan.p.density, plan.p.temperature, pairs.kappa,
+                                      pairs.kappa_exponent, r.bulk.diffusion_exponent.mean);
+            std::printf("transport: kappa from the heat slabs = %.4g +- %.2g; %.0f s\n",
+                        r.slab.kappa.mean, r.slab.kappa.stderr_, seconds_since(start));
+            std::fflush(stdout);
+          }};
+}
+
 // Step 2: the flow runs, one job each (relaxation at each temperature and at the isobar's ends,
 // the heat slabs, the wall run), spread over the cores.
 void measure_flows(const Plan& plan, Results& r) {
@@ -187,27 +210,7 @@ void measure_flows(const Plan& plan, Results& r) {
           relaxation_job(plan, measured_g, flows, end_repeats, r.at_isobar_ends[j], start));
     }
   }
-  if (plan.slabs) {
-    // kappa's guess for the slabs' power: the particles' part rho (c_v + k) D with the measured D
-    // and the pair part; within ~15% for the default fluid, which sets the span within as much.
-    const double cv = p.energy == particle::EnergyModel::Dpde ? p.cv : 0.0;
-    const double guess = p.density * (cv + 1) * r.bulk.diffusion.mean + pair_parts(plan, r).kappa;
-    const particle::ParticleParameters slab =
-        slab_fluid(plan.scene, p, guess, r.with_g.heat_capacity_p);
-    const PairParts pairs = pair_parts(plan, r);
-    std::printf("transport: kappa from periodic heat slabs: %ld particles, %ld + %ld steps\n",
-                slab.particle_count(), slab.equilibration_steps, slab.steps);
-    std::fflush(stdout);
-    jobs.push_back(
-        {static_cast<double>(slab.particle_count()) * (slab.steps + slab.equilibration_steps),
-         [&, slab, pairs] {
-           r.slab = kappa_from_slabs(slab, p.density, p.temperature, pairs.kappa,
-                                     pairs.kappa_exponent, r.bulk.diffusion_exponent.mean);
-           std::printf("transport: kappa from the heat slabs = %.4g +- %.2g; %.0f s\n",
-                       r.slab.kappa.mean, r.slab.kappa.stderr_, seconds_since(start));
-           std::fflush(stdout);
-         }});
-  }
+  if (plan.slabs) jobs.push_back(slab_job(plan, r, start));
   if (plan.t.kappa_from_walls)
     jobs.push_back({4000.0 * plan.t.wall_steps * 1.2, [&] {
                       r.walls = kappa_from_walls(plan.scene, plan.scene_fluid, p.temperature,

@@ -85,7 +85,12 @@ std::vector<TwinRecord> read_twins(const fs::path& run_dir, const io::Grid& grid
     t.stage = stage;
     t.summary = io::read_json(dir / "summary.json");
     t.state = continuum_state(grid, dir / "bins.csv");
-    read_coefficient_responses(dir / "coefficient_responses.csv", t.state);
+    // Only a responses file the twin's own summary names (an older one may lie beside it).
+    const io::Json* files = io::find(t.summary, {"files"});
+    const bool has_responses =
+        files && files->is_array() &&
+        std::find(files->begin(), files->end(), "coefficient_responses.csv") != files->end();
+    if (has_responses) read_coefficient_responses(dir / "coefficient_responses.csv", t.state);
     twins.push_back(std::move(t));
   }
   if (twins.empty() || twins.front().name != "nominal")

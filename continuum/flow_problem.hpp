@@ -64,6 +64,9 @@ private:
                          int iterations_before, double previous_nusselt);
   // In time: from the initial state to the end time; time series and field snapshots.
   void march_in_time(const std::filesystem::path& dir, ContinuumResult& result);
+  // One step to `time` with the BDF coefficients `bdf`: the history from x^n and x^{n-1}
+  // (`previous`, moved on), one Newton solve from the last state; its Newton iterations.
+  int step_in_time(int step, double time, const std::array<double, 3>& bdf, Vector& previous);
   // Residual (always) and Jacobian (if `with_jacobian`) at `evaluation_point_` for gravity
   // scaled by `gravity_factor`, with the time derivatives of the current step when in time;
   // returns the residual norm.

@@ -133,6 +133,30 @@ FlowProblem<dim, Model, Backend>::finish_level(int level,
 }
 
 template <int dim, class Model, class Backend>
+int FlowProblem<dim, Model, Backend>::step_in_time(int step, double time,
+                                                   const std::array<double, 3>& bdf,
+                                                   Vector& previous) {
+  // d/dt x ~ a0 x + history, history from x^n and x^{n-1} (time_schedule.hpp).
+  bdf_ = bdf;
+  Vector history = solution_;
+  history *= bdf_[1];
+  history.add(bdf_[2], previous);
+  history_ = history;
+  older_ = previous;
+  previous_ = solution_;
+  previous = solution_;
+  model_.begin_time_step(time);
+  int iterations = 0;
+  if (!newton(1.0, iterations))
+    throw std::runtime_error(std::string(Model::name) + ": Newton did not converge in time step " +
+                             std::to_string(step) + " (t = " + std::to_string(time) +
+                             "); try a smaller time step");
+  evaluation_point_ = solution_;
+  model_.update_derived_state(dof_handler_, evaluation_point_);
+  return iterations;
+}
+
+template <int dim, class Model, class Backend>
 void FlowProblem<dim, Model, Backend>::march_in_time(const std::filesystem::path& dir,
                                                      ContinuumResult& result) {
   // On the finest mesh from the initial state; one Newton solve per step, from the last state.
@@ -160,28 +184,12 @@ void FlowProblem<dim, Model, Backend>::march_in_time(const std::filesystem::path
   };
   record(0, 0);
 
-  Vector previous = solution_, history = solution_; // x^{n-1}; the history of a step
+  Vector previous = solution_; // x^{n-1}
   for (auto* v : {&history_, &previous_, &older_}) backend_.reinit_ghosted(*v);
   const auto start = std::chrono::steady_clock::now();
   for (int step = 1; step <= schedule.steps(); ++step) {
-    // d/dt x ~ a0 x + history, history from x^n and x^{n-1} (time_schedule.hpp).
-    bdf_ = schedule.coefficients(step);
-    history = solution_;
-    history *= bdf_[1];
-    history.add(bdf_[2], previous);
-    history_ = history;
-    older_ = previous;
-    previous_ = solution_;
-    previous = solution_;
-    model_.begin_time_step(schedule.time(step));
-    int iterations = 0;
-    if (!newton(1.0, iterations))
-      throw std::runtime_error(std::string(Model::name) +
-                               ": Newton did not converge in time step " + std::to_string(step) +
-                               " (t = " + std::to_string(schedule.time(step)) +
-                               "); try a smaller time step");
-    evaluation_point_ = solution_;
-    model_.update_derived_state(dof_handler_, evaluation_point_);
+    const int iterations =
+        step_in_time(step, schedule.time(step), schedule.coefficients(step), previous);
     record(step, iterations);
     if (schedule.is_report(step)) {
       const TimeSample s = sample(step, iterations);

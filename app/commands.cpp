@@ -127,6 +127,16 @@ int bench(const CommandLine& cl) {
   "continues), 6 an output could not be written (disk full, permission denied: the message\n"      \
   "names the file and the reason; no incomplete file is left under a final name)\n"
 
+// The options and exit codes of the grid commands (sweep, stability).
+#define TWINFLOW_GRID_OPTIONS                                                                      \
+  "  --jobs N, -j N        points run at once (default: cores / --threads)\n"                      \
+  "  --launcher 'T {cmd}'  each point under a launcher: 'mpirun -np 2 {cmd}', 'srun -n 4 {cmd}'\n" \
+  "  --plan                write DIR/points/NNN/command.sh, run nothing (job arrays)\n"            \
+  "  --out, --set, --threads, --force as for run\n"
+#define TWINFLOW_GRID_EXIT_CODES                                                                   \
+  "exit codes: 0 done (however many points failed), 2 bad input (nothing written),\n"              \
+  "5 interrupted (the same command continues), 6 an output could not be written\n"
+
 // Each command's `--help` text: usage, what it writes, options, an example, exit codes.
 namespace details {
 const char* const run =
@@ -177,32 +187,18 @@ const char* const sweep =
     "continues an interrupted sweep.\n\n"
     "options:\n"
     "  --vary 'S/Key=V1,V2'  one axis (repeatable; vector components separated by spaces)\n"
-    "  --rayleigh R1,R2      target Rayleigh numbers, reached by scaling |g|\n"
-    "  --jobs N, -j N        points run at once (default: cores / --threads)\n"
-    "  --launcher 'T {cmd}'  each point under a launcher: 'mpirun -np 2 {cmd}', 'srun -n 4 "
-    "{cmd}'\n"
-    "  --plan                write DIR/points/NNN/command.sh, run nothing (job arrays)\n"
-    "  --out, --set, --threads, --force as for run\n"
-    "\nexample:\n"
-    "  twinflow sweep cases/quickstart_2d.prm --out runs/seeds --vary 'Particle/Seed=1,2,3'\n\n"
-    "exit codes: 0 done (however many points failed), 2 bad input (nothing written),\n"
-    "5 interrupted (the same command continues), 6 an output could not be written\n";
+    "  --rayleigh R1,R2      target Rayleigh numbers, reached by scaling "
+    "|g|\n" TWINFLOW_GRID_OPTIONS "\nexample:\n"
+    "  twinflow sweep cases/quickstart_2d.prm --out runs/seeds --vary "
+    "'Particle/Seed=1,2,3'\n\n" TWINFLOW_GRID_EXIT_CODES;
 const char* const stability =
     "twinflow stability CASE --out DIR --vary 'Section/Key=V1,V2,...' [options]\n\n"
     "`particle` at every point of a grid, each classified (stable, energy_drift,\n"
     "negative_internal_energy, ...) into DIR/stability.csv and a report.\n\n"
     "options:\n"
-    "  --vary 'S/Key=V1,V2'  one axis (repeatable)\n"
-    "  --jobs N, -j N        points run at once (default: cores / --threads)\n"
-    "  --launcher 'T {cmd}'  each point under a launcher: 'mpirun -np 2 {cmd}', 'srun -n 4 "
-    "{cmd}'\n"
-    "  --plan                write DIR/points/NNN/command.sh, run nothing (job arrays)\n"
-    "  --out, --set, --threads, --force as for run\n"
-    "\nexample:\n"
+    "  --vary 'S/Key=V1,V2'  one axis (repeatable)\n" TWINFLOW_GRID_OPTIONS "\nexample:\n"
     "  twinflow stability cases/stiff_cavity.prm --out runs/map --vary 'Particle/Time "
-    "step=0.005,0.01'\n\n"
-    "exit codes: 0 done (however many points failed), 2 bad input (nothing written),\n"
-    "5 interrupted (the same command continues), 6 an output could not be written\n";
+    "step=0.005,0.01'\n\n" TWINFLOW_GRID_EXIT_CODES;
 const char* const bench =
     "twinflow bench [--out DIR] [--set 'Bench/Key=value' ...]\n\n"
     "Particle-steps/s per integrator, scene, size and thread count into DIR/bench/\n"

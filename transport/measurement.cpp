@@ -160,10 +160,10 @@ Job slab_job(const Plan& plan, Results& r, Clock::time_point start) {
   // kappa's guess for the slabs' power: the particles' part rho (c_v + k) D with the measured D
   // and the pair part; within ~15% for the default fluid, which sets the span within as much.
   const double cv = p.energy == particle::EnergyModel::Dpde ? p.cv : 0.0;
-  const double guess = p.density * (cv + 1) * r.bulk.diffusion.mean + pair_parts(plan, r).kappa;
+  const PairParts pairs = pair_parts(plan, r);
+  const double guess = p.density * (cv + 1) * r.bulk.diffusion.mean + pairs.kappa;
   const particle::ParticleParameters slab =
       slab_fluid(plan.scene, p, guess, r.with_g.heat_capacity_p);
-  const PairParts pairs = pair_parts(plan, r);
   std::printf("transport: kappa from periodic heat slabs: %ld particles, %ld + %ld steps\n",
               slab.particle_count(), slab.equilibration_steps, slab.steps);
   std::fflush(stdout);

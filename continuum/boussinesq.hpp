@@ -68,13 +68,9 @@ public:
       const dealii::SymmetricTensor<2, dim> eps_u = dealii::symmetrize(grad_u[q]);
       const double div_u = dealii::trace(grad_u[q]);
       const dealii::Tensor<1, dim> advection = grad_u[q] * u[q]; // (u . grad) u
-      // Time derivatives (zero when steady): du/dt ~ a0 u + h_u, dT/dt ~ a0 T + h_T.
       dealii::Tensor<1, dim> du_dt;
       double dT_dt = 0;
-      if (context.history) {
-        du_dt = a0 * u[q] + history_u_[q];
-        dT_dt = a0 * T[q] + history_T_[q];
-      }
+      if (context.history) time_derivatives(q, a0, u[q], T[q], du_dt, dT_dt);
       const double JxW = v.fe_values.JxW(q);
       v.shape_functions(q);
       for (unsigned i = 0; i < v.n; ++i) {
@@ -104,6 +100,13 @@ public:
   }
 
 private:
+  // Time derivatives at point q (zero when steady): du/dt ~ a0 u + h_u, dT/dt ~ a0 T + h_T.
+  void time_derivatives(unsigned q, double a0, const dealii::Tensor<1, dim>& u, double T,
+                        dealii::Tensor<1, dim>& du_dt, double& dT_dt) const {
+    du_dt = a0 * u + history_u_[q];
+    dT_dt = a0 * T + history_T_[q];
+  }
+
   CellValues<dim> values_;
   WallTerms<dim> walls_;
   std::vector<dealii::Tensor<1, dim>> history_u_;

@@ -52,6 +52,23 @@ template <class T> struct Columns {
 template <class M>
 std::size_t Simulation<M>::pair_geometry(const std::uint32_t*& I, const std::uint32_t*& J,
                                          std::size_t n, PairScratch<D>& s) const {
+  const std::size_t m = pairs_within_cutoff(I, J, n, s);
+  const Columns<double> e(s.e, D);
+  double* __restrict r = s.r.data();
+  for (std::size_t k = 0; k < m; ++k) { // vectorises
+    const double rk = std::sqrt(r[k]), inv_r = 1 / rk;
+    for (int d = 0; d < D; ++d) e[d][k] *= inv_r;
+    r[k] = rk;
+  }
+  I = s.i.data(), J = s.j.data();
+  return m;
+}
+
+// The pairs of a block closer than the cutoff (all of them without a skin), in list order: their
+// separations x_i - x_j (minimum image) into s.e, r^2 into s.r, i and j into s.i and s.j.
+template <class M>
+std::size_t Simulation<M>::pairs_within_cutoff(const std::uint32_t* I, const std::uint32_t* J,
+                                               std::size_t n, PairScratch<D>& s) const {
   const double b0 = grid_.image_box(0), b1 = grid_.image_box(1), b2 = grid_.image_box(D - 1);
   const double i0 = grid_.inv_box(0), i1 = grid_.inv_box(1), i2 = grid_.inv_box(D - 1);
   const double rc2 = skin_ == 0 ? std::numeric_limits<double>::infinity() : model_.rc * model_.rc;
@@ -102,12 +119,6 @@ std::size_t Simulation<M>::pair_geometry(const std::uint32_t*& I, const std::uin
     m += r2 < rc2;
   }
 #endif
-  for (std::size_t k = 0; k < m; ++k) { // vectorises
-    const double rk = std::sqrt(r[k]), inv_r = 1 / rk;
-    for (int d = 0; d < D; ++d) e[d][k] *= inv_r;
-    r[k] = rk;
-  }
-  I = ci, J = cj;
   return m;
 }
 
@@ -242,6 +253,25 @@ template <class M> void Simulation<M>::force_blocks(const PairNoise& noise) {
   });
 }
 
+// One pair's heat exchange over dt, q_ij dt with q_ij = rate + amplitude zeta / sqrt(dt)
+// (002:(7)): into u_i, out of u_j.
+template <class Heat>
+inline void exchange_heat(const Heat& heat, double wh, double swh, double zeta, double dt,
+                          double sqrt_dt, double th_i, double th_j, double& ui, double& uj) {
+  double rate, amplitude;
+  heat.eval_w(wh, swh, th_i, th_j, rate, amplitude);
+  const double dq = std::fma(rate, dt, amplitude * zeta * sqrt_dt); // q_ij dt
+  ui += dq;
+  uj -= dq;
+}
+
+// A pair's kinetic change dk paid by the two internal energies in equal halves, so the pair
+// conserves energy (002 Appendix A).
+inline void pay_kinetic_change(double dk, double& ui, double& uj) {
+  ui = std::fma(-0.5, dk, ui);
+  uj = std::fma(-0.5, dk, uj);
+}
+
 // The Shardlow sweep over all pairs at r(t): per pair, heat exchange, then Shardlow's S1
 // splitting of the pair's dissipative+random update (explicit half, implicit half, same xi), the
 // kinetic change of each half taken from the pair's internal energies, so energy is conserved
@@ -249,7 +279,6 @@ template <class M> void Simulation<M>::force_blocks(const PairNoise& noise) {
 // previous ones, and the two phases of planes keep them exact in parallel.
 template <class M> void Simulation<M>::shardlow_sweep(const PairNoise& noise) {
   if (!grid_.has_pairs()) update_neighbours(true);
-  const std::uint32_t* id = state_.id.data();
   grid_.for_each_pair_block([&](const std::uint32_t* I, const std::uint32_t* J, std::size_t n) {
     // Everything the sequential loop reads, as locals: the stores to u and v cannot alias them,
     // so they stay in registers instead of being reloaded after every pair's update.
@@ -258,17 +287,13 @@ template <class M> void Simulation<M>::shardlow_sweep(const PairNoise& noise) {
     const double dt = dt_, sqrt_dt = sqrt_dt_, m = model_.mass, inv_m = 1 / m;
     const double inv_cv = 1 / model_.cv;
     double* __restrict u = state_.u.data();
-    double* v[D];
-    for (int d = 0; d < D; ++d) v[d] = state_.v[d].data();
+    const Columns<double> v(state_.v);
     auto& s = PairScratch<D>::get(n);
     n = pair_geometry(I, J, n, s);
-    noise.pairs(n, I, J, id, s.xi.data(), s.zeta.data());
-    fr.w.eval(n, s.r.data(), s.wd.data(), s.wr.data());
-    if constexpr (M::Heat::active) heat.w.eval(n, s.r.data(), s.wh.data(), s.swh.data());
+    pair_noise_and_weights(noise, I, J, n, s);
     const double *wd = s.wd.data(), *wr = s.wr.data(), *xi = s.xi.data();
     const double *wh = s.wh.data(), *swh = s.swh.data(), *zeta = s.zeta.data();
-    const double* e[D];
-    for (int d = 0; d < D; ++d) e[d] = s.e[d].data();
+    const Columns<const double> e(s.e, D);
     for (std::size_t k = 0; k < n; ++k) {
       const std::size_t i = I[k], j = J[k];
       // u and v of i and j in registers for the whole pair (i != j): a store and reload through
@@ -276,11 +301,7 @@ template <class M> void Simulation<M>::shardlow_sweep(const PairNoise& noise) {
       double ui = 0, uj = 0, th_i = 1, th_j = 1;
       if constexpr (M::has_energy) ui = u[i], uj = u[j], th_i = ui * inv_cv, th_j = uj * inv_cv;
       if constexpr (M::Heat::active) {
-        double rate, amplitude;
-        heat.eval_w(wh[k], swh[k], th_i, th_j, rate, amplitude);
-        const double dq = std::fma(rate, dt, amplitude * zeta[k] * sqrt_dt); // q_ij dt
-        ui += dq;
-        uj -= dq;
+        exchange_heat(heat, wh[k], swh[k], zeta[k], dt, sqrt_dt, th_i, th_j, ui, uj);
         th_i = ui * inv_cv, th_j = uj * inv_cv;
       }
       double vi[D], vj[D], vr = 0;
@@ -292,18 +313,15 @@ template <class M> void Simulation<M>::shardlow_sweep(const PairNoise& noise) {
       const double dp1 = 0.5 * kick - fr.ito_gamma_times(th_i, th_j, 0.5 * wd[k] * dt * vr);
       const double vr1 = std::fma(2 * inv_m, dp1, vr);
       if constexpr (M::has_energy) {
-        const double dk = dp1 * 0.5 * (vr + vr1); // exact kinetic change of the pair
-        ui = std::fma(-0.5, dk, ui);
-        uj = std::fma(-0.5, dk, uj);
+        pay_kinetic_change(dp1 * 0.5 * (vr + vr1), ui, uj); // the pair's exact change
         th_i = ui * inv_cv, th_j = uj * inv_cv;
       }
       // Half 2, implicit in v_r: v_r2 (1 + gamma' w_D dt/m) = v_r1 + sigma w_R xi sqrt(dt)/m
       const double vr2 = fr.implicit_half(vr1 + kick * inv_m, th_i, th_j, wd[k] * dt * inv_m);
       const double dp2 = 0.5 * m * (vr2 - vr1);
       if constexpr (M::has_energy) {
-        const double dk = dp2 * 0.5 * (vr1 + vr2);
-        u[i] = std::fma(-0.5, dk, ui);
-        u[j] = std::fma(-0.5, dk, uj);
+        pay_kinetic_change(dp2 * 0.5 * (vr1 + vr2), ui, uj);
+        u[i] = ui, u[j] = uj;
       }
       const double dv = (dp1 + dp2) * inv_m;
       for (int d = 0; d < D; ++d) {

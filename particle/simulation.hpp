@@ -207,6 +207,8 @@ private:
   void step_ec_verlet();
   void step_euler();
   void step_shardlow();
+  void shardlow_first_kick(bool kicks, bool offset, bool pooled); // walls, kick, drift
+  void shardlow_second_kick(bool offset, bool pooled);            // external forces, kick
   // ec-verlet / VV force evaluation
   // external: with external_forces (shardlow adds them particle by particle in its second kick)
   void conservative_pass(bool with_velocity_terms, bool zeroed = false, bool external = true);
@@ -214,6 +216,8 @@ private:
   // Pair passes over the grid's pair list (pair_kernels.tpp).
   std::size_t pair_geometry(const std::uint32_t*& i, const std::uint32_t*& j, std::size_t n,
                             PairScratch<D>& s) const;
+  std::size_t pairs_within_cutoff(const std::uint32_t* i, const std::uint32_t* j, std::size_t n,
+                                  PairScratch<D>& s) const;
   void pair_gather(const std::uint32_t* i, const std::uint32_t* j, std::size_t n, PairScratch<D>& s,
                    bool velocities) const;
   void pair_noise_and_weights(const PairNoise& noise, const std::uint32_t* i,

@@ -423,17 +423,27 @@ template <class M> void Simulation<M>::step_shardlow() {
           &state_.u},
          {&state_.v[0], &state_.v[1], &state_.v[2], &state_.u});
   shardlow_sweep(noise); // pair_kernels.tpp
-  // Velocity-Verlet for the conservative pair force, wall repulsion and gravity (if any). Each
-  // particle's walls, kicks and checks touch it alone, so each half is one parallel region: at
-  // N ~ 1600 a region's start costs as much as a wall's work (docs/performance.md).
+  // Velocity-Verlet for the conservative pair force, wall repulsion and gravity (if any).
   const bool kicks = M::Conservative::active || has_external_;
   const bool offset = M::has_energy && p_.energy_offset && kicks;
   const bool pooled = offset && M::Conservative::active; // share_pool says why
   ExactSum pool;
   if (pooled) pooled_.resize(owned_);
-  auto book = [&](std::size_t i, double change) { // -(dK_i + dP_i), 002 Appendix A
-    if (offset) book_offset(i, change, pooled);
-  };
+  shardlow_first_kick(kicks, offset, pooled);
+  if (pooled) add_pooled(pool); // before the sort reorders the particles
+  if (p_.has_walls()) reflect_at_walls();
+  const bool sorted = update_neighbours(false);
+  if (!kicks) return check_energies("shardlow step");
+  conservative_pass(false, !sorted, false);
+  if (pooled) pooled_.resize(owned_);
+  shardlow_second_kick(offset, pooled);
+  if (pooled) share_pool(pool);
+}
+
+// The walls' sweep, the first half kick and the drift. Each particle's walls, kick and checks
+// touch it alone, so each half is one parallel region: at N ~ 1600 a region's start costs as
+// much as a wall's work (docs/performance.md).
+template <class M> void Simulation<M>::shardlow_first_kick(bool kicks, bool offset, bool pooled) {
   const double half = 0.5 * dt_ / model_.mass, m2 = 0.5 * model_.mass;
   auto& v = state_.v;
   const bool walls = p_.has_walls();
@@ -447,16 +457,17 @@ template <class M> void Simulation<M>::step_shardlow() {
       k_half += v[d][i] * v[d][i];
       state_.x[d][i] += v[d][i] * dt_;
     }
-    book(i, carried_.potential[i] - m2 * (k_half - k_old));
+    // -(dK_i + dP_i), 002 Appendix A
+    if (offset) book_offset(i, carried_.potential[i] - m2 * (k_half - k_old), pooled);
     if (kicks) carried_.potential[i] = 0;
   });
   if (walls) tally_.end_pass(); // the walls' pass (OrderedTally)
-  if (pooled) add_pooled(pool); // before the sort reorders the particles
-  if (walls) reflect_at_walls();
-  const bool sorted = update_neighbours(false);
-  if (!kicks) return check_energies("shardlow step");
-  conservative_pass(false, !sorted, false);
-  if (pooled) pooled_.resize(owned_);
+}
+
+// The external forces and the second half kick.
+template <class M> void Simulation<M>::shardlow_second_kick(bool offset, bool pooled) {
+  const double half = 0.5 * dt_ / model_.mass, m2 = 0.5 * model_.mass;
+  auto& v = state_.v;
   for_particles_tallied([&](std::size_t i, TallyTerms& tally) {
     if (has_external_) external_force(i, 1, true, tally);
     double k_half = 0, k_new = 0;
@@ -465,11 +476,11 @@ template <class M> void Simulation<M>::step_shardlow() {
       v[d][i] += half * carried_.f[d][i];
       k_new += v[d][i] * v[d][i];
     }
-    book(i, -(carried_.potential[i] + m2 * (k_new - k_half)));
+    // -(dK_i + dP_i), 002 Appendix A
+    if (offset) book_offset(i, -(carried_.potential[i] + m2 * (k_new - k_half)), pooled);
     if (!pooled && bad_particle(i)) fail(i, "shardlow step");
   });
   if (has_external_) tally_.end_pass(); // external_forces' pass (OrderedTally)
-  if (pooled) share_pool(pool);
 }
 
 // Particle i's -(dK_i + dP_i) of a kick: into its u, or kept for the pool.

@@ -14,18 +14,23 @@ struct Result {
   std::string output;
 };
 
-// The transport cache is off unless a test names one (tests measure, they do not reuse). env:
-// a prefix for the binary, e.g. "env -u GOMP_SPINCOUNT".
-inline Result run_twinflow(const std::string& args, const std::string& cache = "off",
-                           const std::string& env = "") {
-  const std::string cmd = "TWINFLOW_CACHE='" + cache + "' " + env + " " +
-                          std::string(TWINFLOW_BINARY) + " " + args + " 2>&1";
-  FILE* pipe = popen(cmd.c_str(), "r");
+// A shell command as given (e.g. the hint an interrupted run prints): exit code and combined
+// output.
+inline Result run_command(const std::string& command) {
+  FILE* pipe = popen((command + " 2>&1").c_str(), "r");
   std::string out;
   std::array<char, 4096> buf{};
   while (fgets(buf.data(), buf.size(), pipe)) out += buf.data();
   const int status = pclose(pipe);
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+}
+
+// The transport cache is off unless a test names one (tests measure, they do not reuse). env:
+// a prefix for the binary, e.g. "env -u GOMP_SPINCOUNT".
+inline Result run_twinflow(const std::string& args, const std::string& cache = "off",
+                           const std::string& env = "") {
+  return run_command("TWINFLOW_CACHE='" + cache + "' " + env + " " + std::string(TWINFLOW_BINARY) +
+                     " " + args);
 }
 
 // An empty path under the temporary directory, unique per test and name.

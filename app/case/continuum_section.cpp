@@ -197,16 +197,9 @@ void declare_mode(Registry& r) {
             "(fields.xdmf, a ParaView time series).");
 }
 
-// eta, kappa, c_p, alpha and the equation of state, or where they come from.
-void declare_coefficients(Registry& r) {
+// eta and kappa: the value at T_ref, a power law in T or Sutherland's law, a pair part.
+void declare_temperature_laws(Registry& r, const std::string& c) {
   using namespace dealii::Patterns;
-  const std::string c = s + "Coefficients/";
-  r.declare(c + "Source", "case", Selection("case|transport"),
-            "case: the values below; transport: eta, kappa, c_p and alpha at the reference "
-            "temperature from RUNDIR/transport/summary.json (run `twinflow transport` first): "
-            "measured where Transport/Source = measured and available, else the estimate with "
-            "the measured g(r). The exponents below still apply.");
-  // eta and kappa: the value at T_ref, a power law in T or Sutherland's law.
   struct TemperatureLaw {
     const char* name;
     const char* value_doc;
@@ -239,6 +232,18 @@ void declare_coefficients(Registry& r) {
               "Compressible model: the pair part's power of T (the exponent above is then the "
               "rest's).");
   }
+}
+
+// eta, kappa, c_p, alpha and the equation of state, or where they come from.
+void declare_coefficients(Registry& r) {
+  using namespace dealii::Patterns;
+  const std::string c = s + "Coefficients/";
+  r.declare(c + "Source", "case", Selection("case|transport"),
+            "case: the values below; transport: eta, kappa, c_p and alpha at the reference "
+            "temperature from RUNDIR/transport/summary.json (run `twinflow transport` first): "
+            "measured where Transport/Source = measured and available, else the estimate with "
+            "the measured g(r). The exponents below still apply.");
+  declare_temperature_laws(r, c);
   r.declare_positive(
       c + "Heat capacity", "1",
       "Heat capacity at constant pressure per particle c_p (units of k); n c_p per volume, "

@@ -2,8 +2,9 @@
 
 namespace twinflow::app {
 
-// Section Transport: how the fluid's coefficients are measured (transport/parameters.hpp).
-void declare_transport(Registry& r) {
+namespace {
+// Where the coefficients come from, at which temperature, and how many runs measure them.
+void declare_transport_runs(Registry& r) {
   using namespace dealii::Patterns;
   r.declare("Transport/Source", "estimated", Selection("estimated|measured"),
             "Which coefficients feed the continuum twin: theory estimates or measured by short "
@@ -30,6 +31,11 @@ void declare_transport(Registry& r) {
             "also measured at T (1 - s) and T (1 + s) (three times the cost) and handed to the "
             "twin as power laws c (T / T_ref)^n fitted through the three (the walls' range: "
             "seed 000's cavity spans 0.8-2.8). 0 <= s <= 0.9.");
+}
+
+// kappa and eta: relaxation runs, heat slabs, a wall run, eta along the isobar.
+void declare_transport_flows(Registry& r) {
+  using namespace dealii::Patterns;
   r.declare("Transport/Measure kappa and eta", "false", Bool(),
             "Also measure kappa and eta from a heat mode and a transverse momentum mode decaying "
             "in a periodic box (seed 004's relaxation method; Transport/Flow repeats runs of "
@@ -62,6 +68,13 @@ void declare_transport(Registry& r) {
             "state point with P free (b from theory). false: P from theory, a from D(T).");
   r.declare("Transport/Wall steps", "100000", Integer(1000),
             "Sampled steps of the wall run of Kappa from walls (a fifth as many settle first).");
+}
+} // namespace
+
+// Section Transport: how the fluid's coefficients are measured (transport/parameters.hpp).
+void declare_transport(Registry& r) {
+  declare_transport_runs(r);
+  declare_transport_flows(r);
 }
 
 transport::TransportParameters resolve_transport(const Registry& r) {

@@ -83,7 +83,7 @@ TEST(Ensemble, BlocksFollowOneAnother) {
 TEST(Ensemble, SnapshotsMergeAndTheirCostsAdd) {
   twinflow::io::FieldFile::Contents a, b;
   a.grid.dim = 1;
-  a.grid.counts = {2, 1, 1};
+  a.grid.counts = {{2, 1, 1}};
   b.grid = a.grid;
   twinflow::io::Snapshot s{10, 2.0, 1000, {{"density", 1, {1, 2}, {0.1, 0.1}}}};
   a.snapshots.push_back(s);

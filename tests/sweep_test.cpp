@@ -84,7 +84,7 @@ const std::string kTinyMeasuredCavity = kTinyScene + " --set 'Transport/Flow par
 } // namespace
 
 // Four points: one runs to the end, one fails at run time (dt = 2: a particle leaves the box in
-// the first step, exit 4), two are rejected by the case (a Poiseuille force with walls along y).
+// the first step, exit 4), two are rejected by the case (a Poiseuille force with walls along x).
 TEST(Sweep, FailedPointsAreRecordedOthersFinishRerunSkipsChangedGridRefused) {
   const fs::path dir = fresh_dir("grid");
   const std::string grid = " --vary 'Particle/Time step=0.01,2' "

@@ -288,8 +288,8 @@ void check_particle(const Registry& r, const ParticleParameters& p) {
     r.require(!walls_present || seed000_wall || r.get(s + key) == r.default_value(s + key), s + key,
               "its default unless a wall is seed000 (Particle/Walls/Model); half-space walls take "
               "the fluid's own pair terms");
-  r.require(p.poiseuille_force == 0 || (p.dim >= 2 && !p.walls[1].present),
-            "Scene/Reverse Poiseuille force", "0 with walls along y (it needs a periodic y)");
+  r.require(p.poiseuille_force == 0 || (p.dim >= 2 && !p.walls[0].present),
+            "Scene/Reverse Poiseuille force", "0 with walls along x (the force is along x)");
   r.require(p.shear_perturbation == 0 || (p.dim >= 2 && !p.walls[0].present && !p.walls[1].present),
             "Scene/Shear perturbation", "0 unless the scene is 2D or 3D with periodic x and y");
   const double rc = p.largest_cutoff();

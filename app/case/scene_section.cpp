@@ -26,8 +26,9 @@ void declare_scene(Registry& r) {
             "0 <= U <= 2");
   r.declare("Scene/Reverse Poiseuille force", "0", Double(),
             "Body force F per particle along x, +F where y < Ly/2 and -F above (the reverse "
-            "Poiseuille flow that measures the viscosity from the two parabolic halves); 0: none. "
-            "The work it does heats the fluid.");
+            "Poiseuille flow that measures the viscosity from the two parabolic halves; between "
+            "walls along y, each half's parabola extrapolated to its wall also gives the wall's "
+            "slip length); 0: none. Needs a periodic x. The work it does heats the fluid.");
   r.declare("Scene/Gravity", "0, 0, 0", List(Double(), 2, 3),
             "Gravitational acceleration vector g (force m g on every particle).");
   r.declare("Scene/Field bins", "10", List(Integer(1, 100000), 1, 3),

@@ -94,3 +94,52 @@ TEST(Diagnostics, WallProfileFitsTheBulkAndCarriesItAcrossTheWallLayer) {
   EXPECT_GT(0.01 * std::sqrt(4.0 / 3) / 2, j["jump_lower_stderr_fit"].get<double>());
   EXPECT_NEAR(j["jump_lower_stderr"].get<double>(), 0.01 * std::sqrt(4.0 / 3) / 2, 1e-12);
 }
+
+// A reverse Poiseuille flow between walls along y, made: each half a parabola of curvature
+// -+n F / eta whose root lies b_lower beyond the lower wall and b_upper beyond the upper, a layer
+// within one cutoff of each wall that the fit must leave out. The fit gives back eta and both
+// slips; the slips' errors are the sum over bins of (d slip / d v_bin)^2 se^2, the derivatives
+// by re-fitting with one bin moved.
+TEST(Diagnostics, PoiseuilleBetweenWallsGivesEachWallsSlip) {
+  ParticleParameters p = twinflow::particle::testing::ideal(2, Integrator::Shardlow, 10);
+  p.box = {{10, 20, 1}};
+  p.bins = {{1, 40, 1}};
+  p.walls[1] = WallPair{true, {{false, false}}, {{1, 1}}, true};
+  p.density = 4, p.poiseuille_force = 0.01;
+  ASSERT_DOUBLE_EQ(p.largest_cutoff(), 1.0);
+  const double eta = 1.3, b_lower = 0.4, b_upper = 0.15, a = p.density * p.poiseuille_force / eta;
+  const auto made = [&](double y) {  // each half its own parabola (the fit takes them apart)
+    if (y < 1 || y > 19) return 0.0; // the walls' layers
+    const double top = 10 + (10 - b_lower) * 0.3;
+    if (y < 10) return -0.5 * a * (y + b_lower) * (y - top);
+    return 0.5 * a * (y - 20 - b_upper) * (y - 20 + (10 - b_upper) * 0.6);
+  };
+  BinnedFields f;
+  f.bins = p.bins, f.box = p.box, f.dim = 2;
+  const double se = 0.002;
+  for (int bin = 0; bin < 40; ++bin) {
+    f.velocity.mean.insert(f.velocity.mean.end(), {made(f.centre(bin, 1)), 0.0});
+    f.velocity.stderr_.insert(f.velocity.stderr_.end(), {se, se});
+  }
+  const auto j = poiseuille_fit(p, f);
+  for (const char* half : {"lower_half", "upper_half"})
+    EXPECT_NEAR(j[half]["viscosity"].get<double>(), eta, 1e-9) << half;
+  EXPECT_NEAR(j["lower_half"]["wall_slip"].get<double>(), b_lower, 1e-9);
+  EXPECT_NEAR(j["upper_half"]["wall_slip"].get<double>(), b_upper, 1e-9);
+  for (const char* half : {"lower_half", "upper_half"}) {
+    double variance = 0;
+    const double base = j[half]["wall_slip"].get<double>(), step = 1e-6;
+    for (int bin = 0; bin < 40; ++bin) {
+      BinnedFields moved = f;
+      moved.velocity.mean[2 * bin] += step;
+      const double d = (poiseuille_fit(p, moved)[half]["wall_slip"].get<double>() - base) / step;
+      variance += d * d * se * se;
+    }
+    EXPECT_NEAR(j[half]["wall_slip_stderr"].get<double>(), std::sqrt(variance),
+                1e-4 * std::sqrt(variance))
+        << half;
+  }
+  // Without walls (a periodic y) no slip is stated.
+  p.walls[1] = WallPair{};
+  EXPECT_FALSE(poiseuille_fit(p, f)["lower_half"].contains("wall_slip"));
+}

@@ -30,6 +30,7 @@ struct TwinChoice {
   bool kinetic_slip_automatically = false;  // Continuum/Wall slip = auto, no Slip lengths
   bool wall_jumps_automatically = false;    // Continuum/Wall jump = auto, no Kapitza given
   bool wall_jumps_from_theory = false;      // the twin's thermal walls from the wall layer
+  bool wall_slips_from_theory = false;      // its no-slip walls' slip from the slip layer
   double low_mach_threshold = 0.2;          // its threshold on the walls' epsilon
   double compressible_threshold = 0.1;      // its threshold on the stratification g H / c^2
 };

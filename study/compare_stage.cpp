@@ -86,6 +86,7 @@ Case calibrated_case(const Case& nominal, const fs::path& run_dir) {
   Case out = nominal;
   CaseParameters& p = out.parameters;
   p.twin.wall_jumps_from_theory = false; // its walls are the measured ones
+  p.twin.wall_slips_from_theory = false;
   const compare::ParticleRecord run = compare::read_particle_record(run_dir, p.scene);
   double viscosity = std::nan("");
   if (p.compare.wall_slip && continuum::has_robin_walls(p.continuum.model))

@@ -105,6 +105,7 @@ TakenCoefficients take_transport_coefficients(const fs::path& run_dir, const Cas
                    "fluid's\n";
   }
   if (c.twin.wall_jumps_from_theory) take_wall_jumps(c, k, p);
+  if (c.twin.wall_slips_from_theory) take_wall_slips(c, p);
   return {k,
           {k.conductivity.stderr_, k.viscosity.stderr_, k.conductivity.exponent_stderr,
            k.viscosity.exponent_stderr}};
@@ -120,9 +121,11 @@ void take_wall_densities_from_twin(const CaseParameters& c, const transport::Coe
     continuum::ContinuumParameters coarser = p;
     coarser.refinements = std::max(0, p.refinements - 1);
     const continuum::ContinuumResult r = continuum::run(coarser, "", comm);
-    const WallDensities n = wall_densities(r.bins, p.dim);
+    const WallValues n = wall_densities(r.bins, p.dim);
     std::cout << "continuum: the wall model at the twin's own densities, pass " << pass << "\n";
     continuum::ContinuumParameters next = p;
+    const WallValues T = wall_values(r.bins, p.dim, "T");
+    if (c.twin.wall_slips_from_theory) take_wall_slips(c, next, &n, &T);
     if (take_wall_jumps(c, k, next, &n) == 0) return;
     double change = 0;
     for (int d = 0; d < p.dim; ++d)

@@ -117,13 +117,16 @@ int transport_step(const Case& c, const RunOptions& options, const RunOptions& l
 }
 
 // The nominal twin stands for the particle fluid: the transport stage's coefficients, the
-// particle walls' kinetic slip and their jumps from theory (the user's own --set wins).
+// particle walls' slip and jumps from theory (the user's own --set wins).
 void twin_takes_the_particle_fluid(Case& c) {
   CaseParameters& p = c.parameters;
   if (chooses_coefficient_source(c.settings)) return;
   p.twin.coefficients_from_transport = true;
   c.record_value("Continuum/Coefficients/Source", "transport");
-  if (p.twin.kinetic_slip_automatically) continuum::take_kinetic_slip(p.continuum);
+  if (p.twin.kinetic_slip_automatically) { // the slip layer replaces it where it applies
+    continuum::take_kinetic_slip(p.continuum);
+    p.twin.wall_slips_from_theory = true;
+  }
   if (p.twin.wall_jumps_automatically) p.twin.wall_jumps_from_theory = true;
 }
 

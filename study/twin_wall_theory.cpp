@@ -10,7 +10,7 @@
 namespace twinflow::study {
 
 int take_wall_jumps(const CaseParameters& c, const transport::Coefficients& k,
-                    continuum::ContinuumParameters& twin, const WallDensities* at_walls) {
+                    continuum::ContinuumParameters& twin, const WallValues* at_walls) {
   const particle::ParticleParameters& p = c.particle;
   const int heated = c.scene.heated_direction();
   if (heated < 0 || !std::isfinite(k.diffusion) || !(k.state_temperature > 0)) return 0;
@@ -61,10 +61,49 @@ int take_wall_jumps(const CaseParameters& c, const transport::Coefficients& k,
   return taken;
 }
 
-WallDensities wall_densities(const continuum::BinAverages& bins, int dim) {
-  WallDensities out;
+int take_wall_slips(const CaseParameters& c, continuum::ContinuumParameters& twin,
+                    const WallValues* at_walls, const WallValues* temperatures) {
+  if (!continuum::has_robin_walls(twin.model)) return 0; // no flow, or no Navier walls
+  const particle::ParticleParameters& p = c.particle;
+  int taken = 0;
+  for (int d = 0; d < c.scene.dim; ++d) {
+    const auto& walls = p.walls[d];
+    auto& b = twin.boundary[d];
+    if (!walls.present || !walls.no_slip || b.periodic || !b.no_slip) continue;
+    for (int side = 0; side < 2; ++side) {
+      if (walls.model[side] != particle::WallModel::HalfSpace) continue;
+      const double own_T = temperatures ? (*temperatures)[d][side] : std::nan("");
+      const double T = walls.thermal[side] ? walls.temperature[side]
+                       : own_T > 0         ? own_T
+                                           : c.scene.temperature;
+      const double given = at_walls ? (*at_walls)[d][side] : std::nan("");
+      const double n = given > 0 ? given : c.scene.density_on_isobar(T);
+      transport::SlipLayerInput in;
+      in.dim = p.dim, in.density = n, in.temperature = T, in.mass = p.mass;
+      in.viscosity = twin.viscosity.at(n, T, twin.number_density, twin.reference_temperature).value;
+      // 000:(2.37) at the pair's harmonic-mean temperature, the wall's T_w = T
+      in.gamma =
+          p.friction == particle::Friction::ConstantGamma ? p.gamma : p.sigma * p.sigma / (2 * T);
+      in.wall_gamma = in.gamma;
+      in.wall_density = p.wall_density > 0 ? p.wall_density : p.density;
+      in.friction_weight = p.dissipation;
+      in.diffuse = walls.thermal[side] && p.wall_diffuse;
+      const transport::SlipLayer layer = transport::solve_slip_layer(in);
+      std::printf("continuum: %s wall's slip from the wall model (n %.3g, T %.3g, %s): %.3f rc\n",
+                  scene::wall_name(d, side).c_str(), n, T, in.diffuse ? "diffuse" : "bounce-back",
+                  layer.slip_length);
+      b.kinetic_slip[side] = false;
+      b.slip_length[side] = layer.slip_length > 1e-3 ? layer.slip_length : 0.0;
+      taken += b.slip_length[side] > 0;
+    }
+  }
+  return taken;
+}
+
+WallValues wall_values(const continuum::BinAverages& bins, int dim, const std::string& name) {
+  WallValues out;
   for (auto& sides : out) sides = {{std::nan(""), std::nan("")}};
-  const auto field = std::find(bins.names.begin(), bins.names.end(), "n");
+  const auto field = std::find(bins.names.begin(), bins.names.end(), name);
   if (field == bins.names.end()) return out;
   const std::vector<double>& n = bins.values[static_cast<std::size_t>(field - bins.names.begin())];
   const auto& count = bins.bins;

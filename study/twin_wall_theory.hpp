@@ -8,6 +8,7 @@
 // heat slabs), the wall's from the case.
 
 #include <array>
+#include <string>
 
 #include "continuum/parameters.hpp"
 #include "continuum/results.hpp"
@@ -16,17 +17,29 @@
 
 namespace twinflow::study {
 
-// The fluid's number density at each wall, [direction][side] (NaN: not known).
-using WallDensities = std::array<std::array<double, 2>, 3>;
+// A field's value at each wall, [direction][side] (NaN: not known).
+using WallValues = std::array<std::array<double, 2>, 3>;
 
 // Sets the Kapitza conductances of the twin's walls that stand for half-space thermal walls;
 // returns how many it set. The fluid's density at each wall: `at_walls` where given (the twin's
 // own), else the ideal gas's isobar through the scene's mean density.
 int take_wall_jumps(const CaseParameters& c, const transport::Coefficients& k,
-                    continuum::ContinuumParameters& twin, const WallDensities* at_walls = nullptr);
+                    continuum::ContinuumParameters& twin, const WallValues* at_walls = nullptr);
 
-// A twin's density at each wall plane: the mean of its first two layers of bins along the wall,
-// extrapolated linearly (NaN where the twin has no density field: Boussinesq).
-WallDensities wall_densities(const continuum::BinAverages& bins, int dim);
+// Sets the slip lengths of the twin's no-slip walls that stand for half-space walls, diffuse
+// (thermal) or bounce-back (adiabatic), from transport::solve_slip_layer at the fluid's state
+// there (a thermal wall's temperature, an adiabatic wall's the scene's; the density as for the
+// jumps), in place of the kinetic slip; returns how many it set. Where the layer sticks (b <=
+// 0.001 rc) the wall stays no-slip.
+// `temperatures`: the twin's own at each wall, else an adiabatic wall's is the scene's.
+int take_wall_slips(const CaseParameters& c, continuum::ContinuumParameters& twin,
+                    const WallValues* at_walls = nullptr, const WallValues* temperatures = nullptr);
+
+// A twin's `field` at each wall plane: the mean of its first two layers of bins along the wall,
+// extrapolated linearly (NaN where the twin has no such field: density in Boussinesq).
+WallValues wall_values(const continuum::BinAverages& bins, int dim, const std::string& field);
+inline WallValues wall_densities(const continuum::BinAverages& bins, int dim) {
+  return wall_values(bins, dim, "n");
+}
 
 } // namespace twinflow::study

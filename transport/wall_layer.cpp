@@ -58,19 +58,27 @@ double to_wall(const WallLayerInput& in, const LayerGrid& grid, int k) {
   return c + n * grid.dh * 0.25 * in.gamma * in.wall_density * friction;
 }
 
+// The pair exchange between fluid planes s = d dh apart, per unit of the pair's coefficient:
+// k(s) = -d/ds of the half-space integral (the plane integral of w times the moment at normal
+// distance s); index d = 1 ... rc / dh.
+std::vector<double> plane_kernel(int dim, const particle::WeightParameters& w,
+                                 particle::WallMoment moment, double dh) {
+  const int reach = static_cast<int>(std::ceil(w.cutoff / dh));
+  std::vector<double> kernel(reach + 1);
+  for (int d = 1; d <= reach; ++d)
+    kernel[d] = (half_space(dim, std::max(d * dh - dh / 2, 0.0), w, moment) -
+                 half_space(dim, d * dh + dh / 2, w, moment)) /
+                dh;
+  return kernel;
+}
+
 LayerSystem assemble_layer(const WallLayerInput& in, const LayerGrid& grid) {
   const double n = in.density, dh = grid.dh, ell = grid.ell;
   LayerSystem sys{Eigen::MatrixXd::Zero(grid.N, grid.N), Eigen::VectorXd::Zero(grid.N)};
-  // Pair conduction between fluid planes s apart: n^2 lambda k(s), k(s) = -d/ds of the
-  // half-space integral (the plane integral of w_H at normal distance s).
-  const auto plane_kernel = [&](double s) {
-    return (half_space(in.dim, std::max(s - dh / 2, 0.0), in.heat_weight) -
-            half_space(in.dim, s + dh / 2, in.heat_weight)) /
-           dh;
-  };
-  const int pair_reach = static_cast<int>(std::ceil(in.heat_weight.cutoff / dh));
-  std::vector<double> kernel(pair_reach + 1);
-  for (int d = 1; d <= pair_reach; ++d) kernel[d] = plane_kernel(d * dh);
+  // Pair conduction between fluid planes s apart: n^2 lambda k(s).
+  const std::vector<double> kernel =
+      plane_kernel(in.dim, in.heat_weight, particle::WallMoment::Volume, dh);
+  const int pair_reach = static_cast<int>(kernel.size()) - 1;
   const double pair_scale = n * n * in.pair_conductance * dh * dh;
   // The particles' transport: A exp(-s/ell), A = kappa_particles / (2 ell^3) (its second moment
   // gives back rho c D's conductivity).
@@ -102,6 +110,46 @@ double extrapolation_length(const Eigen::VectorXd& theta, const LayerGrid& grid)
 
 } // namespace
 
+LayerGrid layer_grid(double ell, double rc) {
+  LayerGrid grid;
+  grid.ell = std::max(ell, 1e-3);
+  grid.rc = rc;
+  grid.dh = std::max(std::min(0.02 * grid.rc, grid.ell / 10), 0.005 * grid.rc);
+  grid.H = std::max(8 * grid.rc, 14 * grid.ell);
+  grid.N = static_cast<int>(std::ceil(grid.H / grid.dh));
+  return grid;
+}
+
+// The momentum balance of each cell for u, the far shear rate 1: the fluid's pair friction
+// (kernel over w_D (e.t)^2), the particles' exchange kernel A exp(-s/ell) with A = eta_K /
+// (2 ell^3), the wall's share of each cell.
+LayerSystem assemble_slip_layer(const SlipLayerInput& in, const LayerGrid& grid, double pair_scale,
+                                double eta_kinetic) {
+  const double n = in.density, dh = grid.dh, ell = grid.ell;
+  LayerSystem sys{Eigen::MatrixXd::Zero(grid.N, grid.N), Eigen::VectorXd::Zero(grid.N)};
+  const std::vector<double> kernel =
+      plane_kernel(in.dim, in.friction_weight, particle::WallMoment::TangentSq, dh);
+  const double a_kin = eta_kinetic / (2 * ell * ell * ell) * dh * dh;
+  const int kin_reach = static_cast<int>(std::ceil(14 * ell / dh));
+  for (int k = 0; k < grid.N; ++k) {
+    for (std::size_t d = 1; d < kernel.size(); ++d)
+      sys.exchange(k, k + static_cast<int>(d), pair_scale * kernel[d] * dh * dh, grid);
+    for (int d = 1; d <= kin_reach; ++d)
+      sys.exchange(k, k + d, a_kin * std::exp(-d * dh / ell), grid);
+    const double h = grid.h(k);
+    if (in.diffuse) // the kernel's reach beyond the plane: carriers re-emitted at rest
+      sys.A(k, k) -= eta_kinetic / (2 * ell * ell) * std::exp(-h / ell) * dh;
+    else // bounce-back: the carriers from cell l come back as its image, at -u_l
+      for (int l = 0; l < grid.N; ++l) {
+        const double c = a_kin * std::exp(-(h + grid.h(l)) / ell);
+        sys.A(k, k) -= c, sys.A(k, l) -= c;
+      }
+    sys.A(k, k) -= n * dh * in.wall_density * in.wall_gamma *
+                   half_space(in.dim, h, in.friction_weight, particle::WallMoment::TangentSq);
+  }
+  return sys;
+}
+
 WallLayer solve_wall_layer(const WallLayerInput& in) {
   // tau_u: a particle's internal energy relaxes by pair conduction with its neighbours,
   // n lambda int w_H dV per unit temperature, against its heat capacity c_v.
@@ -111,16 +159,44 @@ WallLayer solve_wall_layer(const WallLayerInput& in) {
   WallLayer out;
   out.ell = in.energy_length > 0 ? in.energy_length
                                  : std::sqrt(std::max(in.diffusion, 1e-12) * std::min(tau_u, 1e6));
-  LayerGrid grid;
-  grid.ell = std::max(out.ell, 1e-3);
-  grid.rc = std::max(in.heat_weight.cutoff, in.friction_weight.cutoff);
-  grid.dh = std::max(std::min(0.02 * grid.rc, grid.ell / 10), 0.005 * grid.rc);
-  grid.H = std::max(8 * grid.rc, 14 * grid.ell);
-  grid.N = static_cast<int>(std::ceil(grid.H / grid.dh));
+  const LayerGrid grid =
+      layer_grid(out.ell, std::max(in.heat_weight.cutoff, in.friction_weight.cutoff));
   const LayerSystem sys = assemble_layer(in, grid);
   const Eigen::VectorXd theta = sys.A.partialPivLu().solve(sys.rhs);
   out.extrapolation_length = extrapolation_length(theta, grid);
   out.conductance = in.kappa / out.extrapolation_length;
+  return out;
+}
+
+SlipLayer solve_slip_layer(const SlipLayerInput& in) {
+  const double n = in.density, m = in.mass, dh = 0.005 * in.friction_weight.cutoff;
+  // The bulk pair viscosity of the kernel: n^2 gamma int_0^rc s^2 k_t(s) ds (000:(3.26) with g = 1)
+  const std::vector<double> kernel =
+      plane_kernel(in.dim, in.friction_weight, particle::WallMoment::TangentSq, dh);
+  double moment = 0;
+  for (std::size_t d = 1; d < kernel.size(); ++d) moment += kernel[d] * std::pow(d * dh, 2) * dh;
+  // A particle's friction rate per velocity component and its mean-field D = T / (m zeta)
+  // (002:(17)); the kinetic part is never below what that D carries, eta_K >= n m D / 2
+  // (002:(26)): where the mean field's pair part would exceed eta (a dense cold wall) it is
+  // scaled down to the rest.
+  const double zeta = n * in.gamma * 2 *
+                      half_space(in.dim, 0, in.friction_weight, particle::WallMoment::TangentSq) /
+                      m;
+  const double eta_kinetic_floor = zeta > 0 ? n * in.temperature / (2 * zeta) : 0.0;
+  const double eta_pair_mean_field = n * n * in.gamma * moment;
+  const double eta_pair = std::clamp(in.viscosity - eta_kinetic_floor, 0.0, eta_pair_mean_field);
+  const double eta_kinetic = in.viscosity - eta_pair;
+  SlipLayer out;
+  out.viscosity_pair = eta_pair;
+  // eta_K = n m D_K / 2 (002:(26)); the momentum a particle carries relaxes in tau_v = 1 / zeta
+  out.ell = in.momentum_length > 0 ? in.momentum_length
+                                   : std::sqrt(2 * eta_kinetic / (n * m) / std::max(zeta, 1e-12));
+  const LayerGrid grid = layer_grid(out.ell, in.friction_weight.cutoff);
+  const double pair_scale =
+      eta_pair_mean_field > 0 ? n * n * in.gamma * eta_pair / eta_pair_mean_field : 0.0;
+  const LayerSystem sys = assemble_slip_layer(in, grid, pair_scale, eta_kinetic);
+  const Eigen::VectorXd u = sys.A.partialPivLu().solve(sys.rhs);
+  out.slip_length = extrapolation_length(u, grid);
   return out;
 }
 

@@ -49,4 +49,34 @@ struct WallLayer {
 
 WallLayer solve_wall_layer(const WallLayerInput& in);
 
+// The same balance for the tangential momentum beside a no-slip half-space wall, steady, a shear
+// rate fixed far away (docs/theory.md, "The slip layer"): the fluid's pair friction, nonlocal over
+// w_D (e.t)^2 with the partners beyond the plane missing; the particles' own momentum transport,
+// an exchange kernel of length ell = sqrt(D_K tau_v) (D_K = 2 eta_K / (n m) from the kinetic part
+// of eta, tau_v the pair friction's time) with a diffuse wall a reservoir at rest, a bounce-back
+// wall a mirror (the image of the fluid moves at -u); the wall material's friction,
+// n rho_w gamma_w G_t(h). The answer is the slip length b: the bulk's straight profile reaches
+// u = 0 a distance b beyond the plane (Navier's condition eta du/dn = (eta / b) u).
+struct SlipLayerInput {
+  int dim = 2;
+  double density = 1;     // n of the fluid at the wall
+  double temperature = 1; // T of the fluid at the wall
+  double viscosity = 1;   // the fluid's whole eta at (n, T)
+  double mass = 1;
+  double gamma = 0;      // the fluid's pair friction coefficient at T
+  double wall_gamma = 0; // the friction against the wall material, gamma(T, T_w)
+  double wall_density = 1;
+  particle::WeightParameters friction_weight;
+  bool diffuse = true;        // re-emission at the wall (else bounce-back)
+  double momentum_length = 0; // > 0: ell given (tests), else sqrt(D_K tau_v)
+};
+
+struct SlipLayer {
+  double slip_length = 0;    // b (rc)
+  double viscosity_pair = 0; // the pair part of eta the layer's kernel holds
+  double ell = 0;            // the particles' momentum length used
+};
+
+SlipLayer solve_slip_layer(const SlipLayerInput& in);
+
 } // namespace twinflow::transport

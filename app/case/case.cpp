@@ -72,6 +72,8 @@ study::Case CaseFile::resolve(const std::string& filename) const {
   c.twin.wall_jumps_automatically = jump == "auto" && !kapitza_given;
   c.twin.wall_jumps_from_theory =
       jump == "theory" || (c.twin.wall_jumps_automatically && c.twin.coefficients_from_transport);
+  c.twin.wall_slips_from_theory =
+      c.twin.kinetic_slip_automatically && c.twin.coefficients_from_transport;
   c.twin.low_mach_threshold = registry_.get_double("Continuum/Low-Mach threshold");
   c.twin.compressible_threshold = registry_.get_double("Continuum/Compressible threshold");
   out.record = registry_.resolved_json();

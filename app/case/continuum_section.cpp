@@ -152,18 +152,19 @@ void declare_walls(Registry& r) {
             "calibrated twin "
             "sets them from the particle walls' measured friction (Compare/Wall slip); 0 or "
             "absent: no slip.");
-  r.declare(
-      s + "Wall slip", "auto", Selection("auto|no-slip|kinetic"),
-      "Velocity at the twin's no-slip walls where no Slip lengths are given. kinetic: at "
-      "each no-slip thermal wall of half-space particle walls with diffuse reflection, the "
-      "particle wall's own friction per area beta(n, T) = 2 n [sqrt(m k T / 2 pi) + rho_w "
-      "I_d gamma(T, T_w)] (Maxwell's diffuse wall and the wall material's DPD friction, "
-      "docs/references.md \"Kinetic slip at a particle wall\"; slip length eta / beta, about "
-      "0.1-0.3 rc), no slip at the others (bounce-back: no kinetic slip); Boussinesq and "
-      "compressible. auto: kinetic where the twin stands for the particle fluid (it takes the "
-      "transport stage's coefficients: `run`, `sweep`, Coefficients/Source = transport) "
-      "and Model is Boussinesq or compressible, else no-slip (a continuum case of its "
-      "own). `run`'s calibrated twin takes the measured slip lengths instead.");
+  r.declare(s + "Wall slip", "auto", Selection("auto|no-slip|kinetic"),
+            "Velocity at the twin's no-slip walls where no Slip lengths are given. kinetic: at "
+            "each no-slip thermal wall of half-space particle walls with diffuse reflection, the "
+            "particle wall's own friction per area beta(n, T) = 2 n [sqrt(m k T / 2 pi) + rho_w "
+            "I_d gamma(T, T_w)] (Maxwell's diffuse wall and the wall material's DPD friction, "
+            "docs/references.md \"Kinetic slip at a particle wall\"; slip length eta / beta, about "
+            "0.1-0.3 rc), no slip at the others (bounce-back: no kinetic slip); Boussinesq and "
+            "compressible. auto: where the twin stands for the particle fluid (it takes the "
+            "transport stage's coefficients: `run`, `sweep`, Coefficients/Source = transport) "
+            "and Model is Boussinesq or compressible, the slip length of the wall model's own "
+            "slip layer at every no-slip half-space wall, diffuse or bounce-back (docs/theory.md, "
+            "\"The slip layer\"), else no-slip (a continuum case of its own). `run`'s calibrated "
+            "twin takes the measured slip lengths instead.");
   r.declare(
       s + "Wall jump", "auto", Selection("auto|none|theory"),
       "Temperature at the twin's thermal walls where no Kapitza conductances are given. theory: "

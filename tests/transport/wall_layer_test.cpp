@@ -57,3 +57,48 @@ TEST(WallLayer, DefaultWallsAgreeWithAnIndependentImplementation) {
     EXPECT_NEAR(cold, r.cold, 0.015) << "f " << r.f;
   }
 }
+
+namespace {
+// The slip layer of the default fluid's walls (sigma = 3, w_D = (1 - r)^2) at (n, T) with eta,
+// the wall material at the fluid's density.
+twinflow::transport::SlipLayerInput default_slip(double n, double T, double eta, bool diffuse) {
+  twinflow::transport::SlipLayerInput in;
+  in.dim = 2, in.density = n, in.temperature = T, in.viscosity = eta;
+  in.gamma = in.wall_gamma = 9 / (2 * T); // sigma^2 / (2 T), 000:(2.37) at T_w = T
+  in.wall_density = n, in.friction_weight = {1, 2}, in.diffuse = diffuse;
+  return in;
+}
+} // namespace
+
+// The particles' channel alone: beside a diffuse wall the Milne problem of the exponential kernel
+// (slip length ell, exactly); a bounce-back wall's image moves at -u, so the odd continuation of
+// the bulk's line solves the balance: no slip, exactly.
+TEST(SlipLayer, ParticlesAloneSlipByTheirLengthOrNotAtAll) {
+  for (const double ell : {0.2, 0.7}) {
+    auto in = default_slip(4, 1, 1.5, true);
+    in.gamma = in.wall_gamma = 0, in.momentum_length = ell;
+    EXPECT_NEAR(twinflow::transport::solve_slip_layer(in).slip_length, ell, 0.01 * ell) << ell;
+    in.diffuse = false;
+    EXPECT_NEAR(twinflow::transport::solve_slip_layer(in).slip_length, 0, 0.01 * ell) << ell;
+  }
+}
+
+// The channels' states against the Python prototype
+// (docs/notebook/scripts/2026-11-28-slip-layer.py, its own kernels and grid, dh = 0.05; its
+// elimination's band is too narrow below): the
+// dilute hot fluid slips far at a diffuse wall (its eta almost all kinetic), little at a
+// bounce-back one; the dense cold fluid's pair friction, missing its partners beyond the plane,
+// gives both a slip of ~0.1.
+TEST(SlipLayer, ChannelStatesAgreeWithThePrototype) {
+  struct Row {
+    double n, T, eta;
+    bool diffuse;
+    double b;
+  };
+  for (const Row& r : {Row{2.4, 1.45, 1.485, true, 0.648}, Row{2.4, 1.45, 1.512, false, 0.016},
+                       Row{5.6, 0.77, 1.587, true, 0.136}, Row{5.6, 0.77, 1.559, false, 0.084}}) {
+    const auto layer =
+        twinflow::transport::solve_slip_layer(default_slip(r.n, r.T, r.eta, r.diffuse));
+    EXPECT_NEAR(layer.slip_length, r.b, 0.01) << r.n << (r.diffuse ? " diffuse" : " bounce-back");
+  }
+}

@@ -3,6 +3,7 @@
 #include "io/field_file.hpp"
 #include "particle/diagnostics/plugins.hpp"
 #include "particle/fields.hpp"
+#include "statistics/line_fit.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -101,58 +102,28 @@ private:
 } // namespace
 
 namespace {
-double det3(const double a[3][3]) {
-  return a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) -
-         a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
-         a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
-}
-
-// v = c0 + c1 y + c2 y^2 by weighted least squares: the normal matrix m and right side t, the
-// coefficients by Cramer's rule.
-struct ParabolaFit {
-  double m[3][3], t[3], det;
-  double coefficient(int k) const {
-    double mc[3][3];
-    for (int r = 0; r < 3; ++r)
-      for (int c = 0; c < 3; ++c) mc[r][c] = c == k ? t[r] : m[r][c];
-    return det3(mc) / det;
-  }
-  double covariance(int a, int b) const { // (m^-1)_ab, the cofactor over det (m symmetric)
-    const int r0 = (a + 1) % 3, r1 = (a + 2) % 3, c0 = (b + 1) % 3, c1 = (b + 2) % 3;
-    return (m[r0][c0] * m[r1][c1] - m[r0][c1] * m[r1][c0]) / det;
-  }
-};
-
-ParabolaFit fit_parabola(const BinnedFields& f, double lo, double hi) {
-  double s[5] = {0, 0, 0, 0, 0}, t[3] = {0, 0, 0}; // sums of w y^k and w v y^k
+// v = c0 + c1 y + c2 y^2 through the bins with lo <= y <= hi, weighted by their errors.
+statistics::QuadraticFit fit_parabola(const BinnedFields& f, double lo, double hi) {
+  statistics::QuadraticFit fit(0.5 * (lo + hi));
   for (int bin = 0; bin < f.bin_count(); ++bin) {
     const double y = f.centre(bin, 1);
-    if (y < lo || y > hi) continue;
-    const double v = f.velocity.mean[bin * f.dim], se = f.velocity.stderr_[bin * f.dim];
-    const double w = se > 0 ? 1 / (se * se) : 1;
-    for (int k = 0; k < 5; ++k) s[k] += w * std::pow(y, k);
-    for (int k = 0; k < 3; ++k) t[k] += w * v * std::pow(y, k);
+    if (y >= lo && y <= hi)
+      fit.add(y, f.velocity.mean[bin * f.dim], f.velocity.stderr_[bin * f.dim]);
   }
-  ParabolaFit fit{
-      {{s[0], s[1], s[2]}, {s[1], s[2], s[3]}, {s[2], s[3], s[4]}}, {t[0], t[1], t[2]}, 0};
-  fit.det = det3(fit.m);
   return fit;
 }
 
 // The wall's apparent slip: where the bulk's parabola reaches v = 0 beyond the wall plane at
 // y = wall (Navier's b, positive beyond the plane), and its error from the fit's covariance
-// (d root / d c_k = -root^k / v'(root)).
-std::pair<double, double> slip_at_wall(const ParabolaFit& fit, double wall, double into_fluid) {
-  const double c[3] = {fit.coefficient(0), fit.coefficient(1), fit.coefficient(2)};
-  const double root_term = std::sqrt(std::max(c[1] * c[1] - 4 * c[2] * c[0], 0.0));
-  const double y1 = (-c[1] + root_term) / (2 * c[2]), y2 = (-c[1] - root_term) / (2 * c[2]);
-  const double root = std::fabs(y1 - wall) < std::fabs(y2 - wall) ? y1 : y2;
-  const double slope = c[1] + 2 * c[2] * root;
-  const double g[3] = {-1 / slope, -root / slope, -root * root / slope};
-  double variance = 0;
-  for (int a = 0; a < 3; ++a)
-    for (int b = 0; b < 3; ++b) variance += g[a] * fit.covariance(a, b) * g[b];
-  return {(wall - root) * into_fluid, std::sqrt(std::max(variance, 0.0))};
+// (d root / d c_k = -root^k / v'(root): the value's error at the root over the slope there).
+std::pair<double, double> slip_at_wall(const statistics::QuadraticFit& fit, double wall,
+                                       double into_fluid) {
+  // v(wall + s) = v0 + v1 s + v2 s^2
+  const double v0 = fit.value(wall), v1 = fit.slope(wall), v2 = 0.5 * fit.curvature();
+  const double root_term = std::sqrt(std::max(v1 * v1 - 4 * v2 * v0, 0.0));
+  const double s1 = (-v1 + root_term) / (2 * v2), s2 = (-v1 - root_term) / (2 * v2);
+  const double root = wall + (std::fabs(s1) < std::fabs(s2) ? s1 : s2);
+  return {(wall - root) * into_fluid, fit.value_stderr(root) / std::fabs(fit.slope(root))};
 }
 } // namespace
 
@@ -172,13 +143,13 @@ io::Json poiseuille_fit(const ParticleParameters& p, const BinnedFields& f) {
   for (int half = 0; half < 2; ++half) {
     const double lo = half == 0 ? margin : 0.5 * ly + 0.05 * ly;
     const double hi = half == 0 ? 0.5 * ly - 0.05 * ly : ly - margin;
-    const ParabolaFit fit = fit_parabola(f, lo, hi);
-    const double c2 = fit.coefficient(2), c2_var = fit.covariance(2, 2);
+    const statistics::QuadraticFit fit = fit_parabola(f, lo, hi);
+    const double curvature = fit.curvature();
     const double force = half == 0 ? p.poiseuille_force : -p.poiseuille_force;
-    const double eta = -p.density * force / (2 * c2); // v'' = 2 c2 = -n F / eta
-    const double eta_se = std::fabs(eta) * std::sqrt(c2_var) / std::fabs(c2);
+    const double eta = -p.density * force / curvature; // v'' = -n F / eta
+    const double eta_se = std::fabs(eta) * fit.curvature_stderr() / std::fabs(curvature);
     io::Json h = io::Json::object();
-    h["curvature"] = 2 * c2, h["viscosity"] = eta, h["viscosity_stderr"] = eta_se;
+    h["curvature"] = curvature, h["viscosity"] = eta, h["viscosity_stderr"] = eta_se;
     if (walls) {
       const auto [slip, slip_se] = slip_at_wall(fit, half == 0 ? 0 : ly, half == 0 ? 1 : -1);
       h["wall_slip"] = slip, h["wall_slip_stderr"] = slip_se;

@@ -108,8 +108,6 @@ double extrapolation_length(const Eigen::VectorXd& theta, const LayerGrid& grid)
   return intercept / slope;
 }
 
-} // namespace
-
 LayerGrid layer_grid(double ell, double rc) {
   LayerGrid grid;
   grid.ell = std::max(ell, 1e-3);
@@ -149,6 +147,8 @@ LayerSystem assemble_slip_layer(const SlipLayerInput& in, const LayerGrid& grid,
   }
   return sys;
 }
+
+} // namespace
 
 WallLayer solve_wall_layer(const WallLayerInput& in) {
   // tau_u: a particle's internal energy relaxes by pair conduction with its neighbours,

@@ -25,6 +25,10 @@ bool ParticleParameters::has_wall_model(WallModel m) const {
   return false;
 }
 
+double ParticleParameters::wall_material_density() const {
+  return wall_density > 0 ? wall_density : density;
+}
+
 long ParticleParameters::particle_count() const {
   double volume = box[0] * box[1];
   if (dim == 3) volume *= box[2];

@@ -106,6 +106,7 @@ struct ParticleParameters {
   std::array<double, 3> gravity{{0, 0, 0}};
   bool has_walls() const;
   bool has_wall_model(WallModel m) const; // some wall of the scene acts this way
+  double wall_material_density() const;   // rho_w, the fluid's density where none is given
 
   // Diagnostics
   std::array<int, 3> bins{{1, 1, 1}}; // field bins per direction (1: averaged over it)

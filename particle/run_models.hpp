@@ -17,6 +17,13 @@ BenchResult bench_family(const ParticleParameters& p, const C& conservative, lon
 #define TWINFLOW_PARTICLE_FAMILY(D, C)                                                             \
   template RunOutput run_family<D, C>(const ParticleParameters&, const C&, const RunControl&);     \
   template BenchResult bench_family<D, C>(const ParticleParameters&, const C&, long);
+// The library's own level also compiles every member of its models' simulations for the other
+// units that use them (simulation.hpp); the other levels' copies stay local to their object.
+#ifdef TWINFLOW_SHARED_SIMULATIONS
+#define TWINFLOW_FAMILY_SIMULATIONS(D, C) TWINFLOW_EACH_SIMULATION(, D, C)
+#else
+#define TWINFLOW_FAMILY_SIMULATIONS(D, C)
+#endif
 #define TWINFLOW_EXTERN_PARTICLE_FAMILY(D, C)                                                      \
   extern template RunOutput run_family<D, C>(const ParticleParameters&, const C&,                  \
                                              const RunControl&);                                   \

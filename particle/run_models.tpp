@@ -4,6 +4,7 @@
 // (run_2d_none.cpp, ...), so that the 54 models compile in six units side by side; run.cpp
 // branches on the dimension and the conservative force and calls the family.
 
+#define TWINFLOW_FAMILY_UNIT // this unit compiles its models' simulations (simulation.hpp)
 #include "particle/run_models.hpp"
 
 #include <algorithm>
@@ -305,6 +306,8 @@ RunOutput drive(const M& model, const ParticleParameters& p, const RunControl& c
 }
 
 // ---- resolving the case into a compiled combination (the only place that branches on physics)
+// The nine combinations of friction and heat law here are the ones simulation.hpp lists for the
+// other units (TWINFLOW_EACH_SIMULATION); a model missing there is only compiled twice.
 
 template <int D, class C, class F, class V>
 auto with_heat(const ParticleParameters& p, const C& c, const F& f, V&& visit) {

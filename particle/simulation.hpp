@@ -320,3 +320,27 @@ std::string stability_hint(const ParticleParameters& p);
 #include "particle/simulation.tpp"
 #include "particle/slabs.tpp"
 #include "particle/walls.tpp"
+
+// The simulations of the compiled models (run_models.tpp's nine per dimension and conservative
+// force), instantiated once by the library's family units; other units (the tests) link to
+// those instead of compiling them again.
+#define TWINFLOW_EACH_SIMULATION(PREFIX, D, C)                                                     \
+  PREFIX template class Simulation<Model<D, C, IsothermalFriction, NoHeat>>;                       \
+  PREFIX template class Simulation<Model<D, C, ConstantGamma, NoHeat>>;                            \
+  PREFIX template class Simulation<Model<D, C, ConstantGamma, InverseConstantHeat>>;               \
+  PREFIX template class Simulation<Model<D, C, ConstantGamma, InverseSeed002Heat>>;                \
+  PREFIX template class Simulation<Model<D, C, ConstantGamma, LinearHeat>>;                        \
+  PREFIX template class Simulation<Model<D, C, ConstantSigma, NoHeat>>;                            \
+  PREFIX template class Simulation<Model<D, C, ConstantSigma, InverseConstantHeat>>;               \
+  PREFIX template class Simulation<Model<D, C, ConstantSigma, InverseSeed002Heat>>;                \
+  PREFIX template class Simulation<Model<D, C, ConstantSigma, LinearHeat>>;
+#ifndef TWINFLOW_FAMILY_UNIT
+namespace twinflow::particle {
+TWINFLOW_EACH_SIMULATION(extern, 2, NoConservative)
+TWINFLOW_EACH_SIMULATION(extern, 2, ConstantRepulsion)
+TWINFLOW_EACH_SIMULATION(extern, 2, TemperatureRepulsion)
+TWINFLOW_EACH_SIMULATION(extern, 3, NoConservative)
+TWINFLOW_EACH_SIMULATION(extern, 3, ConstantRepulsion)
+TWINFLOW_EACH_SIMULATION(extern, 3, TemperatureRepulsion)
+} // namespace twinflow::particle
+#endif

@@ -89,7 +89,7 @@ double tangent_friction_moment(int dim, double cutoff, double exponent) {
 
 HalfSpaceWall make_half_space_wall(const ParticleParameters& p) {
   HalfSpaceWall w;
-  const double rho = p.wall_density > 0 ? p.wall_density : p.density;
+  const double rho = p.wall_material_density();
   // rho_w scale int (1 - r/rc)^power (moment) dV, tabulated over h < rc
   const auto table = [&](const WeightParameters& weight, WallMoment moment, double power,
                          double scale = 1) {

@@ -47,7 +47,7 @@ int take_wall_jumps(const CaseParameters& c, const transport::Coefficients& k,
       in.pair_conductance = lambda;
       in.heat_capacity = p.cv;
       in.heat_weight = p.heat_weight, in.friction_weight = p.dissipation;
-      in.wall_density = p.wall_density > 0 ? p.wall_density : p.density;
+      in.wall_density = p.wall_material_density();
       in.wall_factor = walls.conduction[side];
       in.gamma = friction_at(p, T_w);
       in.no_slip = walls.no_slip;
@@ -90,7 +90,7 @@ int take_wall_slips(const CaseParameters& c, continuum::ContinuumParameters& twi
       in.viscosity = twin.viscosity.at(n, T, twin.number_density, twin.reference_temperature).value;
       in.gamma = friction_at(p, T);
       in.wall_gamma = in.gamma;
-      in.wall_density = p.wall_density > 0 ? p.wall_density : p.density;
+      in.wall_density = p.wall_material_density();
       in.friction_weight = p.dissipation;
       in.diffuse = walls.thermal[side] && p.wall_diffuse;
       const transport::SlipLayer layer = transport::solve_slip_layer(in);

@@ -69,7 +69,7 @@ void resolve_wall_slip(const Registry& r, const particle::ParticleParameters& pa
                            wall.model[side] == particle::WallModel::HalfSpace &&
                            particle.wall_diffuse;
     }
-  f.wall_density = particle.wall_density > 0 ? particle.wall_density : particle.density;
+  f.wall_density = particle.wall_material_density();
   f.tangent_moment = particle::tangent_friction_moment(c.dim, particle.dissipation.cutoff,
                                                        particle.dissipation.exponent);
   // constant gamma: its Ito part against a wall, O(1/c_v) (pair_terms.hpp), left out

@@ -38,10 +38,15 @@ double marsh_yeomans_critical_dt(const ParticleParameters& p) {
   return 2 * c.a1 / (p.density * c.a1 * c.a1 + c.a2); // 001:(28)
 }
 
+double pair_friction(const ParticleParameters& p, double T) {
+  return p.energy == EnergyModel::Isothermal || p.friction == Friction::ConstantGamma
+             ? p.gamma
+             : p.sigma * p.sigma / (2 * T); // 000:(2.37)
+}
+
 double fluctuation_stability_number(const ParticleParameters& p) {
   const double T = p.temperature;
-  const double zeta0 =
-      p.friction == Friction::ConstantGamma ? p.gamma : p.sigma * p.sigma / (2 * T);
+  const double zeta0 = pair_friction(p, T);
   double l0 = p.kappa0; // 000's L_0^(q): lambda_ij = L0 / (theta_i theta_j)
   if (p.heat == HeatLaw::Inverse && p.heat_coefficient == HeatCoefficient::Seed002)
     l0 = p.kappa0 * p.cv * p.cv * T * T;

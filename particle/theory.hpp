@@ -12,6 +12,9 @@ double weight_integral(int dim, double rc, double exponent);
 double marsh_yeomans_temperature(const ParticleParameters& p);
 // 001 eq. (28): the dt beyond which that update is unstable.
 double marsh_yeomans_critical_dt(const ParticleParameters& p);
+// The pair friction gamma between particles at one temperature T: constant gamma (and isothermal
+// DPD's), or sigma^2 / (2 k T) for constant sigma (000:(2.37)).
+double pair_friction(const ParticleParameters& p, double T);
 // 000:(3.34): sqrt(B C dt*) (4 pi/3 r*^3) rho* (should be << 1); d = 2 uses pi r*^2.
 double fluctuation_stability_number(const ParticleParameters& p);
 

@@ -4,18 +4,11 @@
 #include <cmath>
 #include <cstdio>
 
+#include "particle/theory.hpp"
 #include "transport/estimates.hpp"
 #include "transport/wall_layer.hpp"
 
 namespace twinflow::study {
-
-namespace {
-// The pair friction against a wall at the fluid's temperature T = T_w: 000:(2.37) at the pair's
-// harmonic-mean temperature, sigma^2 / (2 T), or the constant gamma.
-double friction_at(const particle::ParticleParameters& p, double T) {
-  return p.friction == particle::Friction::ConstantGamma ? p.gamma : p.sigma * p.sigma / (2 * T);
-}
-} // namespace
 
 int take_wall_jumps(const CaseParameters& c, const transport::Coefficients& k,
                     continuum::ContinuumParameters& twin, const WallValues* at_walls) {
@@ -49,7 +42,7 @@ int take_wall_jumps(const CaseParameters& c, const transport::Coefficients& k,
       in.heat_weight = p.heat_weight, in.friction_weight = p.dissipation;
       in.wall_density = p.wall_material_density();
       in.wall_factor = walls.conduction[side];
-      in.gamma = friction_at(p, T_w);
+      in.gamma = particle::pair_friction(p, T_w);
       in.no_slip = walls.no_slip;
       const transport::WallLayer layer = transport::solve_wall_layer(in);
       std::printf("continuum: %s wall from the wall model (n %.3g, T %.3g, f %.3g): extrapolation "
@@ -88,7 +81,7 @@ int take_wall_slips(const CaseParameters& c, continuum::ContinuumParameters& twi
       transport::SlipLayerInput in;
       in.dim = p.dim, in.density = n, in.temperature = T, in.mass = p.mass;
       in.viscosity = twin.viscosity.at(n, T, twin.number_density, twin.reference_temperature).value;
-      in.gamma = friction_at(p, T);
+      in.gamma = particle::pair_friction(p, T);
       in.wall_gamma = in.gamma;
       in.wall_density = p.wall_material_density();
       in.friction_weight = p.dissipation;

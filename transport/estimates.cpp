@@ -3,6 +3,8 @@
 #include <cmath>
 #include <sstream>
 
+#include "particle/theory.hpp"
+
 namespace twinflow::transport {
 
 PairDistribution PairDistribution::from_csv(const std::string& csv) {
@@ -63,10 +65,7 @@ Estimates estimate(const particle::ParticleParameters& p, double T, const PairDi
   const double surface = d == 3 ? 4 * M_PI : 2 * M_PI; // integral over directions
   const double rd = p.dissipation.cutoff, nd = p.dissipation.exponent;
   const double rh = p.heat_weight.cutoff, nh = p.heat_weight.exponent;
-  // Friction at equal temperatures: gamma = sigma^2 / (2 k T) for constant sigma (002:(4))
-  const double gamma = p.energy == EnergyModel::Isothermal || p.friction == Friction::ConstantGamma
-                           ? p.gamma
-                           : p.sigma * p.sigma / (2 * T);
+  const double gamma = particle::pair_friction(p, T); // at equal temperatures, 002:(4)
   // int d^d r r^k g(r) w(r) over r < rc, with l = r/rc
   auto moment = [&](int k, double rc, double n) {
     return surface * std::pow(rc, d + k) *

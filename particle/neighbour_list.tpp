@@ -109,12 +109,25 @@ template <class M> bool Simulation<M>::list_still_complete(double largest, std::
   return !missing;
 }
 
-template <class M> void Simulation<M>::list_positions() {
-  const std::size_t n = state_.size();
-  for (int d = 0; d < D; ++d) {
-    x_listed_[d].resize(n);
-    for (std::size_t i = 0; i < n; ++i) x_listed_[d][i] = static_cast<float>(state_.x[d][i]);
-  }
+// update_neighbours' rebuild on a slab: the one-process steps (wrap, list the positions, sort by
+// cell and id, list the pairs) with the migration after the listing and the ghost plane after
+// the sort.
+template <class M> void Simulation<M>::rebuild_slab() {
+  resize_local(owned_); // the ghost copies go; build_ghosts brings them anew
+  grid_.wrap(state_);
+  const bool listed = listed_key();
+  if (listed) list_positions();
+  migrate();
+  if (listed) list_positions();
+  grid_.sort(state_, carried_, listed ? &x_listed_ : nullptr, false);
+  if (listed) list_positions(); // in the sorted order
+  resize_local(owned_);
+  build_ghosts();
+  if (p_.integrator == Integrator::Euler) return;
+  if (listed)
+    grid_.build_pairs(x_listed_, list_cutoff_);
+  else
+    grid_.build_pairs(state_, list_cutoff_);
 }
 
 } // namespace twinflow::particle

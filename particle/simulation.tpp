@@ -2,28 +2,10 @@
 
 namespace twinflow::particle {
 
-// The pair list's skin: euler walks the cells every step and keeps none.
-inline double list_skin(const ParticleParameters& p) {
-  return p.integrator == Integrator::Euler ? 0.0 : p.neighbour_skin;
-}
-
 template <class M>
 Simulation<M>::Simulation(const M& model, const ParticleParameters& p)
-    : model_(model), p_(p), grid_(
-                                [&] {
-                                  std::array<double, D> box;
-                                  for (int d = 0; d < D; ++d) box[d] = p.box[d];
-                                  return box;
-                                }(),
-                                model.rc + list_skin(p),
-                                [&] {
-                                  std::array<bool, D> periodic;
-                                  for (int d = 0; d < D; ++d) periodic[d] = !p.walls[d].present;
-                                  return periodic;
-                                }()),
+    : Store(p, ParticleKind{model.rc, model.cv, M::has_energy}), model_(model),
       wall_friction_(model.friction), wall_heat_(model.heat) {
-  skin_ = list_skin(p);
-  list_cutoff_ = model.rc + skin_;
   has_external_ = p.has_walls();
   for (int d = 0; d < D; ++d) has_external_ |= p.gravity[d] != 0;
   has_external_ |= p.poiseuille_force != 0;
@@ -33,80 +15,8 @@ Simulation<M>::Simulation(const M& model, const ParticleParameters& p)
   dt_ = p.dt;
   sqrt_dt_ = std::sqrt(dt_);
   inv_sqrt_dt_ = 1 / sqrt_dt_;
-  // Several MPI ranks: each keeps the particles of its slab's planes.
-  slabs_ = Slabs::split(grid_.counts()[D - 1], !p.walls[D - 1].present, D == 2 ? "y" : "z");
-  place_particles();
-  owned_ = state_.id.size();
-  for (int d = 0; d < D; ++d) carried_.f[d].assign(owned_, 0.0);
-  if (p_.integrator != Integrator::Shardlow) carried_.q.assign(owned_, 0.0); // heat rates
-  carried_.potential.assign(owned_, 0.0);
-  if (slabs_.active()) {
-    tally_.start_logging();
-    grid_.restrict_to_slab(slabs_.begin(), slabs_.end() - slabs_.begin(),
-                           slabs_.upper != MPI_PROC_NULL);
-    halo_.sim = this;
-    grid_.set_phase_hook(&halo_);
-    if (listed_key()) list_positions();
-  }
   update_neighbours(true);
   prepare();
-}
-
-template <class M> void Simulation<M>::place_particles() {
-  const ParticleParameters& p = p_;
-  const std::size_t n = static_cast<std::size_t>(p.particle_count());
-  // Positions uniform, velocities Maxwell at T: counter-based, so independent of threads and
-  // ranks. Two passes over the ids, so that no rank ever holds all N: the first sums the
-  // velocities (the same sum in the same order on every rank), the second keeps a rank's own.
-  const PairNoise initial(p.seed, 0, PairNoise::Initial);
-  const double vscale = std::sqrt(p.temperature / p.mass);
-  auto make = [&](std::size_t i, double* x, double* v) {
-    for (int d = 0; d < D; ++d) {
-      double g1, g2;
-      initial.particle_gaussians(static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(d), g1,
-                                 g2);
-      // Gaussian -> uniform through the normal CDF of g1: exact and cheap enough at start-up.
-      x[d] = p.box[d] * 0.5 * std::erfc(-g1 / std::sqrt(2.0));
-      v[d] = p.initial_velocities == InitialVelocities::Maxwell ? vscale * g2 : 0.0;
-      if (d == 1 && p.shear_perturbation != 0) // the shear relaxation scene's initial mode
-        v[1] += p.shear_perturbation * vscale * std::sin(2 * M_PI * x[0] / p.box[0]);
-    }
-  };
-  std::array<double, D> mean{};
-  double x[D], v[D];
-  for (std::size_t i = 0; i < n; ++i) {
-    make(i, x, v);
-    for (int d = 0; d < D; ++d) mean[d] += v[d] / n;
-  }
-  const double share =
-      slabs_.active() ? double(slabs_.end() - slabs_.begin()) / grid_.counts()[D - 1] : 1.0;
-  const auto expected = static_cast<std::size_t>(1.05 * share * n + 64); // a slab's count varies
-  for (int d = 0; d < D; ++d) {
-    state_.box[d] = p.box[d];
-    state_.x[d].reserve(expected), state_.v[d].reserve(expected);
-  }
-  state_.id.reserve(expected);
-  if constexpr (M::has_energy) state_.u.reserve(expected);
-  // 000:(3.21): <u> = (c_v + k) T in equilibrium (k = 1); seed 002 starts at theta_i = T
-  const double u0 = p.initial_internal_energy == InitialInternalEnergy::Equilibrium
-                        ? (model_.cv + 1) * p.temperature
-                        : model_.cv * p.temperature;
-  for (std::size_t i = 0; i < n; ++i) {
-    make(i, x, v);
-    double u = u0;
-    if (p.temperature_perturbation != 0) // the thermal relaxation scene's initial mode
-      u *= 1 + p.temperature_perturbation * std::sin(2 * M_PI * x[0] / p.box[0]);
-    if (slabs_.active()) {
-      for (int d = 0; d < D; ++d) x[d] = grid_.wrapped(x[d], d);
-      // the plane as the sort will take it: of the listed (float) position when there is a list
-      const double key =
-          listed_key() ? static_cast<double>(static_cast<float>(x[D - 1])) : x[D - 1];
-      if (slabs_.owner(grid_.global_plane(key)) != slabs_.rank) continue;
-    }
-    for (int d = 0; d < D; ++d) state_.x[d].push_back(x[d]), state_.v[d].push_back(v[d] - mean[d]);
-    state_.id.push_back(static_cast<std::uint32_t>(i));
-    if constexpr (M::has_energy) state_.u.push_back(u);
-  }
 }
 
 template <class M> void Simulation<M>::prepare() {
@@ -545,27 +455,6 @@ template <class M> void Simulation<M>::check_energies(const char* where) const {
   if (!bad) return;
   for (long i = 0; i < n; ++i) // the first bad particle, in storage order
     if (bad_particle(static_cast<std::size_t>(i))) fail(static_cast<std::size_t>(i), where);
-}
-
-template <class M> void Simulation<M>::fail(std::size_t i, const char* where) const {
-  std::ostringstream s;
-  s << "unstable at step " << step_ << " (" << where << "): particle " << state_.id[i] << " x = (";
-  for (int d = 0; d < D; ++d) s << (d ? ", " : "") << state_.x[d][i];
-  s << ") v = (";
-  for (int d = 0; d < D; ++d) s << (d ? ", " : "") << state_.v[d][i];
-  s << ")";
-  if constexpr (M::has_energy) {
-    s << " u = " << state_.u[i] << " theta = " << theta(i) << "; neighbours' theta:";
-    for (std::size_t j = 0; j < state_.size(); ++j) { // brute force: only on failure
-      if (j == i) continue;
-      double dx[D], r2 = 0;
-      grid_.separation(state_, i, j, dx);
-      for (int d = 0; d < D; ++d) r2 += dx[d] * dx[d];
-      if (r2 < model_.rc * model_.rc) s << " " << theta(j);
-    }
-  }
-  s << ". " << stability_hint(p_);
-  throw InstabilityError(s.str());
 }
 
 } // namespace twinflow::particle

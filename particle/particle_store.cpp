@@ -1,18 +1,188 @@
-// Simulation<M> on several MPI ranks (included from simulation.hpp; decomposition.hpp): each rank
-// owns a slab of cell planes and keeps a ghost copy of the upper rank's first plane. Particles
-// move to the rank of their sort cell at every list rebuild; the pair passes exchange the ghost
-// plane between their two phases (CellGrid::for_each_row), so every particle sees its pairs in
-// the one-process order and every result is the one-process result, bit for bit.
+// ParticleStore<D> (particle_store.hpp): compiled here once per dimension.
+#define TWINFLOW_PARTICLE_STORE_UNIT
+#include "particle/particle_store.hpp"
+
+#include <cmath>
+#include <sstream>
+
+#include "particle/archive.hpp"
+#include "particle/pair_terms.hpp"
 
 namespace twinflow::particle {
 
-template <class M> int Simulation<M>::owner_of(std::size_t i) const {
+template <int D>
+ParticleStore<D>::ParticleStore(const ParticleParameters& p, const ParticleKind& kind)
+    : p_(p), kind_(kind), grid_(
+                              [&] {
+                                std::array<double, D> box;
+                                for (int d = 0; d < D; ++d) box[d] = p.box[d];
+                                return box;
+                              }(),
+                              kind.rc + list_skin(p),
+                              [&] {
+                                std::array<bool, D> periodic;
+                                for (int d = 0; d < D; ++d) periodic[d] = !p.walls[d].present;
+                                return periodic;
+                              }()) {
+  skin_ = list_skin(p);
+  list_cutoff_ = kind.rc + skin_;
+  // Several MPI ranks: each keeps the particles of its slab's planes.
+  slabs_ = Slabs::split(grid_.counts()[D - 1], !p.walls[D - 1].present, D == 2 ? "y" : "z");
+  place_particles();
+  owned_ = state_.id.size();
+  for (int d = 0; d < D; ++d) carried_.f[d].assign(owned_, 0.0);
+  if (p_.integrator != Integrator::Shardlow) carried_.q.assign(owned_, 0.0); // heat rates
+  carried_.potential.assign(owned_, 0.0);
+  if (slabs_.active()) {
+    tally_.start_logging();
+    grid_.restrict_to_slab(slabs_.begin(), slabs_.end() - slabs_.begin(),
+                           slabs_.upper != MPI_PROC_NULL);
+    halo_.store = this;
+    grid_.set_phase_hook(&halo_);
+    if (listed_key()) list_positions();
+  }
+}
+
+template <int D> ParticleStore<D>::~ParticleStore() = default;
+
+template <int D> void ParticleStore<D>::place_particles() {
+  const ParticleParameters& p = p_;
+  const std::size_t n = static_cast<std::size_t>(p.particle_count());
+  // Positions uniform, velocities Maxwell at T: counter-based, so independent of threads and
+  // ranks. Two passes over the ids, so that no rank ever holds all N: the first sums the
+  // velocities (the same sum in the same order on every rank), the second keeps a rank's own.
+  const PairNoise initial(p.seed, 0, PairNoise::Initial);
+  const double vscale = std::sqrt(p.temperature / p.mass);
+  auto make = [&](std::size_t i, double* x, double* v) {
+    for (int d = 0; d < D; ++d) {
+      double g1, g2;
+      initial.particle_gaussians(static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(d), g1,
+                                 g2);
+      // Gaussian -> uniform through the normal CDF of g1: exact and cheap enough at start-up.
+      x[d] = p.box[d] * 0.5 * std::erfc(-g1 / std::sqrt(2.0));
+      v[d] = p.initial_velocities == InitialVelocities::Maxwell ? vscale * g2 : 0.0;
+      if (d == 1 && p.shear_perturbation != 0) // the shear relaxation scene's initial mode
+        v[1] += p.shear_perturbation * vscale * std::sin(2 * M_PI * x[0] / p.box[0]);
+    }
+  };
+  std::array<double, D> mean{};
+  double x[D], v[D];
+  for (std::size_t i = 0; i < n; ++i) {
+    make(i, x, v);
+    for (int d = 0; d < D; ++d) mean[d] += v[d] / n;
+  }
+  const double share =
+      slabs_.active() ? double(slabs_.end() - slabs_.begin()) / grid_.counts()[D - 1] : 1.0;
+  const auto expected = static_cast<std::size_t>(1.05 * share * n + 64); // a slab's count varies
+  for (int d = 0; d < D; ++d) {
+    state_.box[d] = p.box[d];
+    state_.x[d].reserve(expected), state_.v[d].reserve(expected);
+  }
+  state_.id.reserve(expected);
+  if (kind_.has_energy) state_.u.reserve(expected);
+  // 000:(3.21): <u> = (c_v + k) T in equilibrium (k = 1); seed 002 starts at theta_i = T
+  const double u0 = p.initial_internal_energy == InitialInternalEnergy::Equilibrium
+                        ? (kind_.cv + 1) * p.temperature
+                        : kind_.cv * p.temperature;
+  for (std::size_t i = 0; i < n; ++i) {
+    make(i, x, v);
+    double u = u0;
+    if (p.temperature_perturbation != 0) // the thermal relaxation scene's initial mode
+      u *= 1 + p.temperature_perturbation * std::sin(2 * M_PI * x[0] / p.box[0]);
+    if (slabs_.active()) {
+      for (int d = 0; d < D; ++d) x[d] = grid_.wrapped(x[d], d);
+      // the plane as the sort will take it: of the listed (float) position when there is a list
+      const double key =
+          listed_key() ? static_cast<double>(static_cast<float>(x[D - 1])) : x[D - 1];
+      if (slabs_.owner(grid_.global_plane(key)) != slabs_.rank) continue;
+    }
+    for (int d = 0; d < D; ++d) state_.x[d].push_back(x[d]), state_.v[d].push_back(v[d] - mean[d]);
+    state_.id.push_back(static_cast<std::uint32_t>(i));
+    if (kind_.has_energy) state_.u.push_back(u);
+  }
+}
+
+template <int D> void ParticleStore<D>::save_particles(SaveArchive& a) {
+  if (slabs_.active()) { // one file: the particles gathered in one-process order
+    GatheredParticles<D> g;
+    gather(g);
+    archive_arrays(a, g.state, g.carried, g.x_listed);
+    return;
+  }
+  archive_arrays(a, state_, carried_, x_listed_);
+}
+
+template <int D> void ParticleStore<D>::load_particles(LoadArchive& a) {
+  archive_arrays(a, state_, carried_, x_listed_);
+  const bool heat_rates = p_.integrator != Integrator::Shardlow;
+  if (carried_.q.size() != (heat_rates ? state_.id.size() : 0) ||
+      state_.x[0].size() != state_.id.size())
+    throw std::invalid_argument("checkpoint: particle arrays of different lengths");
+  // Stored in (cell, id) order of the positions the pair list was built from: the sort
+  // rebuilds the cell index only, and the list is the one the run had.
+  const bool listed = !x_listed_[0].empty();
+  owned_ = state_.size();
+  if (slabs_.active()) keep_owned();
+  grid_.sort(state_, carried_, listed ? &x_listed_ : nullptr);
+  if (slabs_.active()) build_ghosts();
+  if (listed) grid_.build_pairs(x_listed_, list_cutoff_);
+}
+
+template <int D>
+template <class A>
+void ParticleStore<D>::archive_arrays(A& a, State<D>& s, Carried<D>& c,
+                                      typename CellGrid<D>::ListedPositions& l) {
+  std::array<double, 6> energy_in = wall_energy_in(), momentum_in = wall_momentum_in();
+  std::array<double, 12> heat_moves = wall_heat_moves();
+  long crossings = wall_crossings();
+  a("x", s.x), a("v", s.v), a("u", s.u), a("id", s.id);
+  a("force", c.f), a("heat_rate", c.q), a("potential", c.potential);
+  a("step", step_), a("wall_energy_in", energy_in), a("wall_crossings", crossings);
+  a("wall_momentum_in", momentum_in), a("wall_heat_moves", heat_moves), a("x_listed", l);
+  if constexpr (A::loading) {
+    for (int k = 0; k < 6; ++k)
+      tally_.sums()[k] = energy_in[k], tally_.sums()[6 + k] = momentum_in[k];
+    for (int k = 0; k < 12; ++k) tally_.sums()[12 + k] = heat_moves[k];
+    tally_.set_counted(slabs_.root() ? crossings : 0);
+  }
+}
+
+template <int D> void ParticleStore<D>::list_positions() {
+  const std::size_t n = state_.size();
+  for (int d = 0; d < D; ++d) {
+    x_listed_[d].resize(n);
+    for (std::size_t i = 0; i < n; ++i) x_listed_[d][i] = static_cast<float>(state_.x[d][i]);
+  }
+}
+
+template <int D> void ParticleStore<D>::fail(std::size_t i, const char* where) const {
+  std::ostringstream s;
+  s << "unstable at step " << step_ << " (" << where << "): particle " << state_.id[i] << " x = (";
+  for (int d = 0; d < D; ++d) s << (d ? ", " : "") << state_.x[d][i];
+  s << ") v = (";
+  for (int d = 0; d < D; ++d) s << (d ? ", " : "") << state_.v[d][i];
+  s << ")";
+  if (kind_.has_energy) {
+    s << " u = " << state_.u[i] << " theta = " << theta(i) << "; neighbours' theta:";
+    for (std::size_t j = 0; j < state_.size(); ++j) { // brute force: only on failure
+      if (j == i) continue;
+      double dx[D], r2 = 0;
+      grid_.separation(state_, i, j, dx);
+      for (int d = 0; d < D; ++d) r2 += dx[d] * dx[d];
+      if (r2 < kind_.rc * kind_.rc) s << " " << theta(j);
+    }
+  }
+  s << ". " << stability_hint(p_);
+  throw InstabilityError(s.str());
+}
+
+template <int D> int ParticleStore<D>::owner_of(std::size_t i) const {
   const double key =
       x_listed_[D - 1].empty() ? state_.x[D - 1][i] : static_cast<double>(x_listed_[D - 1][i]);
   return slabs_.owner(grid_.global_plane(key));
 }
 
-template <class M> void Simulation<M>::resize_local(std::size_t n) {
+template <int D> void ParticleStore<D>::resize_local(std::size_t n) {
   const auto fit = [n](auto& a) { resize_with_margin(a, n); };
   for (int d = 0; d < D; ++d) {
     fit(state_.x[d]), fit(state_.v[d]), fit(carried_.f[d]);
@@ -24,7 +194,7 @@ template <class M> void Simulation<M>::resize_local(std::size_t n) {
   fit(carried_.potential);
 }
 
-template <class M> void Simulation<M>::keep_owned() {
+template <int D> void ParticleStore<D>::keep_owned() {
   std::size_t kept = 0;
   auto move = [](auto& a, std::size_t from, std::size_t to) {
     if (!a.empty()) a[to] = a[from];
@@ -45,7 +215,7 @@ template <class M> void Simulation<M>::keep_owned() {
 
 // Each particle to the rank of its sort cell (any rank: a list kept past its bound may have let
 // a particle cross more than one slab). Order does not matter: the sort follows.
-template <class M> void Simulation<M>::migrate() {
+template <int D> void ParticleStore<D>::migrate() {
   const int ranks = slabs_.ranks;
   const int fields = 2 * D + (state_.u.empty() ? 0 : 1) + 1; // x, v, u, id
   std::vector<std::vector<double>> out(static_cast<std::size_t>(ranks));
@@ -93,7 +263,7 @@ template <class M> void Simulation<M>::migrate() {
 
 // The upper rank's first plane, as its sort left it, after the owned particles: positions,
 // velocities, energies, ids and the sort keys. Its cells are the grid's ghost plane.
-template <class M> void Simulation<M>::build_ghosts() {
+template <int D> void ParticleStore<D>::build_ghosts() {
   const bool listed = !x_listed_[0].empty();
   std::vector<std::vector<double>*> fields;
   for (int d = 0; d < D; ++d) fields.push_back(&state_.x[d]), fields.push_back(&state_.v[d]);
@@ -118,33 +288,12 @@ template <class M> void Simulation<M>::build_ghosts() {
     grid_.set_ghost_cells(state_.x, owned_, ghost_count_);
 }
 
-// update_neighbours' rebuild on a slab: the one-process steps (wrap, list the positions, sort by
-// cell and id, list the pairs) with the migration after the listing and the ghost plane after
-// the sort.
-template <class M> void Simulation<M>::rebuild_slab() {
-  resize_local(owned_); // the ghost copies go; build_ghosts brings them anew
-  grid_.wrap(state_);
-  const bool listed = listed_key();
-  if (listed) list_positions();
-  migrate();
-  if (listed) list_positions();
-  grid_.sort(state_, carried_, listed ? &x_listed_ : nullptr, false);
-  if (listed) list_positions(); // in the sorted order
-  resize_local(owned_);
-  build_ghosts();
-  if (p_.integrator == Integrator::Euler) return;
-  if (listed)
-    grid_.build_pairs(x_listed_, list_cutoff_);
-  else
-    grid_.build_pairs(state_, list_cutoff_);
-}
-
 // list_still_complete on a slab: every rank's far movers go to every rank, and each checks them
 // against the particles it owns. A pair is checked by the owner of its partner: the same pairs
 // as one process checks, so the same answer.
-template <class M> bool Simulation<M>::slab_list_still_complete(double largest, std::size_t moved) {
+template <int D> bool ParticleStore<D>::slab_list_still_complete(double largest, std::size_t moved) {
   const std::size_t n = static_cast<std::size_t>(p_.particle_count());
-  if (moved > 8 + n / 256 || model_.rc + 2 * std::sqrt(largest) >= 2 * grid_.smallest_side())
+  if (moved > 8 + n / 256 || kind_.rc + 2 * std::sqrt(largest) >= 2 * grid_.smallest_side())
     return false;
   const double half_skin2 = 0.25 * skin_ * skin_;
   const std::size_t fields = 2 * D + 1; // x, listed x, id
@@ -162,7 +311,7 @@ template <class M> bool Simulation<M>::slab_list_still_complete(double largest, 
   std::vector<double> far(static_cast<std::size_t>(offsets.back()));
   MPI_Allgatherv(mine.data(), count, MPI_DOUBLE, far.data(), counts.data(), offsets.data(),
                  MPI_DOUBLE, slabs_.comm);
-  const double rc2 = model_.rc * model_.rc;
+  const double rc2 = kind_.rc * kind_.rc;
   const double listed2 = list_cutoff_ * list_cutoff_ * (1 - 1e-9); // as list_still_complete
   const long movers = static_cast<long>(far.size() / fields);
   int missing = 0;
@@ -189,8 +338,8 @@ template <class M> bool Simulation<M>::slab_list_still_complete(double largest, 
   return !missing;
 }
 
-template <class M>
-void Simulation<M>::halo(std::initializer_list<std::vector<double>*> forward,
+template <int D>
+void ParticleStore<D>::halo(std::initializer_list<std::vector<double>*> forward,
                          std::initializer_list<std::vector<double>*> back) {
   halo_.forward_fields.clear(), halo_.back_fields.clear();
   for (auto* f : forward)
@@ -200,25 +349,25 @@ void Simulation<M>::halo(std::initializer_list<std::vector<double>*> forward,
 }
 
 // The upper rank's first plane, as its even phase left it, into this rank's ghost plane.
-template <class M> void Simulation<M>::Halo::forward() {
-  const std::size_t m = sim->first_plane_count_, g = sim->ghost_count_, o = sim->owned_;
+template <int D> void ParticleStore<D>::Halo::forward() {
+  const std::size_t m = store->first_plane_count_, g = store->ghost_count_, o = store->owned_;
   std::vector<ArraySpan> send, receive;
   for (auto* f : forward_fields)
     send.emplace_back(f->data(), m), receive.emplace_back(f->data() + o, g);
-  sendrecv_spans(send, sim->slabs_.lower, receive, sim->slabs_.upper, 20, sim->slabs_.comm);
+  sendrecv_spans(send, store->slabs_.lower, receive, store->slabs_.upper, 20, store->slabs_.comm);
 }
 
 // The ghost plane's updates back to its owner, whose first plane they are (none below a wall:
 // no rank holds them as ghosts, and nothing arrives from MPI_PROC_NULL).
-template <class M> void Simulation<M>::Halo::back() {
-  const std::size_t m = sim->first_plane_count_, g = sim->ghost_count_, o = sim->owned_;
+template <int D> void ParticleStore<D>::Halo::back() {
+  const std::size_t m = store->first_plane_count_, g = store->ghost_count_, o = store->owned_;
   std::vector<ArraySpan> send, receive;
   for (auto* f : back_fields)
     send.emplace_back(f->data() + o, g), receive.emplace_back(f->data(), m);
-  sendrecv_spans(send, sim->slabs_.upper, receive, sim->slabs_.lower, 21, sim->slabs_.comm);
+  sendrecv_spans(send, store->slabs_.upper, receive, store->slabs_.lower, 21, store->slabs_.comm);
 }
 
-template <class M> void Simulation<M>::share_emissions() {
+template <int D> void ParticleStore<D>::share_emissions() {
   std::vector<std::uint32_t> mine, all;
   for (const Emission& e : emissions_)
     mine.push_back(e.id), mine.push_back(static_cast<std::uint32_t>(e.wall));
@@ -234,7 +383,7 @@ template <class M> void Simulation<M>::share_emissions() {
     emissions_.push_back({all[k], static_cast<int>(all[k + 1]), ~0u});
 }
 
-template <class M> void Simulation<M>::gather(GatheredParticles<D>& out) {
+template <int D> void ParticleStore<D>::gather(GatheredParticles<D>& out) {
   tally_.flush(slabs_);
   const std::size_t n = owned_;
   for (int d = 0; d < D; ++d) {
@@ -252,5 +401,8 @@ template <class M> void Simulation<M>::gather(GatheredParticles<D>& out) {
   if (!carried_.q.empty()) gather_in_rank_order(slabs_, carried_.q.data(), n, out.carried.q);
   gather_in_rank_order(slabs_, carried_.potential.data(), n, out.carried.potential);
 }
+
+template class ParticleStore<2>;
+template class ParticleStore<3>;
 
 } // namespace twinflow::particle

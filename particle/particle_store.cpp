@@ -291,7 +291,8 @@ template <int D> void ParticleStore<D>::build_ghosts() {
 // list_still_complete on a slab: every rank's far movers go to every rank, and each checks them
 // against the particles it owns. A pair is checked by the owner of its partner: the same pairs
 // as one process checks, so the same answer.
-template <int D> bool ParticleStore<D>::slab_list_still_complete(double largest, std::size_t moved) {
+template <int D>
+bool ParticleStore<D>::slab_list_still_complete(double largest, std::size_t moved) {
   const std::size_t n = static_cast<std::size_t>(p_.particle_count());
   if (moved > 8 + n / 256 || kind_.rc + 2 * std::sqrt(largest) >= 2 * grid_.smallest_side())
     return false;
@@ -340,7 +341,7 @@ template <int D> bool ParticleStore<D>::slab_list_still_complete(double largest,
 
 template <int D>
 void ParticleStore<D>::halo(std::initializer_list<std::vector<double>*> forward,
-                         std::initializer_list<std::vector<double>*> back) {
+                            std::initializer_list<std::vector<double>*> back) {
   halo_.forward_fields.clear(), halo_.back_fields.clear();
   for (auto* f : forward)
     if (!f->empty()) halo_.forward_fields.push_back(f);

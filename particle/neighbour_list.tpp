@@ -65,10 +65,7 @@ template <class M> bool Simulation<M>::update_neighbours(bool force) {
 // N/64 were no faster. largest: max |d_i|^2, moved: how many moved farther than skin/2.
 template <class M> bool Simulation<M>::list_still_complete(double largest, std::size_t moved) {
   const std::size_t n = state_.size();
-  // A missing pair was closer than rc + 2 max|d| when listed: two cells apart at most, if that
-  // is under two cell sides.
-  if (moved > 8 + n / 256 || model_.rc + 2 * std::sqrt(largest) >= 2 * grid_.smallest_side())
-    return false;
+  if (!movers_checkable(largest, moved, n)) return false;
   const double half_skin2 = 0.25 * skin_ * skin_;
   const int threads = omp_get_max_threads();
   moved_far_.resize(static_cast<std::size_t>(threads));

@@ -293,8 +293,7 @@ template <int D> void ParticleStore<D>::build_ghosts() {
 // as one process checks, so the same answer.
 template <int D>
 bool ParticleStore<D>::slab_list_still_complete(double largest, std::size_t moved) {
-  const std::size_t n = static_cast<std::size_t>(p_.particle_count());
-  if (moved > 8 + n / 256 || kind_.rc + 2 * std::sqrt(largest) >= 2 * grid_.smallest_side())
+  if (!movers_checkable(largest, moved, static_cast<std::size_t>(p_.particle_count())))
     return false;
   const double half_skin2 = 0.25 * skin_ * skin_;
   const std::size_t fields = 2 * D + 1; // x, listed x, id

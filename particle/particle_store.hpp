@@ -7,6 +7,7 @@
 // in Simulation<M>.
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <initializer_list>
 #include <stdexcept>
@@ -101,6 +102,11 @@ protected:
     return r2;
   }
   void list_positions(); // x_listed_ = x rounded to float
+  // Whether checking the far movers can keep the list (list_still_complete): few of them among
+  // n, and a missing pair, closer than rc + 2 max|d| when listed, at most two cells apart.
+  bool movers_checkable(double largest, std::size_t moved, std::size_t n) const {
+    return !(moved > 8 + n / 256 || kind_.rc + 2 * std::sqrt(largest) >= 2 * grid_.smallest_side());
+  }
   double theta(std::size_t i) const { return state_.u[i] / kind_.cv; }
   // Stops the run with particle i's state, its neighbours' theta and the stability hint.
   [[noreturn]] void fail(std::size_t i, const char* where) const;

@@ -49,8 +49,8 @@ inline double sum_of(const std::vector<double>& a, std::size_t n) {
 template <class M> class Simulation : public ParticleStore<M::D> {
   using Store = ParticleStore<M::D>;
   using Store::build_ghosts, Store::displacement2, Store::fail, Store::halo, Store::list_positions,
-      Store::listed_key, Store::migrate, Store::resize_local, Store::share_emissions,
-      Store::slab_list_still_complete, Store::theta;
+      Store::listed_key, Store::migrate, Store::movers_checkable, Store::resize_local,
+      Store::share_emissions, Store::slab_list_still_complete, Store::theta;
   using Store::p_, Store::state_, Store::carried_, Store::grid_, Store::skin_, Store::list_cutoff_,
       Store::x_listed_, Store::step_, Store::tally_, Store::slabs_, Store::owned_,
       Store::emissions_;

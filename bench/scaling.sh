@@ -29,6 +29,8 @@ mpicc -O2 -shared -fPIC -o "$OUT/libmpi_counts.so" "$HERE/mpi/mpi_counts.c"
 MPIRUN=(mpirun -np 2 --bind-to none)
 RAW=$OUT/raw.txt # one line per measurement: kind key values
 : >"$RAW"
+. "$HERE/host.sh"
+host_lines | tee -a "$RAW"
 
 echo "== exchange cost, 2 ranks"
 "${MPIRUN[@]}" "$OUT/mpi_exchange" | sed 's/^/exchange /' | tee -a "$RAW"

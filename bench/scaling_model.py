@@ -26,6 +26,8 @@ import statistics as st
 import sys
 from collections import defaultdict
 
+from host import host_block
+
 raw = sys.argv[1] if len(sys.argv) > 1 else "bench/runs/scaling/raw.txt"
 exchange, counts, speed = {}, defaultdict(dict), defaultdict(list)
 for line in open(raw):
@@ -57,6 +59,7 @@ def planes_of(n):
 
 
 print("# Scaling model of the particle solver on MPI (bench/scaling.sh)\n")
+print("Host:\n\n" + host_block(raw))
 print(f"MPI_Sendrecv between 2 ranks: alpha = {alpha * 1e6:.2f} us, beta = {beta / 1e9:.1f} GB/s; "
       f"MPI_Allreduce of one double: {alpha_c * 1e6:.2f} us\n")
 print("| N | integrator | 1x1 | 1x2 | 2x1 | 2x1 / 1x2 | 2x1 / (2 x 1x1) | ghosts per rank | "

@@ -5,6 +5,8 @@ import statistics as st
 import sys
 from collections import defaultdict
 
+from host import host_block
+
 perf, scenes, thermo = defaultdict(list), defaultdict(list), []
 for line in open(sys.argv[1]):
     w = line.split()
@@ -19,6 +21,8 @@ for line in open(sys.argv[1]):
     elif w[0] == "thermo":
         f = [x.strip() for x in line.split("|")]
         thermo.append([f[0].split()[1]] + f[1:])
+
+print("Host:\n\n" + host_block(sys.argv[1]))
 
 med = lambda v: st.median(x[0] for x in v)
 fmt = lambda x: "%.3g" % x if x else "-"

@@ -46,6 +46,8 @@ export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 # GOMP_SPINCOUNT, in the environment measure another choice.
 RAW=$OUT/raw.txt # one line per measurement: kind key values
 : >"$RAW"
+. "$HERE/host.sh"
+host_lines | tee -a "$RAW"
 
 edge() { python3 -c "print('%.10g' % round(($1 / 6.0) ** (1 / 3.0), 9))"; }
 steps_for() { python3 -c "print(max(20, int(round(float('$PS') / $1))))"; }

@@ -96,34 +96,47 @@ TEST(ScenesValidation, ThermalRelaxationKappa) {
 }
 
 namespace {
-// A column of wall_layers.csv within the first cutoff of a wall, weighted by its errors.
+// A column of wall_layers.csv within the first cutoff of a wall, weighted by its errors. A
+// temperature's slices move together (the whole fluid's slow exchange with the walls reaches
+// every slice), so its mean's error is the slices' rms error, the bound for fully correlated
+// slices: 1 / sqrt(sum of weights) takes them as independent and was ~4x too small
+// (2026-11-29). The shapes (the Gamma law's ratio, the kurtosis) do not follow the fluid's
+// temperature, and their slices are taken as independent.
 struct LayerMean {
   double mean = 0, stderr_ = 0;
 };
-LayerMean layer_mean(const std::string& csv, const std::string& wall, const std::string& column) {
+LayerMean layer_mean(const std::string& csv, const std::string& wall, const std::string& column,
+                     bool slices_move_together) {
   const twinflow::io::CsvTable table = twinflow::io::parse_csv(csv);
   const std::size_t h = table.column("h", "wall_layers.csv"),
                     value = table.column(column, "wall_layers.csv"),
                     error = table.column(column + "_se", "wall_layers.csv");
-  double sw = 0, swx = 0;
+  double sw = 0, swx = 0, sum_se2 = 0;
+  int slices = 0;
   for (const auto& row : table.rows) {
     if (row[0] != wall || std::stod(row[h]) >= 1) continue;
     const double se = std::stod(row[error]);
     if (!(se > 0)) continue;
     sw += 1 / (se * se), swx += std::stod(row[value]) / (se * se);
+    sum_se2 += se * se, ++slices;
   }
-  return {swx / sw, 1 / std::sqrt(sw)};
+  return {swx / sw, slices_move_together ? std::sqrt(sum_se2 / slices) : 1 / std::sqrt(sw)};
 }
 } // namespace
 
 // Issue 44: the shipped walls (the default cavity's: half-space, diffuse re-emission, conducting
 // 30x and 100x the fluid) hold a fluid started away from their temperature at it, in equilibrium
 // (the default fluid at 1.2 between walls at 0.8, no gravity; 2D, c_v = 10, dt 0.01; 600 tau, ~6
-// decay times of the slowest mode, to relax, 600 sampled). It relaxes
+// decay times of the slowest mode, to relax, 4800 sampled in 16 blocks of 300 tau: the fluid's
+// temperature has an integrated autocorrelation time of ~90 tau, its exchange with the walls, and
+// 20 blocks of 30 tau understated its error ~2x, session 16's failure at this seed). It relaxes
 // to T_w with T_kinetic = T_internal = T_w, the wall layer's first cutoff included (its internal
 // energies the Gamma law's, its velocities Gaussian), and no net heat into either wall; the
-// walls' Metropolis acceptance is printed.
+// walls' Metropolis acceptance is printed. 24 checks, each error from 16 blocks: at 3 errors one
+// of them would fail by chance in ~20% of seeds (Student's t, 15 degrees of freedom), at 4 in
+// ~3%.
 TEST(ScenesValidation, ShippedWallsHoldAFluidAtTheirTemperature) {
+  const double k = 4; // errors allowed per check (above)
   for (const char* factor : {"30", "100"}) {
     std::filesystem::path dir;
     const auto r = run_case(
@@ -131,22 +144,23 @@ TEST(ScenesValidation, ShippedWallsHoldAFluidAtTheirTemperature) {
         std::string("--threads 2 --set 'Scene/Gravity=0, 0' --set 'Scene/Temperature=1.2' ") +
             "--set 'Scene/x boundaries/Lower wall temperature=0.8' --set 'Scene/x boundaries/Upper "
             "wall temperature=0.8' --set 'Particle/Equilibration steps=60000' --set "
-            "'Particle/Steps=60000' --set 'Particle/Walls/Heat conduction=" +
+            "'Particle/Steps=480000' --set 'Particle/Diagnostics/Blocks=16' --set "
+            "'Particle/Walls/Heat conduction=" +
             factor + "'",
         &dir);
     const double T_w = 0.8;
     const auto near_wall = [&](double value, double se, const char* what) {
-      EXPECT_LT(std::fabs(value - T_w), 3 * se + 1e-3)
+      EXPECT_LT(std::fabs(value - T_w), k * se + 1e-3)
           << "f " << factor << ": " << what << " " << value << " +- " << se;
     };
     near_wall(number(r, "T_kinetic"), number(r, "T_kinetic_stderr"), "T_kinetic");
     near_wall(number(r, "T_internal"), number(r, "T_internal_stderr"), "T_internal");
     const std::string layers = twinflow::io::read_file(dir / "particle" / "wall_layers.csv");
     for (const char* wall : {"x_lower", "x_upper"}) {
-      const LayerMean tk = layer_mean(layers, wall, "T_kinetic");
-      const LayerMean ti = layer_mean(layers, wall, "T_internal");
-      const LayerMean gamma = layer_mean(layers, wall, "u_gamma_ratio");
-      const LayerMean kurtosis = layer_mean(layers, wall, "kurtosis");
+      const LayerMean tk = layer_mean(layers, wall, "T_kinetic", true);
+      const LayerMean ti = layer_mean(layers, wall, "T_internal", true);
+      const LayerMean gamma = layer_mean(layers, wall, "u_gamma_ratio", false);
+      const LayerMean kurtosis = layer_mean(layers, wall, "kurtosis", false);
       const std::string name = std::string("walls.") + wall;
       const double q = number(r, name + ".heat_flux_in"),
                    q_se = number(r, name + ".heat_flux_in_stderr");
@@ -158,10 +172,10 @@ TEST(ScenesValidation, ShippedWallsHoldAFluidAtTheirTemperature) {
                 << number(r, name + ".heat_moves_acceptance") << "\n";
       near_wall(tk.mean, tk.stderr_, "layer T_kinetic");
       near_wall(ti.mean, ti.stderr_, "layer T_internal");
-      EXPECT_LT(std::fabs(gamma.mean - 1), 3 * gamma.stderr_ + 0.01) << wall;
-      EXPECT_LT(std::fabs(kurtosis.mean - 3), 3 * kurtosis.stderr_ + 0.02) << wall;
+      EXPECT_LT(std::fabs(gamma.mean - 1), k * gamma.stderr_ + 0.01) << wall;
+      EXPECT_LT(std::fabs(kurtosis.mean - 3), k * kurtosis.stderr_ + 0.02) << wall;
       // No net heat either way: the sign of a wall's flow in equilibrium is noise.
-      EXPECT_LT(std::fabs(q), 3 * q_se) << wall;
+      EXPECT_LT(std::fabs(q), k * q_se) << wall;
       const double acceptance = number(r, name + ".heat_moves_acceptance");
       EXPECT_GT(acceptance, 0.5) << wall;
       EXPECT_LE(acceptance, 1.0) << wall;

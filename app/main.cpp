@@ -66,7 +66,7 @@ void version(std::ostream& out) {
       << "." << minor << " (" << mpi_library << ")\n"
       << "particle kernels: " << io::isa_name(io::kernel_isa()) << " (this build on this host runs";
   for (const io::Isa isa : io::runnable_isas()) out << " " << io::isa_key(isa);
-  out << "; TWINFLOW_ISA chooses)\n";
+  out << "; TWINFLOW_ISA chooses)\n" << io::host_line() << "\n";
 }
 
 // The command line as typed, every option kept, with --restart: what continues an interrupted

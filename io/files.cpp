@@ -9,6 +9,7 @@
 #include <cstring>
 #include <fstream>
 #include <iomanip>
+#include <iterator>
 #include <sstream>
 #include <thread>
 
@@ -103,20 +104,48 @@ std::string version_line() {
          kBuildType + ")";
 }
 
-// The host's CPU model (/proc/cpuinfo's first "model name"; "unknown" elsewhere) and its cores.
+namespace {
+// The value of /proc/cpuinfo's first "KEY : value" line ("" where there is none).
+std::string cpuinfo_value(const std::string& cpuinfo, const std::string& key) {
+  std::istringstream lines(cpuinfo);
+  for (std::string line; std::getline(lines, line);) {
+    const auto colon = line.find(':');
+    if (colon == std::string::npos || line.rfind(key, 0) != 0) continue;
+    const auto name_end = line.find_last_not_of(" \t", colon - 1);
+    if (name_end + 1 != key.size()) continue; // "model" is not "model name"
+    const auto value = line.find_first_not_of(' ', colon + 1);
+    return value == std::string::npos ? "" : line.substr(value);
+  }
+  return "";
+}
+} // namespace
+
+// The host as /proc/cpuinfo names it (CPU model, family and model numbers, the vector ISA flags
+// the kernels care about) and its cores; "unknown" off Linux.
 Json host_record() {
-  std::string model = "unknown";
-  std::ifstream cpuinfo("/proc/cpuinfo");
-  for (std::string line; std::getline(cpuinfo, line);)
-    if (line.rfind("model name", 0) == 0 && line.find(':') != std::string::npos) {
-      model = line.substr(line.find(':') + 1);
-      model.erase(0, model.find_first_not_of(' '));
-      break;
-    }
+  std::ifstream file("/proc/cpuinfo");
+  const std::string cpuinfo{std::istreambuf_iterator<char>(file), {}};
+  const std::string model = cpuinfo_value(cpuinfo, "model name");
+  std::string isa;
+  const std::string flags = " " + cpuinfo_value(cpuinfo, "flags") + " ";
+  for (const char* flag : {"avx2", "fma", "avx512f", "avx512vl"})
+    if (flags.find(std::string(" ") + flag + " ") != std::string::npos)
+      isa += (isa.empty() ? "" : " ") + std::string(flag);
   Json j = Json::object();
-  j["cpu_model"] = model;
+  j["cpu_model"] = model.empty() ? "unknown" : model;
+  j["cpu_family"] = cpuinfo_value(cpuinfo, "cpu family");
+  j["cpu_model_number"] = cpuinfo_value(cpuinfo, "model");
+  j["isa_flags"] = isa.empty() ? "none of avx2 fma avx512f avx512vl" : isa;
   j["cores"] = static_cast<long>(std::thread::hardware_concurrency());
   return j;
+}
+
+std::string host_line() {
+  const Json h = host_record();
+  return "host: " + h["cpu_model"].get<std::string>() + " (family " +
+         h["cpu_family"].get<std::string>() + ", model " +
+         h["cpu_model_number"].get<std::string>() + "), " + std::to_string(h["cores"].get<long>()) +
+         " cores, isa " + h["isa_flags"].get<std::string>();
 }
 
 Json provenance() {

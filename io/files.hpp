@@ -47,8 +47,12 @@ private:
 };
 
 // Fields every stage's summary.json carries. What made a result: the git revision, compiler, build
-// type, --version's line and the host (CPU model, cores).
+// type, --version's line and the host (host_record()).
 Json provenance();
+// The host: CPU model, family and model numbers, the avx2/fma/avx512f/avx512vl flags, cores.
+Json host_record();
+// host_record() as --version's line: "host: MODEL (family F, model M), C cores, isa FLAGS".
+std::string host_line();
 // "twinflow 0.1.0 (git REV, COMPILER, BUILD TYPE)" and "HDF5 1.10.8": for --version.
 std::string version_line();
 std::string hdf5_version();

@@ -298,6 +298,7 @@ TEST(Cli, SummarySaysHowTheRunRan) {
               ranks == 1 ? "1 rank" : std::to_string(ranks) + " slabs along y");
     EXPECT_FALSE(twinflow::io::text(summary, {"provenance", "host", "cpu_model"}).empty());
     EXPECT_GE(twinflow::io::number(summary, {"provenance", "host", "cores"}), 1);
+    EXPECT_FALSE(twinflow::io::text(summary, {"provenance", "host", "isa_flags"}).empty());
     EXPECT_EQ(twinflow::io::text(summary, {"provenance", "version"}).rfind("twinflow ", 0), 0u);
     EXPECT_GT(twinflow::io::number(summary, {"stage_wall_time_s"}), 0);
   };

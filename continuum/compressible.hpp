@@ -81,7 +81,8 @@ public:
         history_T_(values_.n_q), dofs_(fe.n_dofs_per_cell()) {
     volume_ = 1;
     for (int d = 0; d < dim; ++d) volume_ *= prm.box[d];
-    total_particles_ = prm.number_density * volume_; // N = n_mean |Omega|
+    total_particles_ = prm.particle_count > 0 ? prm.particle_count
+                                              : prm.number_density * volume_; // N = n_mean |Omega|
     reference_flux_ =
         numbers.heated_direction < 0
             ? 0.0

@@ -138,8 +138,9 @@ LowMachModel<dim>::LowMachModel(const ContinuumParameters& prm, const Dimensionl
       u_old_(values_.n_q), T_old_(values_.n_q) {
   double volume = 1;
   for (int d = 0; d < dim; ++d) volume *= prm.box[d];
-  total_particles_ = prm.number_density * volume;                       // N = n_mean |Omega|
-  reference_pressure_ = prm.number_density * prm.reference_temperature; // p0 = n k T_ref, k = 1
+  total_particles_ = prm.particle_count > 0 ? prm.particle_count
+                                            : prm.number_density * volume; // N = n_mean |Omega|
+  reference_pressure_ = prm.number_density * prm.reference_temperature;    // p0 = n k T_ref, k = 1
   reference_flux_ =
       numbers.heated_direction < 0
           ? 0.0

@@ -40,8 +40,10 @@ DimensionlessNumbers dimensionless_numbers(const ContinuumParameters& p) {
   n.velocity_scale = n.thermal_diffusivity / H; // chi / H (de Vahl Davis 1983)
   if (n.heated_direction >= 0) {
     // Conduction flux (1/H) int_{T_upper}^{T_lower} kappa(T) dT (Kirchhoff transform, Carslaw &
-    // Jaeger 1959 sec. 1.7), for kappa = kappa_0 (T/T_ref)^e.
+    // Jaeger 1959 sec. 1.7), for kappa = kappa_0 (T/T_ref)^e; H the scene's, between its wall
+    // planes (walls moved in leave Nu's scale, and so the particles' Nu, as it was).
     const auto& b = p.boundary[n.heated_direction];
+    const double H_scene = p.bin_extent(n.heated_direction);
     const double k0 = p.conductivity.value_at_reference, e = p.conductivity.exponent;
     const double tl = b.temperature[0] / T_ref, tu = b.temperature[1] / T_ref;
     // epsilon = (T_h - T_c) / (T_h + T_c) (Le Quere et al. 2005)
@@ -55,13 +57,14 @@ DimensionlessNumbers dimensionless_numbers(const ContinuumParameters& p) {
       for (int i = 0; i <= m; ++i)
         sum += (i == 0 || i == m ? 1 : (i % 2 ? 4 : 2)) *
                p.conductivity.at(b.temperature[1] + i * h, T_ref);
-      n.conduction_flux = sum * h / 3 / H;
+      n.conduction_flux = sum * h / 3 / H_scene;
     } else if (e == 0.0)
-      n.conduction_flux = k0 * n.temperature_difference / H;
+      n.conduction_flux = k0 * n.temperature_difference / H_scene;
     else if (e == -1.0)
-      n.conduction_flux = k0 * T_ref * std::log(tl / tu) / H;
+      n.conduction_flux = k0 * T_ref * std::log(tl / tu) / H_scene;
     else
-      n.conduction_flux = k0 * T_ref * (std::pow(tl, e + 1) - std::pow(tu, e + 1)) / ((e + 1) * H);
+      n.conduction_flux =
+          k0 * T_ref * (std::pow(tl, e + 1) - std::pow(tu, e + 1)) / ((e + 1) * H_scene);
   }
   return n;
 }

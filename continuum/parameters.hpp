@@ -126,6 +126,10 @@ struct DirectionBoundary {
   // Kinetic slip of a no-slip thermal wall (ContinuumParameters::wall_friction): the traction
   // beta(n, T) u_t of the particle wall the twin stands for, instead of eta / b.
   std::array<bool, 2> kinetic_slip{{false, false}};
+  // A layer the particle wall holds at T_wall, this deep (rc; its theory's b < 0): the twin's
+  // wall stands that far inside the scene's plane, T = T_wall there (docs/theory.md, "The wall
+  // layer"); set with move_walls_in by study::take_wall_jumps.
+  std::array<double, 2> pinned_depth{{0.0, 0.0}};
   bool navier(int side) const { return no_slip && (slip_length[side] > 0 || kinetic_slip[side]); }
   double kapitza_flux(int side, double T) const { // heat flux into the domain at fluid T
     const double h = kapitza_conductance[side], Tw = temperature[side];
@@ -180,7 +184,10 @@ struct ContinuumParameters {
   std::array<double, 3> gravity{{0, 0, 0}};
 
   // Material, particle units
-  double number_density = 1.0;        // n; low-Mach: the mean N/V of the closed box (its mass)
+  double number_density = 1.0; // n; low-Mach: the mean N/V of the closed box (its mass)
+  // Compressible and low-Mach: the particles N of the twin's box; 0: number_density x its volume
+  // (walls moved in over pinned layers leave those layers' particles out).
+  double particle_count = 0;
   double particle_mass = 1.0;         // m
   double heat_capacity = 1.0;         // c_p per particle (units of k)
   double thermal_expansion = 0.0;     // alpha (1/T0); low-Mach: 1/T_ref (ideal gas)

@@ -43,6 +43,7 @@ io::Json boundaries_json(const ContinuumParameters& p) {
           s["kapitza_conductance_stderr"] = b.kapitza_conductance_stderr[side];
         } else if (!b.fixed_temperature[side])
           s["heat_flux_in"] = b.heat_flux[side];
+        if (b.pinned_depth[side] > 0) s["pinned_depth"] = b.pinned_depth[side];
         if (b.kinetic_slip[side])
           s["slip"] = "kinetic";
         else if (b.navier(side))
@@ -123,6 +124,7 @@ io::Json to_json(const ContinuumParameters& p) {
   j["boundaries"] = boundaries_json(p);
   j["gravity"] = triple(p.gravity, p.dim);
   j["number_density"] = p.number_density;
+  if (p.particle_count > 0) j["particle_count"] = p.particle_count;
   j["particle_mass"] = p.particle_mass;
   j["heat_capacity_per_particle"] = p.heat_capacity;
   j["thermal_expansion"] = p.thermal_expansion;

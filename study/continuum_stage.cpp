@@ -133,6 +133,9 @@ void take_wall_densities_from_twin(const CaseParameters& c, const transport::Coe
         const double was = p.boundary[d].kapitza_conductance[side];
         const double now = next.boundary[d].kapitza_conductance[side];
         if (was != now) change = std::max(change, std::fabs(now / was - 1));
+        const double was_depth = p.boundary[d].pinned_depth[side];
+        const double depth = next.boundary[d].pinned_depth[side];
+        if (was_depth != depth) change = std::max(change, std::fabs(depth / was_depth - 1));
       }
     p = next;
     if (change < 0.02) return;

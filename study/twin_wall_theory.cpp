@@ -4,11 +4,38 @@
 #include <cmath>
 #include <cstdio>
 
+#include "continuum/twin_walls.hpp"
 #include "particle/theory.hpp"
 #include "transport/estimates.hpp"
 #include "transport/wall_layer.hpp"
 
 namespace twinflow::study {
+
+namespace {
+// The twin's walls over pinned layers moved in by their depths (from the scene's planes; its
+// Navier slips, measured from the planes, then reach that much further beyond the twin's walls),
+// and the particles of those layers, at the walls' densities, left out of the twin's count.
+void place_pinned_walls(const CaseParameters& c, continuum::ContinuumParameters& twin,
+                        const std::array<double, 6>& depth, const std::array<double, 6>& density) {
+  std::array<double, 6> distance = continuum::moved_wall_distances(twin);
+  for (int w = 0; w < 2 * twin.dim; ++w) {
+    continuum::DirectionBoundary& b = twin.boundary[w / 2];
+    const double moved = depth[w] - b.pinned_depth[w % 2];
+    if (b.slip_length[w % 2] > 0) b.slip_length[w % 2] += moved;
+    distance[w] += moved;
+    b.pinned_depth[w % 2] = depth[w];
+  }
+  continuum::move_walls_in(twin, distance, c.scene.box);
+  double particles = c.scene.density, outside = 0;
+  for (int d = 0; d < twin.dim; ++d) particles *= c.scene.box[d];
+  for (int w = 0; w < 2 * twin.dim; ++w) {
+    double area = 1;
+    for (int e = 0; e < twin.dim; ++e) area *= e == w / 2 ? 1.0 : twin.box[e];
+    outside += density[w] * depth[w] * area;
+  }
+  twin.particle_count = outside > 0 ? particles - outside : 0.0;
+}
+} // namespace
 
 int take_wall_jumps(const CaseParameters& c, const transport::Coefficients& k,
                     continuum::ContinuumParameters& twin, const WallValues* at_walls) {
@@ -16,6 +43,7 @@ int take_wall_jumps(const CaseParameters& c, const transport::Coefficients& k,
   const int heated = c.scene.heated_direction();
   if (heated < 0 || !std::isfinite(k.diffusion) || !(k.state_temperature > 0)) return 0;
   int taken = 0;
+  std::array<double, 6> depth{}, density{}; // of pinned layers, per wall
   for (int d = 0; d < c.scene.dim; ++d) {
     const auto& walls = p.walls[d];
     if (!walls.present) continue;
@@ -49,15 +77,20 @@ int take_wall_jumps(const CaseParameters& c, const transport::Coefficients& k,
                   "length %.3f rc, Kapitza conductance %.4g\n",
                   scene::wall_name(d, side).c_str(), n, T_w, in.wall_factor,
                   layer.extrapolation_length, layer.conductance);
-      // A pinned layer (b < 0) keeps T = T_w at the plane: a negative Robin conductance makes
-      // the steady problem lose its solution (the default cavity's twin met a fold at Ra 1326 of
-      // 1359, docs/notebook/2026-11-27-predictions-from-measurements-without-walls.md).
-      if (layer.extrapolation_length < 1e-3) continue;
-      twin.boundary[d].kapitza_conductance[side] = layer.conductance;
+      // A pinned layer (b < 0): the bulk reaches T_w |b| inside the fluid, which the twin's
+      // wall moved in by |b| gives (a negative Robin conductance instead made the steady
+      // problem lose its solution: the default cavity's twin met a fold at Ra 1326 of 1359,
+      // docs/notebook/2026-11-27-predictions-from-measurements-without-walls.md).
+      const bool pinned = layer.extrapolation_length < -1e-3;
+      depth[2 * d + side] = pinned ? -layer.extrapolation_length : 0.0;
+      density[2 * d + side] = n;
+      const bool jump = layer.extrapolation_length >= 1e-3;
+      twin.boundary[d].kapitza_conductance[side] = jump ? layer.conductance : 0.0;
       twin.boundary[d].kapitza_inverse = false;
-      ++taken;
+      taken += jump || pinned;
     }
   }
+  place_pinned_walls(c, twin, depth, density);
   return taken;
 }
 
@@ -91,7 +124,9 @@ int take_wall_slips(const CaseParameters& c, continuum::ContinuumParameters& twi
                   scene::wall_name(d, side).c_str(), n, T, in.diffuse ? "diffuse" : "bounce-back",
                   layer.slip_length);
       b.kinetic_slip[side] = false;
-      b.slip_length[side] = layer.slip_length > 1e-3 ? layer.slip_length : 0.0;
+      // from the scene's plane: beyond a wall moved in over a pinned layer by that much more
+      b.slip_length[side] =
+          layer.slip_length > 1e-3 ? layer.slip_length + b.pinned_depth[side] : 0.0;
       taken += b.slip_length[side] > 0;
     }
   }

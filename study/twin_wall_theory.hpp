@@ -2,8 +2,9 @@
 // The nominal twin's thermal walls from the particle wall model alone (docs/theory.md, "The wall
 // layer"): each half-space thermal wall's extrapolation length b from transport::solve_wall_layer
 // at the wall's temperature and the fluid's density there, taken as the Robin (Kapitza)
-// conductance kappa / b where b > 0; where the wall holds its layer at T_w (b <= 0) the twin
-// keeps T = T_w at the plane. No number measured in
+// conductance kappa / b where b > 0; where the wall holds its layer at T_w (b < 0) the twin's
+// wall stands |b| inside the scene's plane with T = T_w there (the layer's particles left out of
+// its count). No number measured in
 // a cavity or wall slab enters: the fluid's coefficients from the transport stage (bulk runs,
 // heat slabs), the wall's from the case.
 
@@ -20,9 +21,10 @@ namespace twinflow::study {
 // A field's value at each wall, [direction][side] (NaN: not known).
 using WallValues = std::array<std::array<double, 2>, 3>;
 
-// Sets the Kapitza conductances of the twin's walls that stand for half-space thermal walls;
-// returns how many it set. The fluid's density at each wall: `at_walls` where given (the twin's
-// own), else the ideal gas's isobar through the scene's mean density.
+// Sets the Kapitza conductances of the twin's walls that stand for half-space thermal walls, or
+// moves a wall in over its pinned layer; returns how many it set or moved. The fluid's density at
+// each wall: `at_walls` where given (the twin's own), else the ideal gas's isobar through the
+// scene's mean density.
 int take_wall_jumps(const CaseParameters& c, const transport::Coefficients& k,
                     continuum::ContinuumParameters& twin, const WallValues* at_walls = nullptr);
 

@@ -74,9 +74,12 @@ int take_wall_jumps(const CaseParameters& c, const transport::Coefficients& k,
       in.no_slip = walls.no_slip;
       const transport::WallLayer layer = transport::solve_wall_layer(in);
       std::printf("continuum: %s wall from the wall model (n %.3g, T %.3g, f %.3g): extrapolation "
-                  "length %.3f rc, Kapitza conductance %.4g\n",
+                  "length %.3f rc, %s %.4g\n",
                   scene::wall_name(d, side).c_str(), n, T_w, in.wall_factor,
-                  layer.extrapolation_length, layer.conductance);
+                  layer.extrapolation_length,
+                  layer.extrapolation_length < 0 ? "a pinned layer: the twin's wall moved in by"
+                                                 : "Kapitza conductance",
+                  layer.extrapolation_length < 0 ? -layer.extrapolation_length : layer.conductance);
       // A pinned layer (b < 0): the bulk reaches T_w |b| inside the fluid, which the twin's
       // wall moved in by |b| gives (a negative Robin conductance instead made the steady
       // problem lose its solution: the default cavity's twin met a fold at Ra 1326 of 1359,

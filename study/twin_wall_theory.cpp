@@ -26,14 +26,14 @@ void place_pinned_walls(const CaseParameters& c, continuum::ContinuumParameters&
     b.pinned_depth[w % 2] = depth[w];
   }
   continuum::move_walls_in(twin, distance, c.scene.box);
-  double particles = c.scene.density, outside = 0;
-  for (int d = 0; d < twin.dim; ++d) particles *= c.scene.box[d];
+  double outside = 0;
   for (int w = 0; w < 2 * twin.dim; ++w) {
     double area = 1;
     for (int e = 0; e < twin.dim; ++e) area *= e == w / 2 ? 1.0 : twin.box[e];
     outside += density[w] * depth[w] * area;
   }
-  twin.particle_count = outside > 0 ? particles - outside : 0.0;
+  twin.particle_count =
+      outside > 0 ? static_cast<double>(c.particle.particle_count()) - outside : 0.0;
 }
 } // namespace
 

@@ -1,18 +1,17 @@
 #include "app/commands.hpp"
 
-#include <filesystem>
 #include <iostream>
 
-#include "app/case/case.hpp"
 #include "io/files.hpp"
 #include "study/bench.hpp"
+#include "study/case_file/case_file.hpp"
 #include "study/stability_limits.hpp"
 #include "study/stages.hpp"
 #include "study/sweeps.hpp"
 
 namespace twinflow::app {
 
-namespace fs = std::filesystem;
+using study::CaseFile;
 
 namespace {
 
@@ -23,21 +22,6 @@ study::Case load_case(const CommandLine& cl) {
 
 study::GridOptions grid_options(const CommandLine& cl) {
   return {cl.target, cl.settings, cl.vary, cl.rayleigh, cl.run, cl.jobs, cl.launcher, cl.plan};
-}
-
-// The case file for a grid's points: read, resolved, or only its record.
-study::CaseReader case_reader(const std::string& file) {
-  study::CaseReader r;
-  r.check = [file](const std::vector<std::string>& settings) { CaseFile().read(file, settings); };
-  r.load = [file](const std::vector<std::string>& settings) {
-    return CaseFile().load(file, settings);
-  };
-  r.record = [file](const std::vector<std::string>& settings) {
-    CaseFile c;
-    c.read(file, settings);
-    return c.registry().resolved_json();
-  };
-  return r;
 }
 
 int check_case(const CommandLine& cl) {
@@ -77,25 +61,14 @@ int run(const CommandLine& cl) {
 
 // The case as the particle run recorded it, with this command's later sections over it.
 int compare(const CommandLine& cl) {
-  const fs::path run_dir = cl.target;
-  if (!fs::is_directory(run_dir))
-    throw io::InputError(run_dir.string() + ": not a run directory (twinflow compare RUNDIR, "
-                                            "where RUNDIR is the --out of twinflow run)");
-  const io::Json summary =
-      io::read_json(run_dir / "particle" / "summary.json",
-                    "the particle stage has not finished in " + run_dir.string() +
-                        " (twinflow run CASE --out " + run_dir.string() + ")");
-  CaseFile file;
-  const study::Case c =
-      file.load_recorded(summary.at("parameters"), io::text(summary, {"case"}), cl.settings);
-  return study::compare_stage(c, run_dir);
+  return study::compare_stage(study::recorded_case(cl.target, cl.settings), cl.target);
 }
 
 int sweep(const CommandLine& cl) {
-  return study::sweep(grid_options(cl), case_reader(cl.target));
+  return study::sweep(grid_options(cl), study::case_reader(cl.target));
 }
 int stability(const CommandLine& cl) {
-  return study::stability(grid_options(cl), case_reader(cl.target));
+  return study::stability(grid_options(cl), study::case_reader(cl.target));
 }
 int bench(const CommandLine& cl) {
   particle::ParticleParameters cavity;

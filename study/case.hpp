@@ -1,6 +1,6 @@
 #pragma once
 // A paired case as the study runs it: every stage's parameters, resolved once from the case
-// file (app/case/), and the record of every key's value that stages write as provenance and
+// file (study/case_file/), and the record of every key's value that stages write as provenance and
 // hash as their inputs.
 
 #include <filesystem>

@@ -47,9 +47,9 @@ void check_launcher(const std::string& launcher);
 // with a program gets `exec ` so that the shell becomes the launcher (signals reach it).
 std::string launched_command(const std::string& launcher, const std::vector<std::string>& command);
 
-// The case file as the grid needs it (app/case/ provides it): `check` reads it with extra
-// assignments and throws io::InputError for an unknown key or a value outside its pattern;
-// `load` also resolves it (values that do not fit together throw io::InputError too).
+// The case file as the grid needs it (case_reader() of study/case_file/ provides it): `check` reads
+// it with extra assignments and throws io::InputError for an unknown key or a value outside its
+// pattern; `load` also resolves it (values that do not fit together throw io::InputError too).
 struct CaseReader {
   std::function<void(const std::vector<std::string>& settings)> check;
   std::function<Case(const std::vector<std::string>& settings)> load;

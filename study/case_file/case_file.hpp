@@ -1,14 +1,17 @@
 #pragma once
 // One case file describes a whole paired case. This folder is the one place that maps it onto
-// the plain parameter structs of each library (study/case.hpp gathers them).
+// the plain parameter structs of each library (study/case.hpp gathers them): io/case_file.hpp
+// reads the text, each *_section.cpp declares its section's keys and maps them.
 
+#include <filesystem>
 #include <string>
 #include <vector>
 
 #include "io/case_file.hpp"
 #include "study/case.hpp"
+#include "study/grid.hpp"
 
-namespace twinflow::app {
+namespace twinflow::study {
 
 using io::Registry;
 
@@ -17,23 +20,30 @@ class CaseFile {
 public:
   CaseFile();
   // Reads the file, applies --set assignments, checks every value: throws io::InputError.
-  study::Case load(const std::string& filename, const std::vector<std::string>& settings);
+  Case load(const std::string& filename, const std::vector<std::string>& settings);
   // The case a stage recorded in its summary.json ("parameters": path -> value), with the later
   // stages' --set assignments (Transport/, Continuum/, Compare/) over it: those sections may
   // change without rerunning the particles.
-  study::Case load_recorded(const io::Json& recorded, const std::string& name,
-                            const std::vector<std::string>& settings = {});
+  Case load_recorded(const io::Json& recorded, const std::string& name,
+                     const std::vector<std::string>& settings = {});
   // The two halves of load(): read() rejects unknown keys and values outside a key's pattern;
   // resolve() the values that do not fit together or the sections' ranges.
   void read(const std::string& filename, const std::vector<std::string>& settings);
-  study::Case resolve(const std::string& filename) const;
+  Case resolve(const std::string& filename) const;
   const Registry& registry() const { return registry_; }
 
 private:
   Registry registry_;
 };
 
-// Per-section declaration and mapping (app/case/*_section.cpp).
+// The case a run directory's particle stage recorded (particle/summary.json), with the later
+// sections' --set assignments over it: what `twinflow compare RUNDIR` compares.
+Case recorded_case(const std::filesystem::path& run_dir, const std::vector<std::string>& settings);
+
+// The case file as a grid's points read it (sweep, stability).
+CaseReader case_reader(const std::string& file);
+
+// Per-section declaration and mapping (study/case_file/*_section.cpp).
 void declare_scene(Registry&);
 scene::SceneParameters resolve_scene(const Registry&);
 void declare_particle(Registry&);
@@ -44,6 +54,6 @@ continuum::ContinuumParameters resolve_continuum(const Registry&, const scene::S
 void declare_transport(Registry&);
 transport::TransportParameters resolve_transport(const Registry&);
 void declare_compare(Registry&);
-void resolve_compare(const Registry&, study::CaseParameters&); // compare and stability bounds
+void resolve_compare(const Registry&, CaseParameters&); // compare and stability bounds
 
-} // namespace twinflow::app
+} // namespace twinflow::study

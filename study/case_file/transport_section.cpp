@@ -1,6 +1,6 @@
-#include "app/case/case.hpp"
+#include "study/case_file/case_file.hpp"
 
-namespace twinflow::app {
+namespace twinflow::study {
 
 namespace {
 // Where the coefficients come from, at which temperature, and how many runs measure them.
@@ -93,4 +93,4 @@ transport::TransportParameters resolve_transport(const Registry& r) {
   return t;
 }
 
-} // namespace twinflow::app
+} // namespace twinflow::study

@@ -1,6 +1,6 @@
-#include "app/case/case.hpp"
+#include "study/case_file/case_file.hpp"
 
-namespace twinflow::app {
+namespace twinflow::study {
 
 namespace {
 const char* kAxes[3] = {"x", "y", "z"};
@@ -113,4 +113,4 @@ scene::SceneParameters resolve_scene(const Registry& r) {
   return s;
 }
 
-} // namespace twinflow::app
+} // namespace twinflow::study

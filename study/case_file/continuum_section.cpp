@@ -3,11 +3,11 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "app/case/case.hpp"
 #include "continuum/twin_walls.hpp"
 #include "particle/wall_weights.hpp"
+#include "study/case_file/case_file.hpp"
 
-namespace twinflow::app {
+namespace twinflow::study {
 
 namespace {
 const char* const kAxes = "xyz";
@@ -339,11 +339,11 @@ void declare_continuum(Registry& r) {
 }
 
 namespace {
-// The model: as named, or chosen by the scene (study::automatic_model).
+// The model: as named, or chosen by the scene (automatic_model).
 continuum::Model resolve_model(const Registry& r, const scene::SceneParameters& scene) {
   const std::string model = r.get(s + "Model");
   if (model == "auto")
-    return study::automatic_model(
+    return automatic_model(
         scene, r.get_double("Particle/Mass"), r.get("Particle/Conservative force/Type") != "none",
         r.get_double(s + "Low-Mach threshold"), r.get_double(s + "Compressible threshold"));
   return model == "heat-conduction" ? continuum::Model::HeatConduction
@@ -526,4 +526,4 @@ continuum::ContinuumParameters resolve_continuum(const Registry& r,
   return c;
 }
 
-} // namespace twinflow::app
+} // namespace twinflow::study

@@ -1,8 +1,8 @@
-#include "app/case/case.hpp"
+#include "study/case_file/case_file.hpp"
 
 #include <cmath>
 
-namespace twinflow::app {
+namespace twinflow::study {
 
 namespace {
 const char* const kPositive = "a number > 0";
@@ -319,4 +319,4 @@ ParticleParameters resolve_particle(const Registry& r, const scene::SceneParamet
   return p;
 }
 
-} // namespace twinflow::app
+} // namespace twinflow::study

@@ -1,6 +1,6 @@
-#include "app/case/case.hpp"
+#include "study/case_file/case_file.hpp"
 
-namespace twinflow::app {
+namespace twinflow::study {
 
 // Section Compare: the comparison's wall layer and calibrated twin, and the stability map's
 // bounds (compare/parameters.hpp, study::StabilityBounds).
@@ -43,7 +43,7 @@ void declare_compare(Registry& r) {
             "magnitude estimate has certainly failed.");
 }
 
-void resolve_compare(const Registry& r, study::CaseParameters& c) {
+void resolve_compare(const Registry& r, CaseParameters& c) {
   c.compare.wall_layer = r.get_double("Compare/Wall layer");
   c.compare.calibration = r.get("Compare/Calibration");
   c.compare.effective_walls = r.get_bool("Compare/Effective walls");
@@ -54,4 +54,4 @@ void resolve_compare(const Registry& r, study::CaseParameters& c) {
   c.stability.fluctuation_number = r.get_double("Compare/Stability/Fluctuation bound");
 }
 
-} // namespace twinflow::app
+} // namespace twinflow::study

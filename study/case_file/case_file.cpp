@@ -1,9 +1,11 @@
-#include "app/case/case.hpp"
+#include "study/case_file/case_file.hpp"
 
 #include <algorithm>
 #include <filesystem>
 
-namespace twinflow::app {
+#include "io/files.hpp"
+
+namespace twinflow::study {
 
 using dealii::Patterns::Anything;
 
@@ -17,9 +19,9 @@ CaseFile::CaseFile() {
   declare_continuum(registry_);
 }
 
-study::Case CaseFile::load(const std::string& filename, const std::vector<std::string>& settings) {
+Case CaseFile::load(const std::string& filename, const std::vector<std::string>& settings) {
   read(filename, settings);
-  study::Case c = resolve(filename);
+  Case c = resolve(filename);
   c.settings = settings;
   return c;
 }
@@ -29,8 +31,8 @@ void CaseFile::read(const std::string& filename, const std::vector<std::string>&
   for (const auto& o : settings) registry_.set_override(o);
 }
 
-study::Case CaseFile::load_recorded(const io::Json& resolved, const std::string& name,
-                                    const std::vector<std::string>& overrides) {
+Case CaseFile::load_recorded(const io::Json& resolved, const std::string& name,
+                             const std::vector<std::string>& overrides) {
   if (!resolved.is_object()) throw io::InputError("recorded case parameters: not an object");
   for (const auto& [path, value] : resolved.items())
     registry_.set_override(path + "=" +
@@ -40,15 +42,15 @@ study::Case CaseFile::load_recorded(const io::Json& resolved, const std::string&
       if (o.rfind(later, 0) == 0) registry_.set_override(o);
   if (!name.empty() && io::text(resolved, {"Case name"}).empty())
     registry_.set_override("Case name=" + name);
-  study::Case c = resolve("");
+  Case c = resolve("");
   c.settings = overrides;
   return c;
 }
 
-study::Case CaseFile::resolve(const std::string& filename) const {
-  study::Case out;
+Case CaseFile::resolve(const std::string& filename) const {
+  Case out;
   out.file = filename;
-  study::CaseParameters& c = out.parameters;
+  CaseParameters& c = out.parameters;
   c.name = registry_.get("Case name");
   if (c.name.empty()) c.name = std::filesystem::path(filename).stem().string();
   c.scene = resolve_scene(registry_);
@@ -82,4 +84,29 @@ study::Case CaseFile::resolve(const std::string& filename) const {
   return out;
 }
 
-} // namespace twinflow::app
+Case recorded_case(const std::filesystem::path& run_dir, const std::vector<std::string>& settings) {
+  if (!std::filesystem::is_directory(run_dir))
+    throw io::InputError(run_dir.string() + ": not a run directory (twinflow compare RUNDIR, "
+                                            "where RUNDIR is the --out of twinflow run)");
+  const io::Json summary =
+      io::read_json(run_dir / "particle" / "summary.json",
+                    "the particle stage has not finished in " + run_dir.string() +
+                        " (twinflow run CASE --out " + run_dir.string() + ")");
+  return CaseFile().load_recorded(summary.at("parameters"), io::text(summary, {"case"}), settings);
+}
+
+CaseReader case_reader(const std::string& file) {
+  CaseReader r;
+  r.check = [file](const std::vector<std::string>& settings) { CaseFile().read(file, settings); };
+  r.load = [file](const std::vector<std::string>& settings) {
+    return CaseFile().load(file, settings);
+  };
+  r.record = [file](const std::vector<std::string>& settings) {
+    CaseFile c;
+    c.read(file, settings);
+    return c.registry().resolved_json();
+  };
+  return r;
+}
+
+} // namespace twinflow::study

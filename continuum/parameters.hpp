@@ -1,6 +1,6 @@
 #pragma once
-// Plain parameters of the continuum twin, filled from the case file by app/case (or directly by
-// tests). Units are the particle solver's: lengths in rc, temperature in T0 (k = 1), mass in m,
+// Plain parameters of the continuum twin, filled from the case file by study/case_file (or directly
+// by tests). Units are the particle solver's: lengths in rc, temperature in T0 (k = 1), mass in m,
 // time in tau. Number density n, so mass density n m and heat capacity per volume n c_p.
 
 #include <array>

@@ -1,6 +1,6 @@
 #pragma once
-// Plain parameters of a particle run: filled once from the case file (app/case), read everywhere.
-// Units: m, k (Boltzmann), rc and T0 are the DPD units; k = 1 throughout.
+// Plain parameters of a particle run: filled once from the case file (study/case_file), read
+// everywhere. Units: m, k (Boltzmann), rc and T0 are the DPD units; k = 1 throughout.
 
 #include <array>
 #include <cstdint>

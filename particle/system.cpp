@@ -20,9 +20,9 @@ struct Candidates {
 
 // Appends (i, index[q]) for every candidate q in [from, to) closer to y than sqrt(rc2), in q
 // order, at out_i[m], out_j[m]; returns the new end. The distance is the minimum image by
-// nearbyint as in visit_cell, and the same in both versions (bitwise: the same pairs). The
-// AVX-512 version tests eight candidates at a time and compresses the close ones into place; it
-// writes up to eight entries past the returned end (the caller's margin).
+// nearbyint as in visit_cell, and the same in every version (bitwise: the same pairs). The
+// AVX-512 version tests eight candidates at a time and compresses the close ones into place, the
+// AVX2 one four; they write up to eight entries past the returned end (the caller's margin).
 template <int D>
 std::size_t append_close(const Candidates& c, const double* y, const double* box, const double* inv,
                          double rc2, std::size_t from, std::size_t to, std::uint16_t i,
@@ -54,6 +54,32 @@ std::size_t append_close(const Candidates& c, const double* y, const double* box
   }
   return m;
 #else
+#ifdef TWINFLOW_AVX2
+  // Four candidates at a time, compressed by a permutation (simd.hpp); the last (to - from) % 4
+  // by the portable loops below. Writes up to four entries past the end.
+  const __m256d limit = _mm256_set1_pd(rc2);
+  auto component = [&](const double* x, int d, std::size_t q) {
+    const __m256d r = _mm256_sub_pd(_mm256_set1_pd(y[d]), _mm256_loadu_pd(x + q));
+    return minimum_image(r, box[d], inv[d]);
+  };
+  const __m128i wide_i = _mm_set1_epi16(static_cast<short>(i));
+  for (; from + 4 <= to; from += 4) {
+    __m256d r = component(c.x0, 0, from);
+    __m256d sum = _mm256_mul_pd(r, r);
+    r = component(c.x1, 1, from);
+    sum = _mm256_add_pd(sum, _mm256_mul_pd(r, r));
+    if constexpr (D == 3) {
+      r = component(c.x2, 2, from);
+      sum = _mm256_add_pd(sum, _mm256_mul_pd(r, r));
+    }
+    const int close = _mm256_movemask_pd(_mm256_cmp_pd(sum, limit, _CMP_LT_OQ));
+    const __m128i j =
+        compress(_mm_loadu_si128(reinterpret_cast<const __m128i*>(c.index + from)), close);
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(out_j + m), j);
+    _mm_storel_epi64(reinterpret_cast<__m128i*>(out_i + m), wide_i);
+    m += static_cast<std::size_t>(__builtin_popcount(close));
+  }
+#endif
   const double* x[3] = {c.x0, c.x1, c.x2};
   for (std::size_t q = from; q < to; ++q) { // vectorises
     double sum = 0;

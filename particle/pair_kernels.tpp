@@ -64,82 +64,102 @@ std::size_t Simulation<M>::pair_geometry(const std::uint32_t*& I, const std::uin
   return m;
 }
 
-// The pairs of a block closer than the cutoff (all of them without a skin), in list order: their
-// separations x_i - x_j (minimum image) into s.e, r^2 into s.r, i and j into s.i and s.j.
-template <class M>
-std::size_t Simulation<M>::pairs_within_cutoff(const std::uint32_t* I, const std::uint32_t* J,
-                                               std::size_t n, PairScratch<D>& s) const {
-  const double b0 = grid_.image_box(0), b1 = grid_.image_box(1), b2 = grid_.image_box(D - 1);
-  const double i0 = grid_.inv_box(0), i1 = grid_.inv_box(1), i2 = grid_.inv_box(D - 1);
-  const double rc2 = skin_ == 0 ? std::numeric_limits<double>::infinity() : model_.rc * model_.rc;
-  const Columns<const double> x(state_.x);
-  const Columns<double> e(s.e, D);
-  double* __restrict r = s.r.data();
-  std::uint32_t* __restrict ci = s.i.data();
-  std::uint32_t* __restrict cj = s.j.data();
-  std::size_t m = 0;
+// What the cutoff pass reads (positions, periodic images, the cutoff) and where it writes the
+// kept pairs (their separations, r^2, i and j). Passed by value: a store through its pointers
+// then cannot alias it.
+template <int D> struct CutoffPass {
+  Columns<const double> x;
+  double box[3], inv_box[3], rc2;
+  Columns<double> e;
+  double* r;
+  std::uint32_t *i, *j;
+};
+
+// Pairs [k, n) one at a time, branch-free: the kept ones are written once at m, not copied
+// afterwards. Returns the new m.
+template <int D>
+std::size_t cutoff_scalar(const CutoffPass<D> p, const std::uint32_t* I, const std::uint32_t* J,
+                          std::size_t k, std::size_t n, std::size_t m) {
+  for (; k < n; ++k) {
+    const std::uint32_t i = I[k], j = J[k];
+    double r2 = 0;
+    for (int d = 0; d < D; ++d) {
+      double c = p.x[d][i] - p.x[d][j];
+      c -= p.box[d] * std::nearbyint(c * p.inv_box[d]); // as in the pair search: the same r2
+      p.e[d][m] = c;
+      r2 += c * c;
+    }
+    p.i[m] = i, p.j[m] = j, p.r[m] = r2;
+    m += r2 < p.rc2;
+  }
+  return m;
+}
+
+// The vector part: eight pairs at a time (AVX-512: gathers, compress) or four (AVX2: scalar loads,
+// a permutation for the compress; simd.hpp), bitwise as cutoff_scalar; the scratch has room for
+// the full-width stores past m. Returns the pairs it took (the rest are cutoff_scalar's); m
+// advanced. Without either, takes none.
+template <int D>
+std::size_t cutoff_wide(const CutoffPass<D> p, const std::uint32_t* I, const std::uint32_t* J,
+                        std::size_t n, std::size_t& m) {
   std::size_t k = 0;
 #ifdef TWINFLOW_AVX512
-  // Eight pairs at a time: gathers, and the pairs within the cutoff compressed into place (the
-  // scratch has room for the eight-wide stores past m).
-  const __m512d limit = _mm512_set1_pd(rc2);
+  const __m512d limit = _mm512_set1_pd(p.rc2);
   for (; k < n; k += 8) {
     const auto live = n - k >= 8 ? __mmask8(0xFF) : static_cast<__mmask8>((1u << (n - k)) - 1);
     const __m256i vi = _mm256_maskz_loadu_epi32(live, I + k);
     const __m256i vj = _mm256_maskz_loadu_epi32(live, J + k);
     __m512d c[D], r2 = _mm512_setzero_pd();
     for (int d = 0; d < D; ++d) {
-      const double box = d == 0 ? b0 : d == 1 ? b1 : b2, inv_box = d == 0 ? i0 : d == 1 ? i1 : i2;
       const __m512d zero = _mm512_setzero_pd();
-      c[d] = minimum_image(_mm512_sub_pd(_mm512_mask_i32gather_pd(zero, live, vi, x[d], 8),
-                                         _mm512_mask_i32gather_pd(zero, live, vj, x[d], 8)),
-                           box, inv_box);
+      c[d] = minimum_image(_mm512_sub_pd(_mm512_mask_i32gather_pd(zero, live, vi, p.x[d], 8),
+                                         _mm512_mask_i32gather_pd(zero, live, vj, p.x[d], 8)),
+                           p.box[d], p.inv_box[d]);
       r2 = _mm512_add_pd(r2, _mm512_mul_pd(c[d], c[d]));
     }
     const __mmask8 keep = _mm512_mask_cmp_pd_mask(live, r2, limit, _CMP_LT_OQ);
-    for (int d = 0; d < D; ++d) _mm512_storeu_pd(e[d] + m, _mm512_maskz_compress_pd(keep, c[d]));
-    _mm512_storeu_pd(r + m, _mm512_maskz_compress_pd(keep, r2));
-    _mm256_storeu_si256(reinterpret_cast<__m256i*>(ci + m), _mm256_maskz_compress_epi32(keep, vi));
-    _mm256_storeu_si256(reinterpret_cast<__m256i*>(cj + m), _mm256_maskz_compress_epi32(keep, vj));
+    for (int d = 0; d < D; ++d) _mm512_storeu_pd(p.e[d] + m, _mm512_maskz_compress_pd(keep, c[d]));
+    _mm512_storeu_pd(p.r + m, _mm512_maskz_compress_pd(keep, r2));
+    _mm256_storeu_si256(reinterpret_cast<__m256i*>(p.i + m), _mm256_maskz_compress_epi32(keep, vi));
+    _mm256_storeu_si256(reinterpret_cast<__m256i*>(p.j + m), _mm256_maskz_compress_epi32(keep, vj));
     m += static_cast<std::size_t>(__builtin_popcount(keep));
   }
 #elif defined(TWINFLOW_AVX2)
-  // Four pairs at a time, as above with scalar loads for the gathers and a permutation for the
-  // compress (simd.hpp); the last n % 4 by the portable loop below.
-  const __m256d limit = _mm256_set1_pd(rc2);
+  const __m256d limit = _mm256_set1_pd(p.rc2);
   for (; k + 4 <= n; k += 4) {
     const __m128i vi = _mm_loadu_si128(reinterpret_cast<const __m128i*>(I + k));
     const __m128i vj = _mm_loadu_si128(reinterpret_cast<const __m128i*>(J + k));
     __m256d c[D], r2 = _mm256_setzero_pd();
     for (int d = 0; d < D; ++d) {
-      const double box = d == 0 ? b0 : d == 1 ? b1 : b2, inv_box = d == 0 ? i0 : d == 1 ? i1 : i2;
-      c[d] = minimum_image(_mm256_sub_pd(gather(x[d], I + k), gather(x[d], J + k)), box, inv_box);
+      c[d] = minimum_image(_mm256_sub_pd(gather(p.x[d], I + k), gather(p.x[d], J + k)), p.box[d],
+                           p.inv_box[d]);
       r2 = _mm256_add_pd(r2, _mm256_mul_pd(c[d], c[d]));
     }
     const int keep = _mm256_movemask_pd(_mm256_cmp_pd(r2, limit, _CMP_LT_OQ));
-    for (int d = 0; d < D; ++d) _mm256_storeu_pd(e[d] + m, compress(c[d], keep));
-    _mm256_storeu_pd(r + m, compress(r2, keep));
-    _mm_storeu_si128(reinterpret_cast<__m128i*>(ci + m), compress(vi, keep));
-    _mm_storeu_si128(reinterpret_cast<__m128i*>(cj + m), compress(vj, keep));
+    for (int d = 0; d < D; ++d) _mm256_storeu_pd(p.e[d] + m, compress(c[d], keep));
+    _mm256_storeu_pd(p.r + m, compress(r2, keep));
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(p.i + m), compress(vi, keep));
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(p.j + m), compress(vj, keep));
     m += static_cast<std::size_t>(__builtin_popcount(keep));
   }
+#else
+  (void)p, (void)I, (void)J, (void)n, (void)m;
 #endif
-  // One scalar pass (the gathers: no vector gathers on every CPU) that also drops the pairs
-  // beyond the cutoff, branch-free: the kept ones are written once, not copied afterwards.
-  for (; k < n; ++k) {
-    const std::uint32_t i = I[k], j = J[k];
-    double r2 = 0;
-    for (int d = 0; d < D; ++d) {
-      double c = x[d][i] - x[d][j];
-      const double box = d == 0 ? b0 : d == 1 ? b1 : b2, inv_box = d == 0 ? i0 : d == 1 ? i1 : i2;
-      c -= box * std::nearbyint(c * inv_box); // as in the pair search: the same r2
-      e[d][m] = c;
-      r2 += c * c;
-    }
-    ci[m] = i, cj[m] = j, r[m] = r2;
-    m += r2 < rc2;
-  }
-  return m;
+  return k;
+}
+
+// The pairs of a block closer than the cutoff (all of them without a skin), in list order: their
+// separations x_i - x_j (minimum image) into s.e, r^2 into s.r, i and j into s.i and s.j.
+template <class M>
+std::size_t Simulation<M>::pairs_within_cutoff(const std::uint32_t* I, const std::uint32_t* J,
+                                               std::size_t n, PairScratch<D>& s) const {
+  const double rc2 = skin_ == 0 ? std::numeric_limits<double>::infinity() : model_.rc * model_.rc;
+  CutoffPass<D> p{Columns<const double>(state_.x), {},         {},         rc2,
+                  Columns<double>(s.e, D),         s.r.data(), s.i.data(), s.j.data()};
+  for (int d = 0; d < D; ++d) p.box[d] = grid_.image_box(d), p.inv_box[d] = grid_.inv_box(d);
+  std::size_t m = 0;
+  const std::size_t k = cutoff_wide(p, I, J, n, m);
+  return cutoff_scalar(p, I, J, k, n, m);
 }
 
 // Gathers u_i, u_j (DPDE) and, with velocities, v_i - v_j of a block into the scratch.

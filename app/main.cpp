@@ -124,15 +124,15 @@ std::vector<double> parse_rayleigh_list(const std::string& text) {
 // Between parallel regions OpenMP's idle threads wait. libgomp's default spins 300000 times
 // (~6 ms) before it sleeps: fastest on an idle machine, but on a shared one a spinning thread
 // holds the core its partner needs (N = 6000, 2 threads, beside four busy processes: 0.3-1.8e6
-// particle-steps/s against 2.1-3.7e6 with OMP_WAIT_POLICY=passive). A sleep costs a wake-up,
-// 65-120 us on a Zen 3 VM. A spin of 3000 (~75 us) sleeps a tenth as often as 1000 did in the
-// default cavity's steps, half as often at N = 48000; 10000 (~0.25 ms) collapsed 3x in 3 of 8
-// runs beside four busy processes, 3000 in none of 6 (docs/performance.md, "How idle threads
-// wait"). libgomp reads its environment when it is loaded, before main, so the default is set
-// by running again with it; a user's OMP_WAIT_POLICY or GOMP_SPINCOUNT is left alone.
+// particle-steps/s against 2.1-3.7e6 with OMP_WAIT_POLICY=passive). A spin of 1000 (~25 us)
+// keeps both on the Zen 5 host. Where a wake-up is slow (65-120 us on a Zen 3 VM) 3000 ran the
+// idle default cavity 15% faster but a run beside one other 2-thread job 20% slower
+// (docs/performance.md, "How idle threads wait"): 1000 stays. libgomp reads its environment
+// when it is loaded, before main, so the default is set by running again with it; a user's
+// OMP_WAIT_POLICY or GOMP_SPINCOUNT is left alone.
 void default_openmp_wait(char** argv) {
   if (std::getenv("OMP_WAIT_POLICY") || std::getenv("GOMP_SPINCOUNT")) return;
-  setenv("GOMP_SPINCOUNT", "3000", 1);
+  setenv("GOMP_SPINCOUNT", "1000", 1);
   execv("/proc/self/exe", argv); // returns only on failure: go on with the runtime's default
 }
 

@@ -42,7 +42,7 @@ if [ ! -x "$LMP" ]; then
 fi
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 # Ours runs with twinflow's own default of how idle threads wait (a short spin, then sleep:
-# GOMP_SPINCOUNT=3000, app/main.cpp), as a user gets it; OMP_WAIT_POLICY=passive or active, or
+# GOMP_SPINCOUNT=1000, app/main.cpp), as a user gets it; OMP_WAIT_POLICY=passive or active, or
 # GOMP_SPINCOUNT, in the environment measure another choice.
 RAW=$OUT/raw.txt # one line per measurement: kind key values
 : >"$RAW"

@@ -343,7 +343,7 @@ TEST(Cli, TransportIsTheSameWhateverTheThreads) {
   EXPECT_EQ(summary[0], summary[1]);
 }
 
-// Idle OpenMP threads spin briefly, then sleep (app/main.cpp): twinflow sets GOMP_SPINCOUNT=3000
+// Idle OpenMP threads spin briefly, then sleep (app/main.cpp): twinflow sets GOMP_SPINCOUNT=1000
 // for itself unless the user chose how threads wait; bench records which way they waited.
 TEST(Cli, IdleThreadsSpinBrieflyUnlessTheUserChose) {
   const auto waited = [](const std::string& env) { // "NAME=value ..." as bench recorded them
@@ -360,7 +360,7 @@ TEST(Cli, IdleThreadsSpinBrieflyUnlessTheUserChose) {
       s += (s.empty() ? "" : " ") + name + "=" + value.get<std::string>();
     return s;
   };
-  EXPECT_EQ(waited("env -u OMP_WAIT_POLICY -u GOMP_SPINCOUNT"), "GOMP_SPINCOUNT=3000");
+  EXPECT_EQ(waited("env -u OMP_WAIT_POLICY -u GOMP_SPINCOUNT"), "GOMP_SPINCOUNT=1000");
   EXPECT_EQ(waited("env -u GOMP_SPINCOUNT OMP_WAIT_POLICY=passive"), "OMP_WAIT_POLICY=passive");
   EXPECT_EQ(waited("env -u OMP_WAIT_POLICY GOMP_SPINCOUNT=20"), "GOMP_SPINCOUNT=20");
 }

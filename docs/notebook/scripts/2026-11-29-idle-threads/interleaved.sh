@@ -8,7 +8,6 @@ source <(sed -n '/^edge()/,/^steps_for/p' bench/vs_lammps.sh)
 HERE=$ROOT/bench; LMP=/opt/lammps-dpd/build/lmp_dpd; OUT=${OUT:-/tmp/wait}; TW=$ROOT/build/app/twinflow
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 source <(sed -n '/^lammps()/,/^}/p' bench/vs_lammps.sh)
-source <(sed -n '/^ours_ranks()/,/^}/p' bench/vs_lammps.sh)
 N=48000; S=100
 for rep in 1 2 3 4 5 6; do
   echo "lammps2 $(lammps $N 2 $S)"

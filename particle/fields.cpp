@@ -1,6 +1,7 @@
 #include "particle/fields.hpp"
 
 #include <cstdio>
+#include <iterator>
 #include <sstream>
 
 #include "statistics/blocking.hpp"
@@ -30,7 +31,8 @@ std::string BinnedFields::blocks_csv() const {
 std::string BinnedFields::csv() const {
   std::ostringstream out;
   out << "# binned fields, cumulative over the sampled steps; error columns are block standard "
-         "errors. Units: m = k = rc = T0 = 1\n";
+         "errors times the field's blocking factor (summary.json field_blocking_factors). Units: "
+         "m = k = rc = T0 = 1\n";
   const char* axes[3] = {"x", "y", "z"};
   for (int d = 0; d < dim; ++d) out << axes[d] << ",";
   out << "density,density_se,T_kinetic,T_kinetic_se,T_internal,T_internal_se,u,u_se";
@@ -155,20 +157,31 @@ BinnedFields sized_fields(int dim, int nbins) {
 }
 
 // e's slot: the mean and standard error over the blocks holding samples of per_block(b), one
-// estimate of the value per block.
+// estimate of the value per block; the block values also go to the field's blocking analysis.
 template <class PerBlock>
-void reduce_blocks(FieldEstimate& e, std::size_t slot, const std::vector<long>& block_samples,
-                   PerBlock&& per_block) {
+void reduce_blocks(FieldEstimate& e, statistics::PooledBlocking& blocking, std::size_t slot,
+                   const std::vector<long>& block_samples, PerBlock&& per_block) {
+  static thread_local std::vector<double> values;
+  values.clear();
   double sum = 0, sum2 = 0;
-  int k = 0;
   for (std::size_t b = 0; b < block_samples.size(); ++b) {
     if (block_samples[b] == 0) continue;
     const double v = per_block(static_cast<int>(b));
-    sum += v, sum2 += v * v, ++k;
+    sum += v, sum2 += v * v;
+    values.push_back(v);
   }
+  const int k = static_cast<int>(values.size());
   const double mean = k ? sum / k : 0;
   e.mean[slot] = mean;
   e.stderr_[slot] = k > 1 ? std::sqrt(std::max(0.0, sum2 / k - mean * mean) / (k - 1)) : 0;
+  blocking.add(values);
+}
+
+// Every bin's error times the field's blocking factor (statistics::PooledBlocking).
+void scale_to_blocking(FieldEstimate& e, const statistics::PooledBlocking& blocking) {
+  e.blocking_factor = blocking.factor();
+  if (e.blocking_factor == 1) return;
+  for (double& se : e.stderr_) se *= e.blocking_factor;
 }
 
 template <class Accumulator> double internal_temperature(const Accumulator& a) {
@@ -183,6 +196,12 @@ template <int D> BinnedFields FieldSampler<D>::result() const {
   f.bins = bins_;
   f.box = box_;
   const auto& samples = block_samples_;
+  // One blocking analysis per field, in the order of `fields`.
+  FieldEstimate* fields[] = {
+      &f.density,       &f.temperature_kinetic, &f.temperature_internal, &f.internal_energy,
+      &f.velocity,      &f.flux_conductive,     &f.flux_internal,        &f.flux_kinetic,
+      &f.flux_potential};
+  statistics::PooledBlocking blocking[std::size(fields)];
   for (int bin = 0; bin < nbins_; ++bin) {
     auto at = [&](int b) -> const Accumulator& {
       return acc_[static_cast<std::size_t>(b) * nbins_ + bin];
@@ -190,25 +209,23 @@ template <int D> BinnedFields FieldSampler<D>::result() const {
     // per volume: density and the flux densities (the bin's sums over the sample)
     auto per_volume = [&](int b, double sum) { return sum / (samples[b] * bin_volume_); };
     auto per_particle = [&](int b, double sum) { return at(b).n > 0 ? sum / at(b).n : 0.0; };
-    reduce_blocks(f.density, bin, samples, [&](int b) { return per_volume(b, at(b).n); });
-    reduce_blocks(f.temperature_kinetic, bin, samples,
-                  [&](int b) { return kinetic_temperature(at(b)); });
-    reduce_blocks(f.temperature_internal, bin, samples,
-                  [&](int b) { return internal_temperature(at(b)); });
-    reduce_blocks(f.internal_energy, bin, samples, [&](int b) { return per_particle(b, at(b).u); });
+    auto reduce = [&](int field, std::size_t slot, auto&& per_block) {
+      reduce_blocks(*fields[field], blocking[field], slot, samples, per_block);
+    };
+    reduce(0, bin, [&](int b) { return per_volume(b, at(b).n); });
+    reduce(1, bin, [&](int b) { return kinetic_temperature(at(b)); });
+    reduce(2, bin, [&](int b) { return internal_temperature(at(b)); });
+    reduce(3, bin, [&](int b) { return per_particle(b, at(b).u); });
     for (int d = 0; d < D; ++d) {
       const std::size_t slot = static_cast<std::size_t>(bin) * D + d;
-      reduce_blocks(f.velocity, slot, samples, [&](int b) { return per_particle(b, at(b).v[d]); });
-      reduce_blocks(f.flux_conductive, slot, samples,
-                    [&](int b) { return per_volume(b, at(b).j_conductive[d]); });
-      reduce_blocks(f.flux_internal, slot, samples,
-                    [&](int b) { return per_volume(b, at(b).j_internal[d]); });
-      reduce_blocks(f.flux_kinetic, slot, samples,
-                    [&](int b) { return per_volume(b, at(b).j_kinetic[d]); });
-      reduce_blocks(f.flux_potential, slot, samples,
-                    [&](int b) { return per_volume(b, at(b).j_potential[d]); });
+      reduce(4, slot, [&](int b) { return per_particle(b, at(b).v[d]); });
+      reduce(5, slot, [&](int b) { return per_volume(b, at(b).j_conductive[d]); });
+      reduce(6, slot, [&](int b) { return per_volume(b, at(b).j_internal[d]); });
+      reduce(7, slot, [&](int b) { return per_volume(b, at(b).j_kinetic[d]); });
+      reduce(8, slot, [&](int b) { return per_volume(b, at(b).j_potential[d]); });
     }
   }
+  for (std::size_t k = 0; k < std::size(fields); ++k) scale_to_blocking(*fields[k], blocking[k]);
   for (int b = 0; b < blocks_; ++b) {
     if (samples[b] == 0) continue;
     std::vector<double> t(nbins_), ti(nbins_);

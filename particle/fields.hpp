@@ -32,6 +32,9 @@ inline int block_of_sample(long taken, int blocks, long total) {
 
 struct FieldEstimate {
   std::vector<double> mean, stderr_; // per bin (per component for vectors: bin * D + d)
+  // stderr_ is the block error times this (statistics::PooledBlocking): where the blocks are
+  // shorter than the field's slowest memory, the errors of longer blocks.
+  double blocking_factor = 1;
 };
 
 struct BinnedFields {

@@ -103,4 +103,27 @@ inline std::vector<double> merged_blocking_errors(const std::vector<double>& per
   });
 }
 
+// The blocking levels of many estimates at once (the bins of a field): the squares of each one's
+// merged_blocking_errors summed level by level, and the factor by which the first level's errors
+// fall short of the largest level's, sqrt(max_m sum se_m^2 / sum se_1^2) >= 1. Pooled because
+// one bin's merged errors rest on 4-19 degrees of freedom, too few to take the largest of bin by
+// bin without inflating every error; the factor assumes the bins share the slowest memory.
+class PooledBlocking {
+public:
+  void add(const std::vector<double>& per_block) {
+    const std::vector<double> levels = merged_blocking_errors(per_block);
+    if (sums_.size() < levels.size()) sums_.resize(levels.size(), 0.0);
+    for (std::size_t k = 0; k < levels.size(); ++k) sums_[k] += levels[k] * levels[k];
+  }
+  double factor() const {
+    if (sums_.empty() || !(sums_[0] > 0)) return 1.0;
+    double largest = sums_[0];
+    for (const double s : sums_) largest = s > largest ? s : largest;
+    return std::sqrt(largest / sums_[0]);
+  }
+
+private:
+  std::vector<double> sums_;
+};
+
 } // namespace twinflow::statistics

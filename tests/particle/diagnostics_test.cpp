@@ -1,9 +1,12 @@
 // The diagnostics a scene creates (particle/diagnostics/diagnostics.hpp): only the ones it needs.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "helpers.hpp"
 #include "particle/diagnostics/diagnostics.hpp"
 #include "particle/diagnostics/plugins.hpp"
+#include "particle/fields.hpp"
 
 using namespace twinflow::particle;
 
@@ -142,4 +145,27 @@ TEST(Diagnostics, PoiseuilleBetweenWallsGivesEachWallsSlip) {
   // Without walls (a periodic y) no slip is stated.
   p.walls[1] = WallPair{};
   EXPECT_FALSE(poiseuille_fit(p, f)["lower_half"].contains("wall_slip"));
+}
+
+// A field's errors carry its blocking factor (statistics::PooledBlocking): one bin whose x
+// velocity runs 1, 1, 0, 0, 1, 1, 0, 0 over eight blocks (a memory of two blocks) has its block
+// error raised to the error of pairs of blocks; y, constant, has none and keeps factor 1.
+TEST(Diagnostics, FieldErrorsCarryTheBlockingFactor) {
+  FieldSampler<2> sampler({{4, 4, 1}}, {{1, 1, 1}}, 8, 16, 1.0, 1.0);
+  State<2> s;
+  s.box = {{4, 4}};
+  for (int i = 0; i < 3; ++i) {
+    s.x[0].push_back(1 + i), s.x[1].push_back(2), s.id.push_back(i);
+    s.v[0].push_back(0), s.v[1].push_back(0.5 * (i - 1));
+  }
+  for (int k = 0; k < 16; ++k) { // two samples per block
+    for (double& v : s.v[0]) v = (k / 2) % 4 < 2 ? 1.0 : 0.0;
+    sampler.sample(s);
+  }
+  const BinnedFields f = sampler.result();
+  const double first = std::sqrt(8 * 0.25 / (7 * 8)), pairs = std::sqrt(4 * 0.25 / (3 * 4));
+  EXPECT_DOUBLE_EQ(f.velocity.blocking_factor, pairs / first);
+  EXPECT_NEAR(f.velocity.stderr_[0], pairs, 1e-15); // x: the pairs' error
+  EXPECT_EQ(f.velocity.stderr_[1], 0.0);            // y: constant
+  EXPECT_EQ(f.density.blocking_factor, 1.0);
 }

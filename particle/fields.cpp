@@ -1,9 +1,10 @@
 #include "particle/fields.hpp"
 
 #include <cstdio>
-#include <iterator>
+#include <map>
 #include <sstream>
 
+#include "particle/field_list.hpp"
 #include "statistics/blocking.hpp"
 
 namespace twinflow::particle {
@@ -145,14 +146,12 @@ namespace {
 // Each field sized for nbins bins, per component for vectors.
 BinnedFields sized_fields(int dim, int nbins) {
   BinnedFields f;
-  auto size = [&](FieldEstimate& e, int per) {
-    e.mean.assign(static_cast<std::size_t>(nbins) * per, 0.0);
-    e.stderr_.assign(static_cast<std::size_t>(nbins) * per, 0.0);
-  };
-  size(f.density, 1), size(f.temperature_kinetic, 1), size(f.temperature_internal, 1);
-  size(f.internal_energy, 1), size(f.velocity, dim);
-  size(f.flux_conductive, dim), size(f.flux_internal, dim), size(f.flux_kinetic, dim);
-  size(f.flux_potential, dim);
+  for (const NamedField& n : named_fields()) {
+    FieldEstimate& e = f.*n.estimate;
+    const std::size_t size = static_cast<std::size_t>(nbins) * (n.vector ? dim : 1);
+    e.mean.assign(size, 0.0);
+    e.stderr_.assign(size, 0.0);
+  }
   return f;
 }
 
@@ -196,12 +195,7 @@ template <int D> BinnedFields FieldSampler<D>::result() const {
   f.bins = bins_;
   f.box = box_;
   const auto& samples = block_samples_;
-  // One blocking analysis per field, in the order of `fields`.
-  FieldEstimate* fields[] = {
-      &f.density,       &f.temperature_kinetic, &f.temperature_internal, &f.internal_energy,
-      &f.velocity,      &f.flux_conductive,     &f.flux_internal,        &f.flux_kinetic,
-      &f.flux_potential};
-  statistics::PooledBlocking blocking[std::size(fields)];
+  std::map<const FieldEstimate*, statistics::PooledBlocking> blocking; // per field
   for (int bin = 0; bin < nbins_; ++bin) {
     auto at = [&](int b) -> const Accumulator& {
       return acc_[static_cast<std::size_t>(b) * nbins_ + bin];
@@ -209,23 +203,26 @@ template <int D> BinnedFields FieldSampler<D>::result() const {
     // per volume: density and the flux densities (the bin's sums over the sample)
     auto per_volume = [&](int b, double sum) { return sum / (samples[b] * bin_volume_); };
     auto per_particle = [&](int b, double sum) { return at(b).n > 0 ? sum / at(b).n : 0.0; };
-    auto reduce = [&](int field, std::size_t slot, auto&& per_block) {
-      reduce_blocks(*fields[field], blocking[field], slot, samples, per_block);
+    auto reduce = [&](FieldEstimate& e, std::size_t slot, auto&& per_block) {
+      reduce_blocks(e, blocking[&e], slot, samples, per_block);
     };
-    reduce(0, bin, [&](int b) { return per_volume(b, at(b).n); });
-    reduce(1, bin, [&](int b) { return kinetic_temperature(at(b)); });
-    reduce(2, bin, [&](int b) { return internal_temperature(at(b)); });
-    reduce(3, bin, [&](int b) { return per_particle(b, at(b).u); });
+    reduce(f.density, bin, [&](int b) { return per_volume(b, at(b).n); });
+    reduce(f.temperature_kinetic, bin, [&](int b) { return kinetic_temperature(at(b)); });
+    reduce(f.temperature_internal, bin, [&](int b) { return internal_temperature(at(b)); });
+    reduce(f.internal_energy, bin, [&](int b) { return per_particle(b, at(b).u); });
     for (int d = 0; d < D; ++d) {
       const std::size_t slot = static_cast<std::size_t>(bin) * D + d;
-      reduce(4, slot, [&](int b) { return per_particle(b, at(b).v[d]); });
-      reduce(5, slot, [&](int b) { return per_volume(b, at(b).j_conductive[d]); });
-      reduce(6, slot, [&](int b) { return per_volume(b, at(b).j_internal[d]); });
-      reduce(7, slot, [&](int b) { return per_volume(b, at(b).j_kinetic[d]); });
-      reduce(8, slot, [&](int b) { return per_volume(b, at(b).j_potential[d]); });
+      reduce(f.velocity, slot, [&](int b) { return per_particle(b, at(b).v[d]); });
+      reduce(f.flux_conductive, slot, [&](int b) { return per_volume(b, at(b).j_conductive[d]); });
+      reduce(f.flux_internal, slot, [&](int b) { return per_volume(b, at(b).j_internal[d]); });
+      reduce(f.flux_kinetic, slot, [&](int b) { return per_volume(b, at(b).j_kinetic[d]); });
+      reduce(f.flux_potential, slot, [&](int b) { return per_volume(b, at(b).j_potential[d]); });
     }
   }
-  for (std::size_t k = 0; k < std::size(fields); ++k) scale_to_blocking(*fields[k], blocking[k]);
+  for (const NamedField& n : named_fields()) {
+    FieldEstimate& e = f.*n.estimate;
+    scale_to_blocking(e, blocking[&e]);
+  }
   for (int b = 0; b < blocks_; ++b) {
     if (samples[b] == 0) continue;
     std::vector<double> t(nbins_), ti(nbins_);

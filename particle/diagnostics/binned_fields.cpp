@@ -2,6 +2,7 @@
 // fields.h5), and the fit a reverse Poiseuille scene takes from them.
 #include "io/field_file.hpp"
 #include "particle/diagnostics/plugins.hpp"
+#include "particle/field_list.hpp"
 #include "particle/fields.hpp"
 #include "statistics/line_fit.hpp"
 
@@ -13,31 +14,15 @@ namespace twinflow::particle {
 
 namespace {
 
-struct NamedField {
-  const char* name;
-  const FieldEstimate* estimate;
-  int components;
-};
-// The fields as fields.h5 and summary.json name them.
-std::vector<NamedField> named_fields(const BinnedFields& f) {
-  return {{"density", &f.density, 1},
-          {"temperature_kinetic", &f.temperature_kinetic, 1},
-          {"temperature_internal", &f.temperature_internal, 1},
-          {"internal_energy", &f.internal_energy, 1},
-          {"velocity", &f.velocity, f.dim},
-          {"flux_conductive", &f.flux_conductive, f.dim},
-          {"flux_internal", &f.flux_internal, f.dim},
-          {"flux_kinetic", &f.flux_kinetic, f.dim},
-          {"flux_potential", &f.flux_potential, f.dim}};
-}
-
 io::Snapshot snapshot(const BinnedFields& f, double time, double wall, long particle_steps) {
   io::Snapshot s;
   s.time = time;
   s.wall_seconds = wall;
   s.particle_steps = particle_steps;
-  for (const NamedField& n : named_fields(f))
-    s.fields.push_back(io::Field{n.name, n.components, n.estimate->mean, n.estimate->stderr_});
+  for (const NamedField& n : named_fields()) {
+    const FieldEstimate& e = f.*n.estimate;
+    s.fields.push_back(io::Field{n.name, n.vector ? f.dim : 1, e.mean, e.stderr_});
+  }
   return s;
 }
 
@@ -66,7 +51,8 @@ public:
     }
     out.field_snapshots = std::move(snapshots_);
     io::Json factors = io::Json::object();
-    for (const NamedField& n : named_fields(result_)) factors[n.name] = n.estimate->blocking_factor;
+    for (const NamedField& n : named_fields())
+      factors[n.name] = (result_.*n.estimate).blocking_factor;
     out.summary["field_blocking_factors"] = factors;
   }
   // The final fields, reduced over the blocks once (by finish) for the fits that use them.

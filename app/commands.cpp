@@ -53,13 +53,13 @@ int transport(const CommandLine& cl) {
   return study::transport_stage(load_case(cl), cl.run);
 }
 int continuum(const CommandLine& cl) {
-  return study::continuum_stage(load_case(cl), cl.run);
+  return study::continuum_command(load_case(cl), cl.run);
 }
 int run(const CommandLine& cl) {
   return study::run_all(load_case(cl), cl.run);
 }
 
-// The case as the particle run recorded it, with this command's later sections over it.
+// The case the run's twins ran (RUNDIR/case.json), with this command's Compare/ keys over it.
 int compare(const CommandLine& cl) {
   return study::compare_stage(study::recorded_case(cl.target, cl.settings), cl.target);
 }
@@ -148,9 +148,10 @@ const char* const continuum =
 const char* const compare =
     "twinflow compare RUNDIR [--set 'Compare/...=value' ...]\n\n"
     "The twins' distances to the particle run of RUNDIR (the --out of twinflow run), with\n"
-    "error bars, into RUNDIR/compare/ (metrics.json, bins.csv, ...) and RUNDIR/report/.\n\n"
+    "error bars, into RUNDIR/compare/ (metrics.json, bins.csv, ...) and RUNDIR/report/,\n"
+    "for the case the twins ran (RUNDIR/case.json).\n\n"
     "options:\n"
-    "  --set 'S/Key=value'   Transport/, Continuum/ and Compare/ keys over the recorded case\n"
+    "  --set 'Compare/Key=value'   Compare/ keys over the recorded case\n"
     "\nexample:\n"
     "  twinflow compare runs/quickstart\n\n" TWINFLOW_EXIT_CODES;
 const char* const sweep =

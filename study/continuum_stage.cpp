@@ -11,6 +11,7 @@
 #include "continuum/run.hpp"
 #include "continuum/twin_walls.hpp"
 #include "io/files.hpp"
+#include "study/case_record.hpp"
 #include "study/ranks.hpp"
 #include "study/stages.hpp"
 #include "study/twin_coefficients.hpp"
@@ -394,6 +395,12 @@ int continuum_stage(const Case& c, const RunOptions& options, const std::string&
   io::write_file_atomically(stage.file("summary.json"), io::dump(summary));
   print_twin_result(result, p, stage, files);
   return 0;
+}
+
+int continuum_command(const Case& c, const RunOptions& options) {
+  const int rc = continuum_stage(c, options);
+  if (rc == 0 && on_rank_zero()) write_case_record(c, run_directory(options, c.parameters.name));
+  return rc;
 }
 
 } // namespace twinflow::study

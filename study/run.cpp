@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "io/files.hpp"
+#include "study/case_record.hpp"
 #include "study/inputs.hpp"
 #include "study/ranks.hpp"
 #include "study/stages.hpp"
@@ -173,6 +174,7 @@ int run_all(Case c, const RunOptions& options) {
   twin_takes_the_particle_fluid(c);
   // From here on rank 0 alone: the twins, the comparison, the report.
   return rank_zero_runs([&] {
+    write_case_record(c, run_dir); // the case the twins and the comparison take
     const StageInputs continuum_inputs =
         stage_inputs(c, {"Scene/", "Transport/", "Continuum/"}, {transport_inputs.hash});
     if (const int rc = run_or_reuse(run_dir / "continuum", continuum_inputs, false,

@@ -39,6 +39,9 @@ int transport_stage(const Case& c, const RunOptions& options);
 // from RUNDIR/transport where the case says so.
 int continuum_stage(const Case& c, const RunOptions& options,
                     const std::string& stage_name = "continuum");
+// `twinflow continuum`: the stage, then the case it ran as RUNDIR/case.json (what `twinflow
+// compare RUNDIR` compares).
+int continuum_command(const Case& c, const RunOptions& options);
 
 // Thrown by calibrated_case when the particle run's wall measurements make parameters the twin
 // refuses; `run` then goes on without the calibrated twin.
@@ -50,8 +53,8 @@ struct NoCalibratedTwin : io::InputError {
 // in `run_dir` (compare/calibration.hpp), its values recorded.
 Case calibrated_case(const Case& nominal, const std::filesystem::path& run_dir);
 
-// RUNDIR/compare and RUNDIR/report; `c`: the case the particle run recorded (with the later
-// sections of this command).
+// RUNDIR/compare and RUNDIR/report; `c`: the case the twins ran (RUNDIR/case.json with
+// `twinflow compare RUNDIR`).
 int compare_stage(const Case& c, const std::filesystem::path& run_dir);
 
 // Figures and report.md/html in DIR/report (a run, a sweep or a stability map), by the Python

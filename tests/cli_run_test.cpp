@@ -228,9 +228,19 @@ TEST(Cli, RunComparesTheTwinsAndReusesUnchangedStages) {
   EXPECT_EQ(changed.code, 2) << changed.output;
   EXPECT_NE(changed.output.find("--force"), std::string::npos) << changed.output;
 
+  // compare RUNDIR takes the case the twins ran (RUNDIR/case.json): the run's metrics again.
+  const auto without_timing = [](twinflow::io::Json m) {
+    m.erase("execution");
+    m.erase("stage_wall_time_s");
+    return m;
+  };
+  const auto by_run = twinflow::io::read_json(dir / "compare" / "metrics.json");
   const Result compare = run("compare " + dir.string());
   EXPECT_EQ(compare.code, 0) << compare.output;
+  EXPECT_EQ(without_timing(twinflow::io::read_json(dir / "compare" / "metrics.json")),
+            without_timing(by_run));
   EXPECT_EQ(run("compare " + (dir / "no-such-run").string()).code, 2);
+  EXPECT_EQ(run("compare " + dir.string() + " --set Particle/Seed=3").code, 2);
 
   // A later stage's --set reaches a reused particle run: the calibrated twin changes from
   // Kapitza walls to the fluid's wall temperatures.

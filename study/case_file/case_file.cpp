@@ -4,6 +4,7 @@
 #include <filesystem>
 
 #include "io/files.hpp"
+#include "study/case_record.hpp"
 
 namespace twinflow::study {
 
@@ -29,22 +30,6 @@ Case CaseFile::load(const std::string& filename, const std::vector<std::string>&
 void CaseFile::read(const std::string& filename, const std::vector<std::string>& settings) {
   registry_.parse_file(filename);
   for (const auto& o : settings) registry_.set_override(o);
-}
-
-Case CaseFile::load_recorded(const io::Json& resolved, const std::string& name,
-                             const std::vector<std::string>& overrides) {
-  if (!resolved.is_object()) throw io::InputError("recorded case parameters: not an object");
-  for (const auto& [path, value] : resolved.items())
-    registry_.set_override(path + "=" +
-                           (value.is_string() ? value.get<std::string>() : value.dump()));
-  for (const auto& o : overrides)
-    for (const char* later : {"Transport/", "Continuum/", "Compare/"})
-      if (o.rfind(later, 0) == 0) registry_.set_override(o);
-  if (!name.empty() && io::text(resolved, {"Case name"}).empty())
-    registry_.set_override("Case name=" + name);
-  Case c = resolve("");
-  c.settings = overrides;
-  return c;
 }
 
 Case CaseFile::resolve(const std::string& filename) const {
@@ -85,14 +70,28 @@ Case CaseFile::resolve(const std::string& filename) const {
 }
 
 Case recorded_case(const std::filesystem::path& run_dir, const std::vector<std::string>& settings) {
-  if (!std::filesystem::is_directory(run_dir))
-    throw io::InputError(run_dir.string() + ": not a run directory (twinflow compare RUNDIR, "
-                                            "where RUNDIR is the --out of twinflow run)");
-  const io::Json summary =
-      io::read_json(run_dir / "particle" / "summary.json",
-                    "the particle stage has not finished in " + run_dir.string() +
-                        " (twinflow run CASE --out " + run_dir.string() + ")");
-  return CaseFile().load_recorded(summary.at("parameters"), io::text(summary, {"case"}), settings);
+  Case c = read_case_record(run_dir);
+  if (settings.empty()) return c;
+  // The Compare section as recorded, the user's assignments over it, mapped as the case file's.
+  CaseFile file;
+  for (const auto& [path, value] : c.record.items())
+    if (path.rfind("Compare/", 0) == 0)
+      file.assign(path + "=" + (value.is_string() ? value.get<std::string>() : value.dump()));
+  for (const auto& s : settings) {
+    if (s.rfind("Compare/", 0) != 0)
+      throw io::InputError("--set " + s +
+                           ": twinflow compare RUNDIR takes Compare/ keys only "
+                           "(the twins in RUNDIR are compared as they ran; other sections: "
+                           "twinflow run CASE --set ... --out " +
+                           run_dir.string() + ")");
+    file.assign(s);
+  }
+  resolve_compare(file.registry(), c.parameters);
+  const io::Json resolved = file.registry().resolved_json();
+  for (const auto& [path, value] : resolved.items())
+    if (path.rfind("Compare/", 0) == 0) c.record[path] = value;
+  c.settings.insert(c.settings.end(), settings.begin(), settings.end());
+  return c;
 }
 
 CaseReader case_reader(const std::string& file) {

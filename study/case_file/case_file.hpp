@@ -21,23 +21,19 @@ public:
   CaseFile();
   // Reads the file, applies --set assignments, checks every value: throws io::InputError.
   Case load(const std::string& filename, const std::vector<std::string>& settings);
-  // The case a stage recorded in its summary.json ("parameters": path -> value), with the later
-  // stages' --set assignments (Transport/, Continuum/, Compare/) over it: those sections may
-  // change without rerunning the particles.
-  Case load_recorded(const io::Json& recorded, const std::string& name,
-                     const std::vector<std::string>& settings = {});
   // The two halves of load(): read() rejects unknown keys and values outside a key's pattern;
   // resolve() the values that do not fit together or the sections' ranges.
   void read(const std::string& filename, const std::vector<std::string>& settings);
   Case resolve(const std::string& filename) const;
   const Registry& registry() const { return registry_; }
+  void assign(const std::string& assignment) { registry_.set_override(assignment); } // --set's
 
 private:
   Registry registry_;
 };
 
-// The case a run directory's particle stage recorded (particle/summary.json), with the later
-// sections' --set assignments over it: what `twinflow compare RUNDIR` compares.
+// The case a run directory records (RUNDIR/case.json, study/case_record.hpp), with --set
+// assignments of Compare/ keys over it: what `twinflow compare RUNDIR` compares.
 Case recorded_case(const std::filesystem::path& run_dir, const std::vector<std::string>& settings);
 
 // The case file as a grid's points read it (sweep, stability).

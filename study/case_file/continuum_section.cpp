@@ -340,11 +340,12 @@ void declare_continuum(Registry& r) {
 
 namespace {
 // The model: as named, or chosen by the scene (automatic_model).
-continuum::Model resolve_model(const Registry& r, const scene::SceneParameters& scene) {
+continuum::Model resolve_model(const Registry& r, const scene::SceneParameters& scene,
+                               const particle::ParticleParameters& particle) {
   const std::string model = r.get(s + "Model");
   if (model == "auto")
     return automatic_model(
-        scene, r.get_double("Particle/Mass"), r.get("Particle/Conservative force/Type") != "none",
+        scene, particle.mass, particle.conservative != particle::ConservativeForce::None,
         r.get_double(s + "Low-Mach threshold"), r.get_double(s + "Compressible threshold"));
   return model == "heat-conduction" ? continuum::Model::HeatConduction
          : model == "low-mach"      ? continuum::Model::LowMach
@@ -430,9 +431,10 @@ std::array<double, 6> wall_distances(const Registry& r, const scene::SceneParame
 
 // Same units as the particle twin: n from the scene, m from the particle section.
 void resolve_coefficients(const Registry& r, const scene::SceneParameters& scene,
+                          const particle::ParticleParameters& particle,
                           continuum::ContinuumParameters& c) {
   c.number_density = scene.density;
-  c.particle_mass = r.get_double("Particle/Mass");
+  c.particle_mass = particle.mass;
   const std::string k = s + "Coefficients/";
   const auto law = [&](const std::string& name) {
     return continuum::PowerLaw{r.get_positive(k + name), r.get_double(k + name + " exponent"),
@@ -507,12 +509,12 @@ continuum::ContinuumParameters resolve_continuum(const Registry& r,
   continuum::ContinuumParameters c;
   c.dim = scene.dim;
   c.box = scene.box;
-  c.model = resolve_model(r, scene);
+  c.model = resolve_model(r, scene, particle);
   c.gravity = scene.gravity;
   resolve_thermal_walls(r, scene, c);
   resolve_slip(r, scene, particle, c);
   const std::array<double, 6> distance = wall_distances(r, scene, c);
-  resolve_coefficients(r, scene, c);
+  resolve_coefficients(r, scene, particle, c);
   resolve_mesh_and_solver(r, scene, c);
   resolve_time(r, c);
   resolve_output(r, scene, distance, c);

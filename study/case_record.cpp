@@ -106,17 +106,19 @@ Case read_case_record(const fs::path& run_dir) {
   const io::Json j =
       io::read_json(file, "the case is written by `twinflow run CASE --out " + run_dir.string() +
                               "` before its twins (finished stages are reused)");
-  if (j.value("format", 0) != kCaseRecordFormat)
-    throw io::InputError(file.string() + ": format " + j.value("format", io::Json()).dump() +
-                         ", this twinflow reads " + std::to_string(kCaseRecordFormat) +
-                         " (rerun `twinflow run CASE --out " + run_dir.string() + "`)");
   Case c;
-  try {
-    c.parameters = case_parameters_from_json(j.at("parameters"));
+  try { // every failure names the file
+    if (j.value("format", 0) != kCaseRecordFormat)
+      throw io::InputError("format " + j.value("format", io::Json()).dump() +
+                           ", this twinflow reads " + std::to_string(kCaseRecordFormat) +
+                           " (rerun `twinflow run CASE --out " + run_dir.string() + "`)");
+    c.parameters = j.at("parameters").get<CaseParameters>();
     c.record = j.at("record");
     c.defaults = j.value("defaults", io::Json::object());
     c.file = j.value("case_file", std::string());
     c.settings = j.value("settings", std::vector<std::string>());
+  } catch (const io::InputError& e) {
+    throw io::InputError(file.string() + ": " + e.what());
   } catch (const nlohmann::json::exception& e) {
     throw io::InputError(file.string() + ": " + e.what());
   }

@@ -153,10 +153,22 @@ void describe_comparison(io::Json& metrics, const io::Grid& grid, const Particle
   metrics["temperature_field"] = "T_kinetic (particle) against T (continuum), / temperature_scale";
 }
 
+// The relative error of the conduction flux q0 = kappa dT / H from the nominal twin's measured
+// kappa amplitude (q0 is proportional to it: the Kirchhoff integral of continuum/parameters.cpp);
+// NaN when the twin's coefficients carry no measured errors. kappa's exponent moves q0 by ~0.4%
+// per its stderr (0.1) at dT / T = 1, against the amplitude's ~1.7%: left out.
+double conduction_flux_relative_stderr(const io::Json& nominal_summary) {
+  const io::Json* k = io::find(nominal_summary, {"coefficient_uncertainty", "conductivity"});
+  if (!k) return std::nan("");
+  return io::number(*k, {"stderr"}) / io::number(*k, {"value"});
+}
+
 // The particle's heat flow through the heated direction's walls as a Nusselt number against
-// the nominal twin's conduction flux q0 = kappa dT / H (the same q0 for every twin).
+// the nominal twin's conduction flux q0 = kappa dT / H (the same q0 for every twin). Two errors:
+// the heat flow's alone (what the gap to a twin carries, whose Nu has the same q0), and with q0's
+// kappa error (what the particle Nu read alone carries: each transport stage has its own kappa).
 io::Json particle_heat_flow(const io::Json& presults, const scene::SceneParameters& scene,
-                            int heated, double q0) {
+                            int heated, double q0, double q0_relative_stderr) {
   io::Json particle = io::Json::object();
   if (heated < 0) return particle;
   // Magnitudes: the particle's flux is counted from its hot wall to its cold one.
@@ -180,6 +192,11 @@ io::Json particle_heat_flow(const io::Json& presults, const scene::SceneParamete
   particle["nusselt"] = q / q0;
   particle["nusselt_stderr"] = se_stated / q0;
   particle["nusselt_stderr_20_blocks"] = 0.5 * se / q0;
+  if (std::isfinite(q0_relative_stderr)) {
+    particle["nusselt_stderr_conductivity"] = q0_relative_stderr * q / q0;
+    particle["nusselt_stderr_with_conductivity"] =
+        std::hypot(se_stated / q0, q0_relative_stderr * q / q0);
+  }
   // In a steady state the two walls carry the same flow; their difference is the fluid still
   // heating or cooling.
   particle["nusselt_hot_wall"] = q_in / q0;
@@ -421,16 +438,20 @@ std::string error_vs_time(const ParticleRecord& run, const std::vector<TwinRecor
 // The particles' heat flow and wall jumps; their cost and Nu in the table.
 io::Json particle_results(const ParticleRecord& run, const BinnedState& final_state,
                           const std::vector<char>& interior, const scene::SceneParameters& scene,
-                          const Scales& scales, double q0, io::Json& table) {
+                          const Scales& scales, double q0, double q0_relative_stderr,
+                          io::Json& table) {
   const io::Json& presults = run.summary.at("results");
   table["wall_seconds_particle"] = io::number(presults, {"wall_seconds"});
   table["particle_steps"] =
       io::number(presults, {"N"}) *
       (io::number(presults, {"steps"}) + io::number(presults, {"equilibration_steps"}));
-  io::Json particle = particle_heat_flow(presults, scene, scales.heated, q0);
+  io::Json particle = particle_heat_flow(presults, scene, scales.heated, q0, q0_relative_stderr);
   if (scales.heated >= 0) {
     table["nusselt_particle"] = particle["nusselt"];
     table["nusselt_particle_stderr"] = particle["nusselt_stderr"];
+    if (particle.contains("nusselt_stderr_with_conductivity"))
+      table["nusselt_particle_stderr_with_conductivity"] =
+          particle["nusselt_stderr_with_conductivity"];
   }
   particle["wall_temperature_jumps"] =
       wall_temperature_jumps(final_state, interior, scene, presults);
@@ -447,12 +468,15 @@ void log_particles(std::ostream& log, const io::Json& particle, const std::vecto
       << "), temperature scale " << scales.temperature;
   if (scales.velocity) log << ", velocity scale " << scales.speed;
   log << "\n";
-  if (scales.heated >= 0)
-    log << "compare: particle Nu = " << io::number(particle, {"nusselt"}) << " +- "
-        << io::number(particle, {"nusselt_stderr"}) << " (hot wall "
-        << io::number(particle, {"nusselt_hot_wall"}) << ", cold wall "
-        << io::number(particle, {"nusselt_cold_wall"}) << "; with 20 blocks: +- "
-        << io::number(particle, {"nusselt_stderr_20_blocks"}) << ")\n";
+  if (scales.heated < 0) return;
+  log << "compare: particle Nu = " << io::number(particle, {"nusselt"}) << " +- "
+      << io::number(particle, {"nusselt_stderr"}) << " (heat flow";
+  if (particle.contains("nusselt_stderr_conductivity"))
+    log << "; +- " << io::number(particle, {"nusselt_stderr_conductivity"})
+        << " from the twin's kappa in q0";
+  log << "; hot wall " << io::number(particle, {"nusselt_hot_wall"}) << ", cold wall "
+      << io::number(particle, {"nusselt_cold_wall"}) << "; with 20 blocks: +- "
+      << io::number(particle, {"nusselt_stderr_20_blocks"}) << ")\n";
 }
 
 // One twin against the particles: its distances, heat flow and verdict; its columns in the table.
@@ -497,7 +521,9 @@ Comparison compare_twins(const ParticleRecord& run, const std::vector<TwinRecord
   io::Json table = io::Json::object();
   const double q0 = std::abs(io::number(nominal.summary, {"dimensionless", "conduction_flux"}));
   const BinnedState final_state = run.final_state();
-  const io::Json particle = particle_results(run, final_state, interior, scene, scales, q0, table);
+  const io::Json particle =
+      particle_results(run, final_state, interior, scene, scales, q0,
+                       conduction_flux_relative_stderr(nominal.summary), table);
   metrics["particle"] = particle;
   log_particles(out.log, particle, interior, compare.wall_layer, scales);
 

@@ -241,6 +241,29 @@ TEST(Cli, RunComparesTheTwinsAndReusesUnchangedStages) {
             without_timing(by_run));
   EXPECT_EQ(run("compare " + (dir / "no-such-run").string()).code, 2);
   EXPECT_EQ(run("compare " + dir.string() + " --set Particle/Seed=3").code, 2);
+  // The twin's kappa here is theory's (no error): the particle Nu has the heat flow's error
+  // only. With a measured kappa (planted: 2% error) it also states Nu with q0's kappa error.
+  {
+    const auto& particle = *twinflow::io::find(by_run, {"particle"});
+    EXPECT_EQ(twinflow::io::find(particle, {"nusselt_stderr_with_conductivity"}), nullptr);
+    const fs::path measured = fresh_dir("measured_kappa");
+    fs::copy(dir, measured, fs::copy_options::recursive);
+    auto twin = twinflow::io::read_json(measured / "continuum" / "summary.json");
+    twin["coefficient_uncertainty"]["conductivity"] = {{"value", 20.0}, {"stderr", 0.4}};
+    twinflow::io::write_file_atomically(measured / "continuum" / "summary.json",
+                                        twinflow::io::dump(twin));
+    const Result again = run("compare " + measured.string());
+    ASSERT_EQ(again.code, 0) << again.output;
+    const auto m = twinflow::io::read_json(measured / "compare" / "metrics.json");
+    const auto number = [&](const char* key) {
+      const auto* v = twinflow::io::find(m, {"particle", key});
+      return v ? v->get<double>() : std::nan("");
+    };
+    EXPECT_DOUBLE_EQ(number("nusselt_stderr_conductivity"), 0.02 * number("nusselt"));
+    EXPECT_DOUBLE_EQ(number("nusselt_stderr_with_conductivity"),
+                     std::hypot(number("nusselt_stderr"), 0.02 * number("nusselt")));
+    EXPECT_EQ(number("nusselt_stderr"), particle.at("nusselt_stderr").get<double>());
+  }
 
   // A later stage's --set reaches a reused particle run: the calibrated twin changes from
   // Kapitza walls to the fluid's wall temperatures.

@@ -14,6 +14,7 @@ python3 "$source_dir/scripts/seed_table.py" "$out/seeds" | tee "$out/table"
 grep -q '^| 1 | ' "$out/table" && grep -q '^| 2 | ' "$out/table"
 grep -q '^chi^2/dof over 2 runs' "$out/table"
 grep -q '^- heat flow across the heated walls: ' "$out/table"
+grep -q "^- particle Nu (the heat flow's and its conduction flux's kappa errors): " "$out/table"
 grep -q '^- strict verdict, temperature within errors: [0-2] of 2' "$out/table"
 # fewer than two finished runs: said, exit 1
 if python3 "$source_dir/scripts/seed_table.py" "$out/seeds/points/000" 2>/dev/null; then exit 1; fi

@@ -303,13 +303,8 @@ struct InverseConstantHeat {
   static constexpr bool active = true;
   double kappa0;
   Weight w;
-  // rate includes the Ito drift (zero here); amplitude^2 = 2 k kappa_ij w_H, 000:(2.38)
-  void eval(double r, double th_i, double th_j, double& rate, double& amplitude) const {
-    double wh, sqrt_wh;
-    w.eval(r, wh, sqrt_wh);
-    eval_w(wh, sqrt_wh, th_i, th_j, rate, amplitude);
-  }
-  // The same from the weights w_H(r), sqrt(w_H(r)).
+  // rate includes the Ito drift (zero here); amplitude^2 = 2 k kappa_ij w_H, 000:(2.38); from
+  // the weights w_H(r), sqrt(w_H(r)) (heat_terms: from r)
   void eval_w(double wh, double sqrt_wh, double th_i, double th_j, double& rate,
               double& amplitude) const {
     rate = kappa0 * wh * (th_j - th_i) / (th_i * th_j); // 002:(7): 1/th_i - 1/th_j
@@ -326,11 +321,6 @@ struct InverseSeed002Heat {
   static constexpr bool active = true;
   double kappa0, cv;
   Weight w;
-  void eval(double r, double th_i, double th_j, double& rate, double& amplitude) const {
-    double wh, sqrt_wh;
-    w.eval(r, wh, sqrt_wh);
-    eval_w(wh, sqrt_wh, th_i, th_j, rate, amplitude);
-  }
   void eval_w(double wh, double sqrt_wh, double th_i, double th_j, double& rate,
               double& amplitude) const {
     const double s = th_i + th_j;
@@ -352,11 +342,6 @@ struct LinearHeat {
   double kappa, cv,
       noise_factor; // kappa_ij = c_v kappa0; noise_factor 2 (FDT) or 1 (002 as printed)
   Weight w;
-  void eval(double r, double th_i, double th_j, double& rate, double& amplitude) const {
-    double wh, sqrt_wh;
-    w.eval(r, wh, sqrt_wh);
-    eval_w(wh, sqrt_wh, th_i, th_j, rate, amplitude);
-  }
   void eval_w(double wh, double sqrt_wh, double th_i, double th_j, double& rate,
               double& amplitude) const {
     const double dt = th_j - th_i;
@@ -372,5 +357,14 @@ struct LinearHeat {
     amplitude = std::sqrt(noise_factor * kappa * th_i * th_w) * sqrt_wh; // 000:(2.38)
   }
 };
+
+// A heat law's terms at distance r: its weights w_H(r), sqrt(w_H(r)), then its eval_w.
+template <class Heat>
+void heat_terms(const Heat& heat, double r, double th_i, double th_j, double& rate,
+                double& amplitude) {
+  double wh, sqrt_wh;
+  heat.w.eval(r, wh, sqrt_wh);
+  heat.eval_w(wh, sqrt_wh, th_i, th_j, rate, amplitude);
+}
 
 } // namespace twinflow::particle

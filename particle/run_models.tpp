@@ -250,7 +250,7 @@ private:
           if constexpr (M::Heat::active) {
             if (conduction && r < model_.heat.w.rc) { // the mean heat rate into i: from j to i
               double rate, amplitude;
-              model_.heat.eval(r, th_i, th_j, rate, amplitude);
+              heat_terms(model_.heat, r, th_i, th_j, rate, amplitude);
               for (int d = 0; d < D; ++d) {
                 conduction_[d][i] += 0.5 * rate * dx[d]; // Irving-Kirkwood, half to each end
                 conduction_[d][j] += 0.5 * rate * dx[d];

@@ -56,7 +56,7 @@ Simulation<M>::pair_force(const PairNoise& noise, std::size_t i, std::size_t j, 
   if constexpr (M::Heat::active) {
     if (r < model_.heat.w.rc) {
       double rate, amplitude;
-      model_.heat.eval(r, th_i, th_j, rate, amplitude);
+      heat_terms(model_.heat, r, th_i, th_j, rate, amplitude);
       pf.heat = rate + amplitude * zeta * inv_sqrt_dt_; // q_ij, docs/theory.md
     }
   }

@@ -35,20 +35,6 @@ struct TwinChoice {
   double compressible_threshold = 0.1;      // its threshold on the stratification g H / c^2
 };
 
-// Continuum/Model = auto: compressible where the scene's stratification g H / c^2 exceeds its
-// threshold (the low-Mach and Boussinesq twins have no hydrostatic density gradient), else
-// where the thermal walls' epsilon exceeds its threshold low-Mach, or compressible for a fluid
-// with a conservative force (the low-Mach twin takes the ideal gas's p only), else Boussinesq.
-inline continuum::Model automatic_model(const scene::SceneParameters& scene, double particle_mass,
-                                        bool conservative_force, double low_mach_threshold,
-                                        double compressible_threshold) {
-  if (scene.stratification(particle_mass) > compressible_threshold)
-    return continuum::Model::Compressible;
-  if (scene.thermal_wall_epsilon() > low_mach_threshold)
-    return conservative_force ? continuum::Model::Compressible : continuum::Model::LowMach;
-  return continuum::Model::Boussinesq;
-}
-
 struct CaseParameters {
   std::string name;
   scene::SceneParameters scene;

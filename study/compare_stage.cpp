@@ -10,6 +10,7 @@
 #include "io/files.hpp"
 #include "study/ranks.hpp"
 #include "study/stages.hpp"
+#include "study/twin_model.hpp"
 
 namespace twinflow::study {
 

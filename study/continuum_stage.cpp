@@ -15,6 +15,7 @@
 #include "study/ranks.hpp"
 #include "study/stages.hpp"
 #include "study/twin_coefficients.hpp"
+#include "study/twin_model.hpp"
 #include "study/twin_wall_theory.hpp"
 #include "transport/coefficients.hpp"
 
@@ -235,30 +236,16 @@ const char* model_name(continuum::Model m) {
 } // namespace
 
 namespace {
-// Why Model = auto chose this twin (study::automatic_model's order: stratification, epsilon).
-void explain_automatic_model(const CaseParameters& parameters,
-                             const continuum::ContinuumParameters& p) {
-  const double stratification = parameters.scene.stratification(p.particle_mass);
-  const double epsilon = parameters.scene.thermal_wall_epsilon();
-  const bool stratified = stratification > parameters.twin.compressible_threshold;
-  std::cout << "continuum: Model = auto: " << model_name(p.model) << " (stratification g H / c^2 "
-            << stratification << (stratified ? " > " : " <= ")
-            << parameters.twin.compressible_threshold;
-  if (!stratified)
-    std::cout << ", the thermal walls' epsilon " << epsilon
-              << (p.model == continuum::Model::Boussinesq ? " <= " : " > ")
-              << parameters.twin.low_mach_threshold;
-  if (!stratified && p.model == continuum::Model::Compressible)
-    std::cout << " with a conservative force, which the low-Mach twin's p = n k T leaves out";
-  std::cout << ")\n";
-}
-
 // The twin's model, its numbers and a note where its equation of state leaves the fluid's
 // conservative force out.
 void announce_twin(const CaseParameters& parameters, const continuum::ContinuumParameters& p) {
   const auto numbers = continuum::dimensionless_numbers(p);
   if (parameters.twin.model_chosen_automatically && parameters.scene.has_walls())
-    explain_automatic_model(parameters, p);
+    std::cout << "continuum: Model = auto: " << model_name(p.model) << " ("
+              << automatic_model_reason(parameters.scene, p.particle_mass, p.model,
+                                        parameters.twin.low_mach_threshold,
+                                        parameters.twin.compressible_threshold)
+              << ")\n";
   std::cout << "continuum: " << model_name(p.model) << (p.transient() ? " in time" : ", steady")
             << ", " << p.dim << "D, Ra = " << numbers.rayleigh << ", Pr = " << numbers.prandtl
             << ", epsilon = " << numbers.epsilon

@@ -6,6 +6,7 @@
 #include "continuum/twin_walls.hpp"
 #include "particle/wall_weights.hpp"
 #include "study/case_file/case_file.hpp"
+#include "study/twin_model.hpp"
 
 namespace twinflow::study {
 
@@ -339,7 +340,7 @@ void declare_continuum(Registry& r) {
 }
 
 namespace {
-// The model: as named, or chosen by the scene (automatic_model).
+// The model: as named, or chosen by the scene (study/twin_model.hpp).
 continuum::Model resolve_model(const Registry& r, const scene::SceneParameters& scene,
                                const particle::ParticleParameters& particle) {
   const std::string model = r.get(s + "Model");

@@ -119,18 +119,7 @@ def periodic(P, K, reg, kmax_sum=None):
     """s = lambda_tail/A for periodic square box.  M nonzero only for equal wavevectors;
     sum_k (k_y^2/k^2) w(k^2,k^2) / k^2 over all k != 0 (complex modes), times 4 pi / V.
     Independent of chi/nu."""
-    if kmax_sum is None:
-        kmax_sum = K if reg != 'gauss' else 6.0 * K
-    nmax = int(np.ceil(kmax_sum * P / (2 * np.pi))) + 1
-    j = np.arange(-nmax, nmax + 1)
-    kx, ky = np.meshgrid(2 * np.pi * j / P, 2 * np.pi * j / P, indexing='ij')
-    k2 = kx ** 2 + ky ** 2
-    k2[nmax, nmax] = np.inf
-    if reg in ('hard1', 'hard2'):
-        wgt = (k2 <= K * K).astype(float)
-    else:
-        wgt = np.exp(-2 * k2 / (K * K))
-    return 4 * np.pi / (P * P) * np.sum((ky ** 2 / k2) * wgt / k2)
+    return periodic_rect(P, P, K, reg, kmax_sum)
 
 
 def periodic_rect(Px, Py, K, reg, kmax_sum=None):

@@ -193,9 +193,9 @@ io::Json particle_heat_flow(const io::Json& presults, const scene::SceneParamete
   particle["nusselt_stderr"] = se_stated / q0;
   particle["nusselt_stderr_20_blocks"] = 0.5 * se / q0;
   if (std::isfinite(q0_relative_stderr)) {
-    particle["nusselt_stderr_conductivity"] = q0_relative_stderr * q / q0;
-    particle["nusselt_stderr_with_conductivity"] =
-        std::hypot(se_stated / q0, q0_relative_stderr * q / q0);
+    const double se_conductivity = q0_relative_stderr * q / q0;
+    particle["nusselt_stderr_conductivity"] = se_conductivity;
+    particle["nusselt_stderr_with_conductivity"] = std::hypot(se_stated / q0, se_conductivity);
   }
   // In a steady state the two walls carry the same flow; their difference is the fluid still
   // heating or cooling.

@@ -128,6 +128,89 @@ std::array<unsigned, 3> current_cells(const dealii::Triangulation<dim>& tria,
   return cells;
 }
 
+// A field computed from the FE components at a point (the low-Mach density n(P, T)).
+using DerivedField = std::function<double(const dealii::Vector<double>& components)>;
+
+// The bin (x fastest) of the scene's bins that holds point x of the twin's coordinates.
+template <int dim>
+unsigned bin_of(const dealii::Point<dim>& x, const ContinuumParameters& prm,
+                const std::array<unsigned, 3>& bins) {
+  unsigned index = 0, stride = 1;
+  for (int d = 0; d < dim; ++d) {
+    const int i =
+        std::clamp(static_cast<int>((x[d] - prm.bin_lower[d]) / prm.bin_extent(d) * bins[d]), 0,
+                   static_cast<int>(bins[d]) - 1);
+    index += stride * static_cast<unsigned>(i);
+    stride *= bins[d];
+  }
+  return index;
+}
+
+// The velocity's mean over a pinned layer's strip, over its value at the twin's wall: along the
+// Navier slip's line, zero a slip length ell beyond the twin's wall, the mean over depth is
+// 1 - depth / (2 ell); a wall without a slip length keeps its own value (no-slip: zero anyway).
+inline double strip_velocity_factor(const DirectionBoundary& b, int side, double depth) {
+  const double ell = b.slip_length[side];
+  return ell > 0 ? std::clamp(1 - depth / (2 * ell), 0.0, 1.0) : 1.0;
+}
+
+// Adds to `sums` and `volume` the strips of the scene's bins that lie beyond the twin's walls
+// (walls moved in over pinned layers, continuum/twin_walls.hpp): each boundary face's values
+// carried across its strip's depth. The particles' bins count the layer's particles, which the
+// wall holds at T_wall: T and n take the wall's values, the velocity
+// strip_velocity_factor's. The corners where two moved walls meet are left out (depth^2).
+// Returns whether any wall was moved.
+template <int dim, class VectorType>
+bool add_pinned_strips(const dealii::DoFHandler<dim>& dofs, const VectorType& solution,
+                       const std::vector<std::string>& names, const ContinuumParameters& prm,
+                       const std::vector<DerivedField>& derived, unsigned pieces,
+                       const std::array<unsigned, 3>& bins, std::vector<std::vector<double>>& sums,
+                       std::vector<double>& volume) {
+  std::array<std::array<double, 2>, 3> depth{};
+  bool any = false;
+  for (int d = 0; d < dim; ++d)
+    if (prm.bin_box[d] > 0) {
+      depth[d] = {{-prm.bin_lower[d], prm.bin_lower[d] + prm.bin_box[d] - prm.box[d]}};
+      any = any || depth[d][0] > 1e-12 || depth[d][1] > 1e-12;
+    }
+  if (!any) return false;
+  const auto& fe = dofs.get_fe();
+  const dealii::QIterated<dim - 1> quadrature(dealii::QGauss<1>(3), pieces);
+  dealii::FEFaceValues<dim> face_values(fe, quadrature,
+                                        dealii::update_values | dealii::update_quadrature_points |
+                                            dealii::update_JxW_values);
+  const unsigned n_components = fe.n_components();
+  std::vector<dealii::Vector<double>> values(quadrature.size(),
+                                             dealii::Vector<double>(n_components));
+  std::vector<char> velocity(n_components);
+  for (unsigned c = 0; c < n_components; ++c) velocity[c] = names[c].rfind("u_", 0) == 0;
+  for (const auto& cell : dofs.active_cell_iterators()) {
+    if (!cell->is_locally_owned()) continue;
+    for (unsigned f = 0; f < cell->n_faces(); ++f) {
+      if (!cell->face(f)->at_boundary()) continue;
+      const unsigned id = cell->face(f)->boundary_id(); // 2d: x_d = 0, 2d + 1: x_d = L_d
+      const int d = static_cast<int>(id / 2), side = static_cast<int>(id % 2);
+      if (d >= dim || !(depth[d][side] > 1e-12)) continue;
+      const double strip = depth[d][side];
+      const double u_factor = strip_velocity_factor(prm.boundary[d], side, strip);
+      face_values.reinit(cell, f);
+      face_values.get_function_values(solution, values);
+      for (unsigned q = 0; q < quadrature.size(); ++q) {
+        auto x = face_values.quadrature_point(q);
+        x[d] = side == 0 ? -0.5 * strip : prm.box[d] + 0.5 * strip; // the strip's middle
+        const unsigned index = bin_of(x, prm, bins);
+        const double v = face_values.JxW(q) * strip;
+        volume[index] += v;
+        for (unsigned c = 0; c < n_components; ++c)
+          sums[c][index] += (velocity[c] ? u_factor : 1.0) * values[q][c] * v;
+        for (unsigned k = 0; k < derived.size(); ++k)
+          sums[n_components + k][index] += derived[k](values[q]) * v;
+      }
+    }
+  }
+  return true;
+}
+
 // Average of every FE component over a regular grid of bins covering the box: the integral over
 // each bin divided by its volume. Quadrature points are assigned to the bin that contains them;
 // the sub-cell quadrature is iterated so that a cell straddling a bin face is split into pieces
@@ -136,7 +219,6 @@ std::array<unsigned, 3> current_cells(const dealii::Triangulation<dim>& tria,
 // solver); VectorType: dealii::Vector or a ghosted Trilinos vector. `derived` adds fields computed
 // from the components at each quadrature point (the low-Mach density n(P, T)), after the
 // components, named after them in `names`.
-using DerivedField = std::function<double(const dealii::Vector<double>& components)>;
 template <int dim, class VectorType>
 BinAverages bin_averages(const dealii::DoFHandler<dim>& dofs, const VectorType& solution,
                          const std::vector<std::string>& names, const ContinuumParameters& prm,
@@ -173,14 +255,7 @@ BinAverages bin_averages(const dealii::DoFHandler<dim>& dofs, const VectorType& 
     fe_values.get_function_values(solution, values);
     for (unsigned q = 0; q < quadrature.size(); ++q) {
       const auto& x = fe_values.quadrature_point(q);
-      unsigned index = 0, stride = 1;
-      for (int d = 0; d < dim; ++d) {
-        const int i = std::clamp(
-            static_cast<int>((x[d] - prm.bin_lower[d]) / prm.bin_extent(d) * out.bins[d]), 0,
-            static_cast<int>(out.bins[d]) - 1);
-        index += stride * i;
-        stride *= out.bins[d];
-      }
+      const unsigned index = bin_of(x, prm, out.bins);
       volume[index] += fe_values.JxW(q);
       for (unsigned c = 0; c < n_components; ++c)
         out.values[c][index] += values[q][c] * fe_values.JxW(q);
@@ -188,10 +263,24 @@ BinAverages bin_averages(const dealii::DoFHandler<dim>& dofs, const VectorType& 
         out.values[n_components + k][index] += derived[k](values[q]) * fe_values.JxW(q);
     }
   }
-  dealii::Utilities::MPI::sum(volume, comm, volume);
-  for (unsigned c = 0; c < n_fields; ++c) {
-    dealii::Utilities::MPI::sum(out.values[c], comm, out.values[c]);
-    for (unsigned b = 0; b < n_bins; ++b) out.values[c][b] /= volume[b];
+  // The scene's bins beside walls moved in over pinned layers also count the layers' strips;
+  // the twin's own fields over its domain alone are kept beside them.
+  std::vector<std::vector<double>> domain_sums = out.values;
+  std::vector<double> domain_volume = volume;
+  const bool strips = add_pinned_strips(dofs, solution, out.names, prm, derived, pieces, out.bins,
+                                        out.values, volume);
+  const bool moved = dealii::Utilities::MPI::logical_or(strips, comm);
+  const auto normalise = [&](std::vector<std::vector<double>>& sums, std::vector<double>& v) {
+    dealii::Utilities::MPI::sum(v, comm, v);
+    for (unsigned c = 0; c < n_fields; ++c) {
+      dealii::Utilities::MPI::sum(sums[c], comm, sums[c]);
+      for (unsigned b = 0; b < n_bins; ++b) sums[c][b] /= v[b];
+    }
+  };
+  normalise(out.values, volume);
+  if (moved) {
+    normalise(domain_sums, domain_volume);
+    out.domain_values = std::move(domain_sums);
   }
   return out;
 }

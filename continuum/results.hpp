@@ -34,6 +34,14 @@ struct BinAverages {
   std::array<unsigned, 3> bins{{1, 1, 1}};
   std::vector<std::string> names;          // field names
   std::vector<std::vector<double>> values; // [field][bin], bin index x fastest
+  // Beside a wall moved in over a pinned layer the scene's bins reach beyond the twin's domain:
+  // `values` count the layer's strip at the wall's values, as the particles' bins count the
+  // layer's particles; `domain_values` are the twin's own fields over its domain alone (empty
+  // when no wall was moved: then the same as `values`).
+  std::vector<std::vector<double>> domain_values;
+  const std::vector<std::vector<double>>& own_values() const {
+    return domain_values.empty() ? values : domain_values;
+  }
 };
 
 struct MeshLevel {

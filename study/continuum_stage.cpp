@@ -155,6 +155,7 @@ struct Uncertainty {
 continuum::BinAverages bins_change(const continuum::BinAverages& moved,
                                    const continuum::BinAverages& base) {
   continuum::BinAverages d = moved;
+  d.domain_values.clear(); // the change of the scene's bins only
   for (std::size_t c = 0; c < d.values.size(); ++c)
     for (std::size_t k = 0; k < d.values[c].size(); ++k) d.values[c][k] -= base.values[c][k];
   return d;

@@ -141,7 +141,8 @@ WallValues wall_values(const continuum::BinAverages& bins, int dim, const std::s
   for (auto& sides : out) sides = {{std::nan(""), std::nan("")}};
   const auto field = std::find(bins.names.begin(), bins.names.end(), name);
   if (field == bins.names.end()) return out;
-  const std::vector<double>& n = bins.values[static_cast<std::size_t>(field - bins.names.begin())];
+  const std::vector<double>& n =
+      bins.own_values()[static_cast<std::size_t>(field - bins.names.begin())];
   const auto& count = bins.bins;
   for (int d = 0; d < dim; ++d)
     for (int side = 0; side < 2; ++side) {

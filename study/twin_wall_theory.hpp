@@ -37,8 +37,9 @@ int take_wall_jumps(const CaseParameters& c, const transport::Coefficients& k,
 int take_wall_slips(const CaseParameters& c, continuum::ContinuumParameters& twin,
                     const WallValues* at_walls = nullptr, const WallValues* temperatures = nullptr);
 
-// A twin's `field` at each wall plane: the mean of its first two layers of bins along the wall,
-// extrapolated linearly (NaN where the twin has no such field: density in Boussinesq).
+// A twin's `field` at each wall plane: the mean of its first two layers of bins along the wall
+// (over the twin's own domain: BinAverages::own_values), extrapolated linearly (NaN where the
+// twin has no such field: density in Boussinesq).
 WallValues wall_values(const continuum::BinAverages& bins, int dim, const std::string& field);
 inline WallValues wall_densities(const continuum::BinAverages& bins, int dim) {
   return wall_values(bins, dim, "n");

@@ -193,6 +193,33 @@ TEST(HeatConduction, BinAveragesProbesAndFields) {
   }
 }
 
+// A twin whose wall stands inside the scene's (moved in over a pinned layer, twin_walls.hpp): the
+// scene's bins beside it count the layer's strip at the wall's temperature, as the particles'
+// bins count the layer's particles; own_values keep the twin's domain alone. T = 2 - x on the
+// twin's [0, 1] (10 cells: the bin faces are cell faces), the scene's walls 0.2 beyond one end.
+TEST(HeatConduction, BinsBesideAMovedWallCountItsPinnedStrip) {
+  for (const int side : {0, 1}) {
+    ContinuumParameters p = slab(2, 1.0, 10);
+    p.bins = {{4, 1, 1}};
+    p.bin_lower = {{side == 0 ? -0.2 : 0.0, 0, 0}};
+    p.bin_box = {{1.2, 0.5, 0}};
+    const ContinuumResult r = run(p, "");
+    const auto& T = r.bins.values[0];
+    const auto& own = r.bins.own_values()[0];
+    ASSERT_EQ(T.size(), 4u);
+    const unsigned strip_bin = side == 0 ? 0 : 3, inner = side == 0 ? 3 : 0;
+    // the bin's 0.1 of domain (mean T 1.95 or 1.05) and the 0.2 strip at the wall's 2 or 1
+    const double domain_mean = side == 0 ? 1.95 : 1.05, wall = side == 0 ? 2.0 : 1.0;
+    EXPECT_NEAR(T[strip_bin], (0.1 * domain_mean + 0.2 * wall) / 0.3, 1e-12);
+    EXPECT_NEAR(own[strip_bin], domain_mean, 1e-12);
+    const double centre = side == 0 ? 0.85 : 0.15; // the bin away from the strip
+    EXPECT_NEAR(T[inner], 2.0 - centre, 1e-12);
+    EXPECT_NEAR(own[inner], 2.0 - centre, 1e-12);
+  }
+  ContinuumParameters p = slab(2, 1.0, 10); // no wall moved: no separate domain values
+  EXPECT_TRUE(run(p, "").bins.domain_values.empty());
+}
+
 TEST(HeatConduction, FieldsIn1D) {
   const std::filesystem::path dir =
       std::filesystem::temp_directory_path() / "twinflow_continuum_heat_fields_1d";

@@ -154,18 +154,42 @@ inline double strip_velocity_factor(const DirectionBoundary& b, int side, double
   return ell > 0 ? std::clamp(1 - depth / (2 * ell), 0.0, 1.0) : 1.0;
 }
 
-// Adds to `sums` and `volume` the strips of the scene's bins that lie beyond the twin's walls
-// (walls moved in over pinned layers, continuum/twin_walls.hpp): each boundary face's values
-// carried across its strip's depth. The particles' bins count the layer's particles, which the
-// wall holds at T_wall: T and n take the wall's values, the velocity
-// strip_velocity_factor's. The corners where two moved walls meet are left out (depth^2).
-// Returns whether any wall was moved.
+// Every field's integral over each bin, and each bin's volume.
+struct BinSums {
+  std::vector<std::vector<double>> values; // [field][bin]
+  std::vector<double> volume;
+  BinSums(unsigned fields, unsigned bins)
+      : values(fields, std::vector<double>(bins, 0.0)), volume(bins, 0.0) {}
+  // The components v (and the fields derived from them) over `weight` of volume in bin `index`.
+  void add(unsigned index, double weight, const dealii::Vector<double>& v,
+           const std::vector<DerivedField>& derived) {
+    volume[index] += weight;
+    const unsigned n = v.size();
+    for (unsigned c = 0; c < n; ++c) values[c][index] += v[c] * weight;
+    for (unsigned k = 0; k < derived.size(); ++k) values[n + k][index] += derived[k](v) * weight;
+  }
+  // The averages: the sums over every process in `comm`, over the volumes.
+  std::vector<std::vector<double>> averages(const MPI_Comm comm) {
+    dealii::Utilities::MPI::sum(volume, comm, volume);
+    for (auto& field : values) {
+      dealii::Utilities::MPI::sum(field, comm, field);
+      for (std::size_t b = 0; b < field.size(); ++b) field[b] /= volume[b];
+    }
+    return std::move(values);
+  }
+};
+
+// Adds to `sums` the strips of the scene's bins that lie beyond the twin's walls (walls moved in
+// over pinned layers, continuum/twin_walls.hpp): each boundary face's values carried across its
+// strip's depth. The particles' bins count the layer's particles, which the wall holds at T_wall:
+// T and n take the wall's values, the velocity strip_velocity_factor's. The corners where two
+// moved walls meet are left out (depth^2). Returns whether any wall was moved (the same on every
+// process: it is the parameters').
 template <int dim, class VectorType>
 bool add_pinned_strips(const dealii::DoFHandler<dim>& dofs, const VectorType& solution,
                        const std::vector<std::string>& names, const ContinuumParameters& prm,
                        const std::vector<DerivedField>& derived, unsigned pieces,
-                       const std::array<unsigned, 3>& bins, std::vector<std::vector<double>>& sums,
-                       std::vector<double>& volume) {
+                       const std::array<unsigned, 3>& bins, BinSums& sums) {
   std::array<std::array<double, 2>, 3> depth{};
   bool any = false;
   for (int d = 0; d < dim; ++d)
@@ -182,8 +206,6 @@ bool add_pinned_strips(const dealii::DoFHandler<dim>& dofs, const VectorType& so
   const unsigned n_components = fe.n_components();
   std::vector<dealii::Vector<double>> values(quadrature.size(),
                                              dealii::Vector<double>(n_components));
-  std::vector<char> velocity(n_components);
-  for (unsigned c = 0; c < n_components; ++c) velocity[c] = names[c].rfind("u_", 0) == 0;
   for (const auto& cell : dofs.active_cell_iterators()) {
     if (!cell->is_locally_owned()) continue;
     for (unsigned f = 0; f < cell->n_faces(); ++f) {
@@ -198,27 +220,37 @@ bool add_pinned_strips(const dealii::DoFHandler<dim>& dofs, const VectorType& so
       for (unsigned q = 0; q < quadrature.size(); ++q) {
         auto x = face_values.quadrature_point(q);
         x[d] = side == 0 ? -0.5 * strip : prm.box[d] + 0.5 * strip; // the strip's middle
-        const unsigned index = bin_of(x, prm, bins);
-        const double v = face_values.JxW(q) * strip;
-        volume[index] += v;
         for (unsigned c = 0; c < n_components; ++c)
-          sums[c][index] += (velocity[c] ? u_factor : 1.0) * values[q][c] * v;
-        for (unsigned k = 0; k < derived.size(); ++k)
-          sums[n_components + k][index] += derived[k](values[q]) * v;
+          if (names[c].rfind("u_", 0) == 0) values[q][c] *= u_factor;
+        sums.add(bin_of(x, prm, bins), face_values.JxW(q) * strip, values[q], derived);
       }
     }
   }
   return true;
 }
 
+// Sub-cell pieces per cell direction for the bins' quadrature: a cell straddling a bin face is
+// split into pieces no larger than a quarter bin.
+template <int dim>
+unsigned sub_cell_pieces(const dealii::DoFHandler<dim>& dofs, const ContinuumParameters& prm,
+                         const std::array<unsigned, 3>& bins, const MPI_Comm comm) {
+  double finest_bin = 1e300, largest_cell = 0;
+  for (int d = 0; d < dim; ++d) finest_bin = std::min(finest_bin, prm.bin_extent(d) / bins[d]);
+  for (const auto& cell : dofs.active_cell_iterators())
+    largest_cell = std::max(largest_cell, cell->diameter());
+  largest_cell = dealii::Utilities::MPI::max(largest_cell, comm);
+  return std::clamp(static_cast<unsigned>(std::ceil(4 * largest_cell / finest_bin)), 1u, 16u);
+}
+
 // Average of every FE component over a regular grid of bins covering the box: the integral over
 // each bin divided by its volume. Quadrature points are assigned to the bin that contains them;
-// the sub-cell quadrature is iterated so that a cell straddling a bin face is split into pieces
-// no larger than a quarter bin (error of a non-aligned bin face O(h_sub / bin width)).
-// Cells not owned by this process are skipped and the sums added over `comm` (the distributed
-// solver); VectorType: dealii::Vector or a ghosted Trilinos vector. `derived` adds fields computed
-// from the components at each quadrature point (the low-Mach density n(P, T)), after the
-// components, named after them in `names`.
+// the sub-cell quadrature is iterated (sub_cell_pieces: error of a non-aligned bin face O(h_sub /
+// bin width)). Cells not owned by this process are skipped and the sums added over `comm` (the
+// distributed solver); VectorType: dealii::Vector or a ghosted Trilinos vector. `derived` adds
+// fields computed from the components at each quadrature point (the low-Mach density n(P, T)),
+// after the components, named after them in `names`. Beside walls moved in over pinned layers
+// the scene's bins also count the layers' strips (add_pinned_strips); the twin's own fields over
+// its domain alone are kept beside them (BinAverages::domain_values).
 template <int dim, class VectorType>
 BinAverages bin_averages(const dealii::DoFHandler<dim>& dofs, const VectorType& solution,
                          const std::vector<std::string>& names, const ContinuumParameters& prm,
@@ -227,61 +259,31 @@ BinAverages bin_averages(const dealii::DoFHandler<dim>& dofs, const VectorType& 
   BinAverages out;
   out.names = names;
   unsigned n_bins = 1;
-  double finest_bin = 1e300, largest_cell = 0;
   for (int d = 0; d < dim; ++d) {
     out.bins[d] = std::max(1u, prm.bins[d]);
     n_bins *= out.bins[d];
-    finest_bin = std::min(finest_bin, prm.bin_extent(d) / out.bins[d]);
   }
-  for (const auto& cell : dofs.active_cell_iterators())
-    largest_cell = std::max(largest_cell, cell->diameter());
-  largest_cell = dealii::Utilities::MPI::max(largest_cell, comm);
-  const unsigned pieces =
-      std::clamp(static_cast<unsigned>(std::ceil(4 * largest_cell / finest_bin)), 1u, 16u);
+  const unsigned pieces = sub_cell_pieces(dofs, prm, out.bins, comm);
   const dealii::QIterated<dim> quadrature(dealii::QGauss<1>(3), pieces);
   const auto& fe = dofs.get_fe();
   dealii::FEValues<dim> fe_values(fe, quadrature,
                                   dealii::update_values | dealii::update_quadrature_points |
                                       dealii::update_JxW_values);
-  const unsigned n_components = fe.n_components();
-  const unsigned n_fields = n_components + static_cast<unsigned>(derived.size());
   std::vector<dealii::Vector<double>> values(quadrature.size(),
-                                             dealii::Vector<double>(n_components));
-  out.values.assign(n_fields, std::vector<double>(n_bins, 0.0));
-  std::vector<double> volume(n_bins, 0.0);
+                                             dealii::Vector<double>(fe.n_components()));
+  BinSums sums(fe.n_components() + static_cast<unsigned>(derived.size()), n_bins);
   for (const auto& cell : dofs.active_cell_iterators()) {
     if (!cell->is_locally_owned()) continue;
     fe_values.reinit(cell);
     fe_values.get_function_values(solution, values);
-    for (unsigned q = 0; q < quadrature.size(); ++q) {
-      const auto& x = fe_values.quadrature_point(q);
-      const unsigned index = bin_of(x, prm, out.bins);
-      volume[index] += fe_values.JxW(q);
-      for (unsigned c = 0; c < n_components; ++c)
-        out.values[c][index] += values[q][c] * fe_values.JxW(q);
-      for (unsigned k = 0; k < derived.size(); ++k)
-        out.values[n_components + k][index] += derived[k](values[q]) * fe_values.JxW(q);
-    }
+    for (unsigned q = 0; q < quadrature.size(); ++q)
+      sums.add(bin_of(fe_values.quadrature_point(q), prm, out.bins), fe_values.JxW(q), values[q],
+               derived);
   }
-  // The scene's bins beside walls moved in over pinned layers also count the layers' strips;
-  // the twin's own fields over its domain alone are kept beside them.
-  std::vector<std::vector<double>> domain_sums = out.values;
-  std::vector<double> domain_volume = volume;
-  const bool strips = add_pinned_strips(dofs, solution, out.names, prm, derived, pieces, out.bins,
-                                        out.values, volume);
-  const bool moved = dealii::Utilities::MPI::logical_or(strips, comm);
-  const auto normalise = [&](std::vector<std::vector<double>>& sums, std::vector<double>& v) {
-    dealii::Utilities::MPI::sum(v, comm, v);
-    for (unsigned c = 0; c < n_fields; ++c) {
-      dealii::Utilities::MPI::sum(sums[c], comm, sums[c]);
-      for (unsigned b = 0; b < n_bins; ++b) sums[c][b] /= v[b];
-    }
-  };
-  normalise(out.values, volume);
-  if (moved) {
-    normalise(domain_sums, domain_volume);
-    out.domain_values = std::move(domain_sums);
-  }
+  BinSums domain = sums;
+  if (add_pinned_strips(dofs, solution, names, prm, derived, pieces, out.bins, sums))
+    out.domain_values = domain.averages(comm);
+  out.values = sums.averages(comm);
   return out;
 }
 
